@@ -1,0 +1,58 @@
+#include "app/cli.h"
+
+#include <cerrno>
+#include <cstdlib>
+
+#include "core/errors.h"
+
+namespace cloth::app {
+
+Args::Args(std::string command, std::vector<std::string> args)
+    : command_(std::move(command)), args_(std::move(args)) {}
+
+std::string Args::next() {
+    if (done()) throw InputError("command line", command_, "missing argument");
+    return args_[pos_++];
+}
+
+std::string Args::flag() {
+    std::string a = next();
+    const size_t eq = a.find('=');
+    hasPending_ = a.rfind("--", 0) == 0 && eq != std::string::npos;
+    if (hasPending_) {
+        pendingValue_ = a.substr(eq + 1);
+        a = a.substr(0, eq);
+    }
+    return a;
+}
+
+std::string Args::value(const std::string& f) {
+    if (hasPending_) {
+        hasPending_ = false;
+        return pendingValue_;
+    }
+    if (done()) throw InputError("command line", f, "needs a value");
+    return args_[pos_++];
+}
+
+long Args::positiveInt(const std::string& f) {
+    const std::string v = value(f);
+    char* end = nullptr;
+    errno = 0;
+    const long n = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || errno == ERANGE || n <= 0)
+        throw InputError("command line", f, "expected a positive integer, got '" + v + "'");
+    return n;
+}
+
+void Args::unknown(const std::string& f) const {
+    throw InputError("command line", f,
+                     "unknown option for '" + command_ + "'; see clothsim " + command_ + " --help");
+}
+
+int notBuiltCommand(Args& args) {
+    std::fprintf(stderr, "clothsim %s: not built yet\n", args.command().c_str());
+    return kInternal;
+}
+
+}  // namespace cloth::app

@@ -1,0 +1,27 @@
+// clothsim info: the build, the CPU and the GPU device with its limits (DESIGN.md §5).
+#include <cstdio>
+#include <thread>
+
+#include "app/cli.h"
+#include "app/solver_factory.h"
+
+namespace cloth::app {
+
+int infoCommand(Args& args) {
+    while (!args.done()) {
+        const std::string f = args.flag();
+        if (f == "--help") {
+            std::fputs("usage: clothsim info\n\nPrints the build, the CPU threads, and the GPU "
+                       "(EGL platform, vendor, GL renderer and version, compute limits).\n",
+                       stdout);
+            return kOk;
+        }
+        args.unknown(f);
+    }
+    std::printf("clothsim %s (%s build, %s)\n", CLOTH_VERSION, CLOTH_BUILD_TYPE, __VERSION__);
+    std::printf("cpu          %u hardware threads\n", std::thread::hardware_concurrency());
+    std::printf("gpu          %s\n", gpuDescription().c_str());
+    return kOk;
+}
+
+}  // namespace cloth::app

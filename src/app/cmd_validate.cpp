@@ -1,0 +1,113 @@
+// clothsim validate SCENE: checks a scene and prints what it models (DESIGN.md §5).
+#include <cstdio>
+
+#include "app/cli.h"
+#include "app/solver_factory.h"
+#include "core/errors.h"
+#include "core/scene_loader.h"
+#include "core/stability.h"
+
+namespace cloth::app {
+namespace {
+
+constexpr const char* kHelp = R"(usage: clothsim validate SCENE [--set KEY.PATH=JSON]...
+
+Checks SCENE (every key: type, range, unknown keys) and prints what it models: spring families,
+forces, pins, colliders, integrator, the predicted stable time step, and the GPU kernel variant.
+Exit 0 if the scene is valid, 2 (with the file, key path and reason) if not.
+)";
+
+std::string vec(const glm::dvec3& v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "(%g, %g, %g)", v.x, v.y, v.z);
+    return buf;
+}
+
+void printModel(const Scene& s) {
+    const Grid g = s.grid();
+    std::printf("scene        %s (%s)\n", s.name.c_str(), s.source.c_str());
+    std::printf("cloth        %d x %d = %lld vertices, %g x %g m, spacing %.4g x %.4g m, "
+                "mass %g kg per vertex\n",
+                g.nu, g.nv, (long long)g.count(), s.cloth.size.x, s.cloth.size.y, g.du, g.dv,
+                s.cloth.mass);
+    std::printf("             origin %s, u axis %s, v axis %s\n", vec(g.origin).c_str(),
+                vec(g.u).c_str(), vec(g.v).c_str());
+    for (Family f : {Family::Structural, Family::Shear, Family::Bend}) {
+        const double k = s.springs.of(f);
+        if (k > 0)
+            std::printf("springs      %-10s K = %g N/m\n", familyName(f), k);
+        else
+            std::printf("springs      %-10s not modelled\n", familyName(f));
+    }
+    std::printf("forces       gravity %s m/s^2\n", vec(s.gravity).c_str());
+    std::printf("             damping mu = %g N*s/m%s\n", s.damping,
+                s.damping > 0 ? "" : " (not modelled)");
+    if (s.wind && s.wind->strength != 0)
+        std::printf("             wind %s, K_w = %g N\n", vec(s.wind->direction).c_str(),
+                    s.wind->strength);
+    else
+        std::printf("             wind not modelled\n");
+    std::printf("pins         %zu:", s.pins.size());
+    for (const Pin& p : s.pins) std::printf(" (%d, %d)", p.i, p.j);
+    std::printf("\n");
+    if (s.colliders.empty()) std::printf("colliders    none\n");
+    for (size_t n = 0; n < s.colliders.size(); ++n) {
+        if (const Plane* p = std::get_if<Plane>(&s.colliders[n]))
+            std::printf("collider %zu   plane through %s, normal %s\n", n, vec(p->point).c_str(),
+                        vec(p->normal).c_str());
+        else if (const Sphere* sp = std::get_if<Sphere>(&s.colliders[n]))
+            std::printf("collider %zu   sphere at %s, radius %g m\n", n, vec(sp->center).c_str(),
+                        sp->radius);
+    }
+    std::printf("integrator   %s, dt = %g s, %d substeps per frame, duration %g s = %ld steps\n",
+                methodName(s.integrator.method), s.integrator.dt, s.integrator.substeps,
+                s.duration, s.defaultSteps());
+    std::printf("max speed    %g m/s\n", s.maxSpeed);
+}
+
+void printStability(const Scene& s) {
+    const StabilityBound b = estimateStability(s);
+    const double bound = stableDt(s), dt = s.integrator.dt;
+    std::printf("stability    lambda_max <= %.6g N/m (Gershgorin, DESIGN.md §2)\n", b.lambdaMax);
+    std::printf("             explicit Euler stable for dt < %.4g s (mu/lambda_max, 2m/mu)\n",
+                b.explicitEulerDt);
+    std::printf("             symplectic Euler would be stable for dt < %.4g s\n",
+                b.symplecticEulerDt);
+    if (dt < bound)
+        std::printf("             dt = %g s is inside the bound (%.0f%% of it)\n", dt,
+                    100 * dt / bound);
+    else
+        std::printf("             WARNING: dt = %g s exceeds the predicted bound: %s\n", dt,
+                    stabilityAdvice(s).c_str());
+}
+
+}  // namespace
+
+int validateCommand(Args& args) {
+    std::string path;
+    std::vector<std::string> sets;
+    while (!args.done()) {
+        if (!args.isFlag()) {
+            if (!path.empty()) throw InputError("command line", args.next(), "only one scene");
+            path = args.next();
+            continue;
+        }
+        const std::string f = args.flag();
+        if (f == "--help") {
+            std::fputs(kHelp, stdout);
+            return kOk;
+        }
+        if (f == "--set") sets.push_back(args.value(f));
+        else args.unknown(f);
+    }
+    if (path.empty()) throw InputError("command line", "SCENE", "validate needs a scene file");
+    const Scene scene = loadScene(path, sets);
+    printModel(scene);
+    std::printf("features     %s\n", Features::of(scene).describe().c_str());
+    printStability(scene);
+    std::printf("gpu variant  %s\n", gpuVariant(scene).c_str());
+    std::printf("valid\n");
+    return kOk;
+}
+
+}  // namespace cloth::app

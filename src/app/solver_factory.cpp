@@ -1,0 +1,58 @@
+#include "app/solver_factory.h"
+
+#include "core/errors.h"
+
+#if defined(CLOTH_HAVE_GPU) && __has_include("gpu/gpu_backend.h")
+#include "gpu/gpu_backend.h"
+#define CLOTH_GPU_BUILT 1
+#endif
+
+namespace cloth::app {
+
+Backend parseBackend(const std::string& flag, const std::string& value) {
+    if (value == "cpu") return Backend::Cpu;
+    if (value == "gpu") return Backend::Gpu;
+    throw InputError("command line", flag, "expected cpu or gpu, got '" + value + "'");
+}
+
+Precision parsePrecision(const std::string& flag, const std::string& value) {
+    if (value == "float") return Precision::Float;
+    if (value == "double") return Precision::Double;
+    throw InputError("command line", flag, "expected float or double, got '" + value + "'");
+}
+
+std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice) {
+    if (choice.backend == Backend::Cpu)
+        return makeCpuSolver(scene, CpuOptions{choice.precision, choice.threads});
+#ifdef CLOTH_GPU_BUILT
+    return makeGpuSolver(scene);
+#else
+    throw GpuUnavailable("this clothsim was built without the GPU backend");
+#endif
+}
+
+Precision effectivePrecision(const BackendChoice& choice) {
+    return choice.backend == Backend::Gpu ? Precision::Float : choice.precision;
+}
+
+std::string gpuVariant([[maybe_unused]] const Scene& scene) {
+#ifdef CLOTH_GPU_BUILT
+    return describeGpuVariant(scene);
+#else
+    return "none (built without the GPU backend)";
+#endif
+}
+
+std::string gpuDescription() {
+#ifdef CLOTH_GPU_BUILT
+    try {
+        return describeGpu();
+    } catch (const GpuUnavailable& e) {
+        return std::string("unavailable: ") + e.what();
+    }
+#else
+    return "unavailable: built without the GPU backend";
+#endif
+}
+
+}  // namespace cloth::app

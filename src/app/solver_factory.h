@@ -1,0 +1,32 @@
+// Picks a backend for the app: the one place that knows both the CPU and the GPU solver.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/solver.h"
+
+namespace cloth::app {
+
+struct BackendChoice {
+    Backend backend = Backend::Cpu;
+    Precision precision = Precision::Double;  // CPU only; the GPU computes in float
+    int threads = 0;                          // CPU only; 0 = automatic
+};
+
+Backend parseBackend(const std::string& flag, const std::string& value);
+Precision parsePrecision(const std::string& flag, const std::string& value);
+
+// Throws GpuUnavailable when the GPU backend is asked for and cannot run.
+std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice);
+
+// The precision a backend's numbers carry (for the CSV's digits).
+Precision effectivePrecision(const BackendChoice& choice);
+
+// "HAS_SHEAR HAS_BEND NUM_PLANES=1 ..." for the GPU backend, or why there is none.
+std::string gpuVariant(const Scene& scene);
+
+// The GPU device, its limits and the EGL platform, or why there is none.
+std::string gpuDescription();
+
+}  // namespace cloth::app

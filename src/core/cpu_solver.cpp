@@ -1,0 +1,187 @@
+#include "core/cpu_solver.h"
+
+#include <barrier>
+#include <cmath>
+#include <cstdio>
+
+#include "core/forces.h"
+
+namespace cloth {
+namespace {
+
+template <typename T>
+Vec3<T> cast(const glm::dvec3& v) {
+    return Vec3<T>(v);
+}
+
+// Vertices below this count run on one thread: a barrier costs more than their whole step.
+constexpr std::int64_t kMinVerticesPerThread = 4096;
+
+int chooseThreads(int requested, std::int64_t vertices) {
+    if (requested > 0) return requested;
+    const int hw = std::max(1u, std::thread::hardware_concurrency());
+    return int(std::clamp<std::int64_t>(vertices / kMinVerticesPerThread, 1, hw));
+}
+
+}  // namespace
+
+template <typename T>
+CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
+    : grid_(scene.grid()), features_(Features::of(scene)) {
+    Solver::dt_ = scene.integrator.dt;
+    for (const SpringOffset& o : kSpringOffsets) {
+        const double k = scene.springs.of(o.family);
+        if (k > 0) springs_.push_back({o.di, o.dj, T(k), T(grid_.restLength(o.di, o.dj))});
+    }
+    const std::int64_t n = grid_.count();
+    x_.resize(n);
+    for (int j = 0; j < grid_.nv; ++j)
+        for (int i = 0; i < grid_.nu; ++i) x_[grid_.index(i, j)] = cast<T>(grid_.restPosition(i, j));
+    v_.assign(n, Vec3<T>(0));
+    f_.assign(n, Vec3<T>(0));
+    inverseMass_.assign(n, T(1.0 / scene.cloth.mass));
+    pinned_.assign(n, 0);
+    pinPosition_ = x_;
+    for (const Pin& p : scene.pins) pinned_[grid_.index(p.i, p.j)] = 1;
+    dt_t_ = T(scene.integrator.dt);
+    damping_ = T(scene.damping);
+    gravity_ = cast<T>(scene.gravity);
+    maxSpeed_ = scene.maxSpeed;
+    maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
+    windStrength_ = scene.wind ? T(scene.wind->strength) : T(0);
+    windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
+    for (const Collider& c : scene.colliders) {
+        if (const Plane* p = std::get_if<Plane>(&c))
+            colliders_.push_back(PlaneT<T>{cast<T>(p->point), cast<T>(p->normal)});
+        else if (const Sphere* s = std::get_if<Sphere>(&c))
+            colliders_.push_back(SphereT<T>{cast<T>(s->center), T(s->radius)});
+    }
+    const int t = chooseThreads(threads, n);
+    for (int b = 0; b < t; ++b) bands_.push_back(Band{n * b / t, n * (b + 1) / t, -1, {}});
+    pool_ = std::make_unique<WorkerPool>(t);
+}
+
+// Pass 1: each vertex gathers its springs (one loop over the active offsets) and the wind.
+template <typename T>
+void CpuSolver<T>::computeForces(std::int64_t begin, std::int64_t end) {
+    const int nu = grid_.nu, nv = grid_.nv;
+    auto at = [&](int i, int j) -> const Vec3<T>& { return x_[std::int64_t(j) * nu + i]; };
+    for (std::int64_t k = begin; k < end; ++k) {
+        const int i = int(k % nu), j = int(k / nu);
+        Vec3<T> f(0);
+        for (const Spring& s : springs_) {
+            const int qi = i + s.di, qj = j + s.dj;
+            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+            f += springForce(x_[k], at(qi, qj), s.stiffness, s.restLength);
+        }
+        if (features_.wind)
+            f += windForce(vertexNormal<T>(nu, nv, i, j, at), windDirection_, windStrength_);
+        f_[k] = f;
+    }
+}
+
+// Pass 2: the seed's explicit Euler (DESIGN.md §2, seed eq. (6)), then pins, then colliders in
+// scene order, then the instability check.
+template <typename T>
+bool CpuSolver<T>::integrate(Band& band) {
+    const T dt = dt_t_;
+    for (std::int64_t k = band.begin; k < band.end; ++k) {
+        Vec3<T> p = x_[k], v = v_[k];
+        const Vec3<T> a = (f_[k] - damping_ * v) * inverseMass_[k] + gravity_;
+        p += dt * v;  // the old velocity: the seed's scheme, not symplectic
+        v += dt * a;
+        if (pinned_[k]) {
+            p = pinPosition_[k];
+            v = Vec3<T>(0);
+        }
+        for (const auto& c : colliders_) std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
+        x_[k] = p;
+        v_[k] = v;
+        const T speed2 = glm::dot(v, v);
+        const bool finite = std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2);
+        if (!finite || speed2 > maxSpeed2_) {
+            char buf[160];
+            const int i = int(k % grid_.nu), j = int(k / grid_.nu);
+            if (!finite)
+                std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
+            else
+                std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
+                              double(std::sqrt(speed2)), maxSpeed_, i, j);
+            band.badVertex = k;
+            band.reason = buf;
+            return false;  // the rest of the band is not advanced: the run stops at this step
+        }
+    }
+    return true;
+}
+
+template <typename T>
+StepResult CpuSolver<T>::step(long n) {
+    StepResult result;
+    if (bands_.size() == 1) {
+        Band& band = bands_[0];
+        for (long s = 0; s < n; ++s) {
+            computeForces(band.begin, band.end);
+            ++result.stepsTaken;
+            if (!integrate(band)) break;
+        }
+    } else {
+        result = stepThreaded(n);
+    }
+    steps_ += result.stepsTaken;
+    for (const Band& b : bands_) {  // bands are in vertex order: the first bad one is the lowest
+        if (b.badVertex < 0) continue;
+        result.unstable = true;
+        result.firstBadStep = result.lastBadStep = steps_;
+        result.reason = b.reason;
+        break;
+    }
+    return result;
+}
+
+template <typename T>
+StepResult CpuSolver<T>::stepThreaded(long n) {
+    // Every vertex's update reads only its own force and the previous positions, so the result
+    // is bit-identical to a serial run whatever the number of threads.
+    std::barrier sync(std::ptrdiff_t(bands_.size()));
+    std::atomic<bool> bad{false};
+    long taken = 0;
+    pool_->run([&](int t) {
+        Band& band = bands_[t];
+        long s = 0;
+        while (s < n) {
+            computeForces(band.begin, band.end);
+            sync.arrive_and_wait();
+            if (!integrate(band)) bad.store(true, std::memory_order_relaxed);
+            ++s;
+            sync.arrive_and_wait();
+            if (bad.load(std::memory_order_relaxed)) break;
+        }
+        if (t == 0) taken = s;
+    });
+    StepResult r;
+    r.stepsTaken = taken;
+    return r;
+}
+
+template <typename T>
+SimState CpuSolver<T>::read() const {
+    SimState s;
+    s.nu = grid_.nu;
+    s.nv = grid_.nv;
+    s.positions.assign(x_.begin(), x_.end());
+    s.velocities.assign(v_.begin(), v_.end());
+    return s;
+}
+
+template <typename T>
+std::string CpuSolver<T>::name() const {
+    const int t = int(bands_.size());
+    return std::string("cpu ") + (sizeof(T) == 4 ? "float" : "double") + ", " + std::to_string(t) +
+           (t == 1 ? " thread" : " threads");
+}
+
+template class CpuSolver<float>;
+template class CpuSolver<double>;
+
+}  // namespace cloth

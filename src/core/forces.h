@@ -1,0 +1,39 @@
+// Stateless physics of DESIGN.md §2: positions and parameters in, force or normal out. The GLSL
+// kernels in shaders/compute/common.glsl mirror these function for function.
+#pragma once
+
+#include <cmath>
+
+#include "core/grid.h"
+
+namespace cloth {
+
+// Force on vertex k from the spring to q (seed eq. (2)): F = K (|d| − L) d/|d|, d = p_q − p_k.
+// A spring squeezed to (almost) zero length has no direction and adds nothing.
+template <typename T>
+Vec3<T> springForce(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLength) {
+    const Vec3<T> d = pq - pk;
+    const T len = glm::length(d);
+    if (!(len >= T(1e-12) * restLength)) return Vec3<T>(0);
+    return (stiffness * (len - restLength) / len) * d;
+}
+
+// Unit vertex normal from central differences clamped at the border (DESIGN.md §2);
+// 0 where the cross product vanishes, so 1-D chains have no normal and feel no wind.
+template <typename T, typename PositionAt>
+Vec3<T> vertexNormal(int nu, int nv, int i, int j, const PositionAt& p) {
+    const Vec3<T> a = p(std::min(i + 1, nu - 1), j) - p(std::max(i - 1, 0), j);
+    const Vec3<T> b = p(i, std::min(j + 1, nv - 1)) - p(i, std::max(j - 1, 0));
+    const Vec3<T> c = glm::cross(a, b);
+    const T len = glm::length(c);
+    if (!(len >= T(1e-12))) return Vec3<T>(0);
+    return c / len;
+}
+
+// Wind (seed §5.3): F_w = K_w ⟨n, û_w⟩ n.
+template <typename T>
+Vec3<T> windForce(const Vec3<T>& normal, const Vec3<T>& direction, T strength) {
+    return (strength * glm::dot(normal, direction)) * normal;
+}
+
+}  // namespace cloth

@@ -1,0 +1,41 @@
+#include "core/solver.h"
+
+#include "core/cpu_solver.h"
+
+namespace cloth {
+
+const char* backendName(Backend b) { return b == Backend::Cpu ? "cpu" : "gpu"; }
+const char* precisionName(Precision p) { return p == Precision::Float ? "float" : "double"; }
+
+Features Features::of(const Scene& scene) {
+    Features f;
+    f.structural = scene.springs.structural > 0;
+    f.shear = scene.springs.shear > 0;
+    f.bend = scene.springs.bend > 0;
+    f.wind = scene.wind.has_value() && scene.wind->strength != 0;
+    f.planes = scene.planeCount();
+    f.spheres = scene.sphereCount();
+    return f;
+}
+
+std::string Features::describe() const {
+    std::string springs;
+    for (auto [on, name] : {std::pair{structural, "structural"}, {shear, "shear"}, {bend, "bend"}})
+        if (on) {
+            if (!springs.empty()) springs += '+';
+            springs += name;
+        }
+    std::string s = springs.empty() ? "no springs" : springs;
+    if (wind) s += ", wind";
+    if (planes) s += ", " + std::to_string(planes) + (planes == 1 ? " plane" : " planes");
+    if (spheres) s += ", " + std::to_string(spheres) + (spheres == 1 ? " sphere" : " spheres");
+    return s;
+}
+
+std::unique_ptr<Solver> makeCpuSolver(const Scene& scene, const CpuOptions& options) {
+    if (options.precision == Precision::Float)
+        return std::make_unique<CpuSolver<float>>(scene, options.threads);
+    return std::make_unique<CpuSolver<double>>(scene, options.threads);
+}
+
+}  // namespace cloth

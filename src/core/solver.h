@@ -1,0 +1,69 @@
+// The one interface both backends implement (DESIGN.md §1): step(n), read(), features().
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/scene.h"
+
+namespace cloth {
+
+enum class Backend { Cpu, Gpu };
+enum class Precision { Float, Double };
+
+const char* backendName(Backend b);
+const char* precisionName(Precision p);
+
+// State copied out of a solver, in double whatever the solver computes in.
+struct SimState {
+    int nu = 0, nv = 0;
+    std::vector<glm::dvec3> positions;   // [m], index k = j·nu + i
+    std::vector<glm::dvec3> velocities;  // [m/s]
+};
+
+// What step(n) did. A run is unstable at the first step after which a position or velocity is
+// not finite or a speed exceeds max_speed (DESIGN.md §2); the solver stops there. A backend that
+// checks only every few steps (the GPU) reports the range the first bad step lies in.
+struct StepResult {
+    long stepsTaken = 0;     // steps completed by this call
+    bool unstable = false;
+    long firstBadStep = 0;   // 1-based global step numbers bracketing the first bad step
+    long lastBadStep = 0;
+    std::string reason;      // e.g. "speed 1.2e+04 m/s > max_speed 1e+04 at vertex (3, 7)"
+};
+
+// The features a scene declares, which decide what a solver computes (and on the GPU, compiles).
+struct Features {
+    bool structural = false, shear = false, bend = false, wind = false;
+    int planes = 0, spheres = 0;
+    static Features of(const Scene& scene);
+    std::string describe() const;  // "structural+shear+bend, wind, 1 plane, 1 sphere"
+};
+
+class Solver {
+public:
+    virtual ~Solver() = default;
+    // Advances up to n steps with no round trip to the caller; stops at the first unstable step.
+    virtual StepResult step(long n) = 0;
+    virtual SimState read() const = 0;
+    virtual Features features() const = 0;
+    virtual std::string name() const = 0;  // "cpu double, 2 threads", "gpu float (llvmpipe)"
+    long stepsDone() const { return steps_; }
+    double time() const { return double(steps_) * dt_; }
+
+protected:
+    long steps_ = 0;
+    double dt_ = 0;
+};
+
+struct CpuOptions {
+    Precision precision = Precision::Double;
+    int threads = 0;  // 0: one per hardware thread, 1: serial
+};
+
+std::unique_ptr<Solver> makeCpuSolver(const Scene& scene, const CpuOptions& options = {});
+
+}  // namespace cloth
