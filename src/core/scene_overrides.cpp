@@ -45,6 +45,8 @@ std::string applyOverride(nlohmann::json& doc, const std::string& assignment,
         throw InputError(source, key,
                          "--set value '" + text + "' is not JSON (strings need quotes: "
                          "name='\"x\"')");
+    } catch (const nlohmann::json::exception&) {
+        throw InputError(source, key, "--set value '" + text + "' is not a finite number");
     }
     std::string path;
     nlohmann::json* node = &doc;
