@@ -1,0 +1,155 @@
+// The command line of DESIGN.md §5 on valid input: run's summary and files, validate's report,
+// info, --help on every subcommand, and the commands not built yet.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "support/process.h"
+
+namespace cloth {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runProcess;
+
+const std::string kExe = CLOTH_EXE;
+const std::string kScenes = CLOTH_SOURCE_DIR "/scenes/";
+
+fs::path tempDir(const std::string& name) {
+    const fs::path d = fs::temp_directory_path() / ("clothsim_cli_test_" + name);
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+TEST(CliRun, PrintsOneSummaryLineWithVertexStepsPerSecond) {
+    const auto r = runProcess({kExe, "run", kScenes + "hanging.json", "--steps", "200"}, 60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    EXPECT_NE(r.out.find("hanging: 200 steps"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("vertex-steps/s"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("s simulated"), std::string::npos) << r.out;
+}
+
+TEST(CliRun, QuietPrintsNothing) {
+    const auto r = runProcess({kExe, "run", kScenes + "spring.json", "--steps", "10", "--quiet"}, 60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "");
+}
+
+TEST(CliRun, WritesPaddedFramesEveryKStepsAndTheFinalFiles) {
+    const fs::path d = tempDir("frames");
+    const auto r = runProcess({kExe, "run", kScenes + "chain.json", "--steps", "50", "--frames",
+                               (d / "frames").string(), "--every", "20", "--out-obj",
+                               (d / "final.obj").string(), "--out-csv", (d / "final.csv").string()},
+                              60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(d / "frames")) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    // Steps 0, 20, 40 (50 is not a multiple of 20).
+    EXPECT_EQ(names, (std::vector<std::string>{"chain_000000.obj", "chain_000020.obj",
+                                               "chain_000040.obj"}));
+    EXPECT_TRUE(fs::exists(d / "final.obj"));
+    std::ifstream csv(d / "final.csv");
+    std::string line;
+    int rows = -1;
+    while (std::getline(csv, line)) ++rows;
+    EXPECT_EQ(rows, 3);  // 1×3 chain
+    fs::remove_all(d);
+}
+
+TEST(CliRun, SetOverridesChangeTheRun) {
+    const fs::path d = tempDir("set");
+    for (const char* bend : {"10", "0"}) {
+        const auto r = runProcess({kExe, "run", kScenes + "hanging.json", "--steps", "300", "--set",
+                                   std::string("springs.bend=") + bend, "--out-csv",
+                                   (d / (std::string(bend) + ".csv")).string(), "--quiet"},
+                                  60);
+        ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    }
+    std::ifstream a(d / "10.csv"), b(d / "0.csv");
+    const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_NE(sa, sb);
+    fs::remove_all(d);
+}
+
+TEST(CliRun, ThreadCountDoesNotChangeTheResult) {
+    const fs::path d = tempDir("threads");
+    for (const char* t : {"1", "2"}) {
+        const auto r = runProcess({kExe, "run", kScenes + "drape.json", "--steps", "500", "--threads",
+                                   t, "--out-csv", (d / (std::string(t) + ".csv")).string(), "--quiet"},
+                                  60);
+        ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    }
+    std::ifstream a(d / "1.csv"), b(d / "2.csv");
+    const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_EQ(sa, sb);
+    fs::remove_all(d);
+}
+
+TEST(CliValidate, ReportsWhatTheSceneModelsAndItsStableStep) {
+    const auto r = runProcess({kExe, "validate", kScenes + "drape.json"}, 60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    for (const char* s : {"structural K = 400", "shear      K = 100", "bend       K = 10",
+                          "wind not modelled", "plane through", "sphere at", "explicit_euler",
+                          "explicit Euler stable for dt <", "inside the bound", "valid"})
+        EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+}
+
+TEST(CliValidate, AbsentFamilyIsReportedAsNotModelled) {
+    const auto r = runProcess({kExe, "validate", kScenes + "spring.json"}, 60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    EXPECT_NE(r.out.find("shear      not modelled"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("bend       not modelled"), std::string::npos) << r.out;
+}
+
+TEST(CliInfo, PrintsBuildAndGpuLines) {
+    const auto r = runProcess({kExe, "info"}, 60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    EXPECT_NE(r.out.find("clothsim "), std::string::npos);
+    EXPECT_NE(r.out.find("gpu"), std::string::npos);
+}
+
+TEST(CliHelp, EverySubcommandHasHelp) {
+    for (const char* c : {"run", "validate", "info"}) {
+        const auto r = runProcess({kExe, c, "--help"}, 60);
+        EXPECT_EQ(r.exitCode, 0) << c;
+        EXPECT_NE(r.out.find("usage: clothsim"), std::string::npos) << c;
+    }
+    const auto top = runProcess({kExe, "--help"}, 60);
+    EXPECT_EQ(top.exitCode, 0);
+    EXPECT_NE(top.out.find("exit codes"), std::string::npos);
+    const auto none = runProcess({kExe}, 60);
+    EXPECT_EQ(none.exitCode, 2);
+}
+
+TEST(CliNotBuilt, ViewRenderBenchSaySoWithExitOne) {
+    for (const char* c : {"view", "render", "bench"}) {
+        const auto r = runProcess({kExe, c}, 60);
+        EXPECT_EQ(r.exitCode, 1) << c;
+        EXPECT_NE(r.err.find("not built yet"), std::string::npos) << c;
+    }
+}
+
+TEST(CliArgs, BadArgumentsExitTwoNamingTheOption) {
+    const std::vector<std::vector<std::string>> cases = {
+        {"run", kScenes + "spring.json", "--steps", "-3"},
+        {"run", kScenes + "spring.json", "--backend", "tpu"},
+        {"run", kScenes + "spring.json", "--precision", "half"},
+        {"run", kScenes + "spring.json", "--frames", "/tmp/x"},
+        {"run", kScenes + "spring.json", "--bogus"},
+        {"run"},
+        {"frobnicate"},
+    };
+    for (auto c : cases) {
+        c.insert(c.begin(), kExe);
+        const auto r = runProcess(c, 60);
+        EXPECT_EQ(r.exitCode, 2) << c[1] << " " << (c.size() > 3 ? c[3] : "") << test::describe(r);
+        EXPECT_NE(r.err.find("invalid input"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace cloth
