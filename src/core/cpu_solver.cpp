@@ -31,7 +31,9 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
     Solver::dt_ = scene.integrator.dt;
     for (const SpringOffset& o : kSpringOffsets) {
         const double k = scene.springs.of(o.family);
-        if (k > 0) springs_.push_back({o.di, o.dj, T(k), T(grid_.restLength(o.di, o.dj))});
+        if (k > 0)
+            springs_.push_back({o.di, o.dj, std::int64_t(o.dj) * grid_.nu + o.di, T(k),
+                                T(grid_.restLength(o.di, o.dj))});
     }
     const std::int64_t n = grid_.count();
     x_.resize(n);
@@ -62,21 +64,33 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
 }
 
 // Pass 1: each vertex gathers its springs (one loop over the active offsets) and the wind.
+// Vertices two or more away from every border have all their neighbours: they skip the bounds
+// checks and address neighbours by a fixed index offset.
 template <typename T>
 void CpuSolver<T>::computeForces(std::int64_t begin, std::int64_t end) {
     const int nu = grid_.nu, nv = grid_.nv;
     auto at = [&](int i, int j) -> const Vec3<T>& { return x_[std::int64_t(j) * nu + i]; };
+    int i = int(begin % nu), j = int(begin / nu);
     for (std::int64_t k = begin; k < end; ++k) {
-        const int i = int(k % nu), j = int(k / nu);
         Vec3<T> f(0);
-        for (const Spring& s : springs_) {
-            const int qi = i + s.di, qj = j + s.dj;
-            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
-            f += springForce(x_[k], at(qi, qj), s.stiffness, s.restLength);
+        const Vec3<T> p = x_[k];
+        if (i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2) {
+            for (const Spring& s : springs_)
+                f += springForce(p, x_[k + s.indexOffset], s.stiffness, s.restLength);
+        } else {
+            for (const Spring& s : springs_) {
+                const int qi = i + s.di, qj = j + s.dj;
+                if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+                f += springForce(p, x_[k + s.indexOffset], s.stiffness, s.restLength);
+            }
         }
         if (features_.wind)
             f += windForce(vertexNormal<T>(nu, nv, i, j, at), windDirection_, windStrength_);
         f_[k] = f;
+        if (++i == nu) {
+            i = 0;
+            ++j;
+        }
     }
 }
 

@@ -25,6 +25,7 @@ public:
 private:
     struct Spring {  // one active entry of kSpringOffsets
         int di, dj;
+        std::int64_t indexOffset;  // dj·nu + di
         T stiffness, restLength;
     };
     struct Band {  // a thread's vertices [begin, end) and what it found wrong
