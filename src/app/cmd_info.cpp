@@ -20,7 +20,12 @@ int infoCommand(Args& args) {
     }
     std::printf("clothsim %s (%s build, %s)\n", CLOTH_VERSION, CLOTH_BUILD_TYPE, __VERSION__);
     std::printf("cpu          %u hardware threads\n", std::thread::hardware_concurrency());
-    std::printf("gpu          %s\n", gpuDescription().c_str());
+    // One "gpu" heading, the device's lines indented under it.
+    std::string gpu = gpuDescription();
+    for (size_t at = gpu.find('\n'); at != std::string::npos && at + 1 < gpu.size();
+         at = gpu.find('\n', at + 1))
+        gpu.insert(at + 1, "             ");
+    std::printf("gpu          %s%s", gpu.c_str(), gpu.empty() || gpu.back() != '\n' ? "\n" : "");
     return kOk;
 }
 

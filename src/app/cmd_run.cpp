@@ -113,7 +113,8 @@ int runCommand(Args& args) {
 
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
-    double stepSeconds = 0;  // stepping alone, without the writing of frames
+    double stepSeconds = 0;    // stepping alone, without the writing of frames
+    double deviceSeconds = 0;  // GPU time of those steps (0 on the CPU)
     if (!o.framesDir.empty()) writeObj(framePath(o, scene, 0, total), solver->read(), scene.name);
     Progress progress(total, !o.quiet);
     const long chunk = std::max(1L, std::min(total / 100, 10000L));
@@ -123,6 +124,7 @@ int runCommand(Args& args) {
         const auto t0 = Clock::now();
         const StepResult r = solver->step(n);
         stepSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
+        deviceSeconds += deviceSecondsPerStep(*solver) * double(r.stepsTaken);
         if (r.unstable) {
             progress.finish();
             return reportUnstable(scene, *solver, r);
@@ -142,6 +144,10 @@ int runCommand(Args& args) {
         std::printf("%s: %ld steps, %.4g s simulated, %.3f s wall, %.3g vertex-steps/s (%s)\n",
                     scene.name.c_str(), total, solver->time(), wall, vertexSteps / stepSeconds,
                     solver->name().c_str());
+        if (deviceSeconds > 0)
+            std::printf("gpu time %.4g ms/step (%s), %.3g vertex-steps/s of GPU time\n",
+                        1e3 * deviceSeconds / double(total), deviceTimingSource(*solver).c_str(),
+                        vertexSteps / deviceSeconds);
         for (const std::string* f : {&o.csv, &o.obj})
             if (!f->empty()) std::printf("wrote %s\n", f->c_str());
         if (!o.framesDir.empty())

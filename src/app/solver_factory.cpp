@@ -4,6 +4,7 @@
 
 #if defined(CLOTH_HAVE_GPU) && __has_include("gpu/gpu_backend.h")
 #include "gpu/gpu_backend.h"
+#include "gpu/gpu_solver.h"
 #define CLOTH_GPU_BUILT 1
 #endif
 
@@ -29,6 +30,20 @@ std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choi
 #else
     throw GpuUnavailable("this clothsim was built without the GPU backend");
 #endif
+}
+
+double deviceSecondsPerStep([[maybe_unused]] const Solver& solver) {
+#ifdef CLOTH_GPU_BUILT
+    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->lastSecondsPerStep();
+#endif
+    return 0;
+}
+
+std::string deviceTimingSource([[maybe_unused]] const Solver& solver) {
+#ifdef CLOTH_GPU_BUILT
+    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->timingSource();
+#endif
+    return "";
 }
 
 Precision effectivePrecision(const BackendChoice& choice) {

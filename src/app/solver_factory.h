@@ -20,6 +20,11 @@ Precision parsePrecision(const std::string& flag, const std::string& value);
 // Throws GpuUnavailable when the GPU backend is asked for and cannot run.
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice);
 
+// Device time per step of the solver's last step(n) call [s] and how it was measured
+// (GL timer query or glFinish + clock); 0 and "" for the CPU backend.
+double deviceSecondsPerStep(const Solver& solver);
+std::string deviceTimingSource(const Solver& solver);
+
 // The precision a backend's numbers carry (for the CSV's digits).
 Precision effectivePrecision(const BackendChoice& choice);
 

@@ -1,0 +1,28 @@
+#include "gpu/gpu_backend.h"
+
+#include "gpu/egl_context.h"
+#include "gpu/gpu_solver.h"
+#include "gpu/gpu_variant.h"
+
+namespace cloth {
+
+std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& options) {
+    return std::make_unique<GpuSolver>(scene, options);
+}
+
+std::string describeGpu() {
+    return GlContext::instance().info().describe();
+}
+
+std::string describeGpuVariant(const Scene& scene) {
+    std::string line;
+    for (const auto& [name, value] : gpuDefines(scene, chooseWorkGroup({}, nullptr))) {
+        if (name == "SPRING_OFFSETS") continue;  // the table rows; NUM_SPRING_OFFSETS says enough
+        const bool quote = value.find(' ') != std::string::npos;
+        line += (line.empty() ? "" : " ") + name;
+        if (!value.empty()) line += "=" + (quote ? "\"" + value + "\"" : value);
+    }
+    return line;
+}
+
+}  // namespace cloth

@@ -1,0 +1,29 @@
+// The GPU backend as the app sees it (DESIGN.md §1, §3): a Solver computing in float in GLSL
+// compute shaders on a headless context, plus what `clothsim info` and `validate` print.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/scene.h"
+#include "core/solver.h"
+
+namespace cloth {
+
+struct GpuOptions {
+    int workGroupX = 16, workGroupY = 16;  // CLOTH_WORKGROUP=WXxWY overrides
+    int checkEvery = 64;                   // steps between reads of the instability flag
+};
+
+// Creates the (process-wide, lazily made) headless context if needed. Throws GpuUnavailable,
+// InputError (bad work-group override, impossible grid), std::runtime_error (shader problems,
+// with file:line).
+std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& options = {});
+
+// Multi-line: EGL vendor, platform, GL renderer/version, compute limits. Throws GpuUnavailable.
+std::string describeGpu();
+
+// The #defines this scene compiles to, one line; no GL needed.
+std::string describeGpuVariant(const Scene& scene);
+
+}  // namespace cloth

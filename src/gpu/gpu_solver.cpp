@@ -1,0 +1,259 @@
+#include "gpu/gpu_solver.h"
+
+#include <GL/glew.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <vector>
+
+#include "core/errors.h"
+#include "gpu/egl_context.h"
+#include "gpu/shader_loader.h"
+
+namespace cloth {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void bufferData(unsigned buffer, const void* data, std::size_t bytes) {
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    // An empty table still gets a vec4: a zero-sized binding is an error in GL.
+    const std::size_t size = std::max<std::size_t>(bytes, sizeof(glm::vec4));
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(size), nullptr, GL_DYNAMIC_COPY);
+    if (data != nullptr && bytes > 0)
+        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(bytes), data);
+    else
+        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
+}
+
+template <typename T>
+void bufferData(unsigned buffer, const std::vector<T>& v) {
+    bufferData(buffer, v.data(), v.size() * sizeof(T));
+}
+
+std::vector<glm::vec4> downloadVec4(unsigned buffer, std::size_t count) {
+    std::vector<glm::vec4> out(count);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(count * sizeof(glm::vec4)),
+                       out.data());
+    return out;
+}
+
+glm::vec4 vec4(const glm::dvec3& v, double w) {
+    return glm::vec4(glm::vec3(v), float(w));
+}
+
+// Both kernels of the scene's variant; neither leaks if the other fails to build.
+std::pair<unsigned, unsigned> buildPrograms(const Scene& scene, WorkGroup wg) {
+    const ShaderDirectory dir = findShaderDirectory();
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::is_directory(fs::path(dir.path) / "compute", ec))
+        throw std::runtime_error("no compute shaders in " + dir.path +
+                                 "/compute (shader directory " + dir.how +
+                                 "); set CLOTH_SHADER_DIR to the project's shaders/");
+    const unsigned forces =
+        compileComputeProgram(assembleKernel(dir.path, "compute/forces.comp", scene, wg));
+    try {
+        return {forces, compileComputeProgram(
+                            assembleKernel(dir.path, "compute/integrate.comp", scene, wg))};
+    } catch (...) {
+        glDeleteProgram(forces);
+        throw;
+    }
+}
+
+}  // namespace
+
+GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
+    : context_(GlContext::instance()),
+      features_(Features::of(scene)),
+      nu_(scene.cloth.nu),
+      nv_(scene.cloth.nv),
+      checkEvery_(options.checkEvery),
+      maxSpeed_(scene.maxSpeed) {
+    context_.makeCurrent();
+    const GpuInfo& info = context_.info();
+    if (checkEvery_ < 1)
+        throw InputError("", "checkEvery",
+                         "must be at least 1, not " + std::to_string(checkEvery_));
+    workGroup_ = chooseWorkGroup({options.workGroupX, options.workGroupY}, &info);
+    checkGridFits(scene, workGroup_, info);
+    groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
+    groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
+    dt_ = scene.integrator.dt;
+    std::tie(forcesProgram_, integrateProgram_) = buildPrograms(scene, workGroup_);
+    glGenBuffers(GLsizei(buffers_.size()), buffers_.data());
+    upload(scene);
+    // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
+    // the wall clock.
+    if (info.timerQueries && !info.software) glGenQueries(1, &timer_);
+    name_ = "gpu float (" + info.renderer.substr(0, info.renderer.find(" (")) + ", work groups " +
+            std::to_string(workGroup_.x) + "x" + std::to_string(workGroup_.y) + ")";
+    // Normals are valid before the first step, for a renderer drawing frame 0.
+    bindBuffers();
+    glUseProgram(forcesProgram_);
+    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+GpuSolver::~GpuSolver() {
+    try {
+        context_.makeCurrent();
+    } catch (...) {
+        return;  // the context is gone; so are its objects
+    }
+    glDeleteBuffers(GLsizei(buffers_.size()), buffers_.data());
+    glDeleteProgram(forcesProgram_);
+    glDeleteProgram(integrateProgram_);
+    if (timer_ != 0) glDeleteQueries(1, &timer_);
+}
+
+// Rest positions with w = inverse mass (0 pinned); pinned vertices keep their slot in the pin
+// table in velocity.w. Conversions to float match the CPU float backend's.
+void GpuSolver::upload(const Scene& scene) {
+    const Grid g = scene.grid();
+    const std::size_t n = std::size_t(g.count());
+    std::vector<glm::vec4> x(n), v(n, glm::vec4(0)), pins;
+    const double inverseMass = 1.0 / scene.cloth.mass;
+    for (int j = 0; j < nv_; ++j)
+        for (int i = 0; i < nu_; ++i)
+            x[std::size_t(g.index(i, j))] = vec4(g.restPosition(i, j), inverseMass);
+    for (const Pin& p : scene.pins) {
+        glm::vec4& xk = x[std::size_t(g.index(p.i, p.j))];
+        if (xk.w == 0) continue;  // listed twice
+        xk.w = 0;
+        v[std::size_t(g.index(p.i, p.j))].w = float(pins.size());  // exact below 2^24 pins
+        pins.push_back(glm::vec4(glm::vec3(xk), 0));
+    }
+    bufferData(buffers_[gpu::kPositions], x);
+    bufferData(buffers_[gpu::kVelocities], v);
+    bufferData(buffers_[gpu::kForces], nullptr, n * sizeof(glm::vec4));
+    bufferData(buffers_[gpu::kNormals], nullptr, n * sizeof(glm::vec4));
+    bufferData(buffers_[gpu::kPins], pins);
+    const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
+    bufferData(buffers_[gpu::kStatus], &status, sizeof status);
+    uploadParams(scene);
+}
+
+void GpuSolver::uploadParams(const Scene& scene) {
+    const Grid g = scene.grid();
+    gpu::Params p{};
+    p.grid = glm::ivec4(nu_, nv_, 0, 0);
+    p.stiffness = glm::vec4(float(scene.springs.structural), float(scene.springs.shear),
+                            float(scene.springs.bend), 0);
+    for (std::size_t o = 0; o < kSpringOffsets.size(); ++o)
+        p.restLength[o / 4][int(o % 4)] =
+            float(g.restLength(kSpringOffsets[o].di, kSpringOffsets[o].dj));
+    p.gravity = vec4(scene.gravity, scene.damping);
+    if (scene.wind) p.wind = vec4(scene.wind->direction, scene.wind->strength);
+    p.integration =
+        glm::vec4(float(scene.integrator.dt), float(scene.maxSpeed * scene.maxSpeed), 0, 0);
+    bufferData(buffers_[gpu::kParams], &p, sizeof p);
+    // Planes first (point, normal), then spheres (centre, radius): layout.glsl's Colliders.
+    std::vector<glm::vec4> planes, spheres;
+    for (const Collider& c : scene.colliders) {
+        if (const Plane* pl = std::get_if<Plane>(&c)) {
+            planes.push_back(vec4(pl->point, 0));
+            planes.push_back(vec4(pl->normal, 0));
+        } else if (const Sphere* s = std::get_if<Sphere>(&c)) {
+            spheres.push_back(vec4(s->center, s->radius));
+        }
+    }
+    planes.insert(planes.end(), spheres.begin(), spheres.end());
+    bufferData(buffers_[gpu::kColliders], planes);
+}
+
+void GpuSolver::bindBuffers() const {
+    for (unsigned b = 0; b < buffers_.size(); ++b)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
+}
+
+// One step of DESIGN.md §2: pass 1 reads positions, pass 2 reads the forces pass 1 wrote.
+void GpuSolver::dispatchStep(long stepNumber) const {
+    glUseProgram(forcesProgram_);
+    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(integrateProgram_);
+    glUniform1ui(0, GLuint(stepNumber));
+    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+gpu::Status GpuSolver::readStatus() const {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gpu::Status s{};
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[gpu::kStatus]);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof s, &s);
+    return s;
+}
+
+StepResult GpuSolver::step(long n) {
+    StepResult result;
+    if (n <= 0) return result;
+    context_.makeCurrent();
+    bindBuffers();
+    glFinish();  // time this call's work only
+    const Clock::time_point start = Clock::now();
+    if (timer_ != 0) glBeginQuery(GL_TIME_ELAPSED, timer_);
+    const long before = steps_;
+    long done = 0;
+    gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
+    while (done < n && status.firstBadStep == gpu::kNoBadStep) {
+        const long chunk = std::min<long>(n - done, checkEvery_);
+        for (long s = 1; s <= chunk; ++s) dispatchStep(before + done + s);
+        done += chunk;
+        status = readStatus();  // the only round trip: 16 bytes every checkEvery steps
+    }
+    if (timer_ != 0) glEndQuery(GL_TIME_ELAPSED);
+    glFinish();
+    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+    GLuint64 ns = 0;
+    if (timer_ != 0) glGetQueryObjectui64v(timer_, GL_QUERY_RESULT, &ns);
+    timedByQuery_ = ns > 0;
+    secondsPerStep_ = (timedByQuery_ ? double(ns) * 1e-9 : wall) / double(done);
+    if (status.firstBadStep != gpu::kNoBadStep) return reportUnstable(status, before);
+    steps_ += n;
+    result.stepsTaken = n;
+    return result;
+}
+
+// The shader recorded the exact first bad step (atomicMin) and froze the state after it, so the
+// range is that one step although the host looked only every checkEvery steps.
+StepResult GpuSolver::reportUnstable(const gpu::Status& status, long stepsBefore) {
+    StepResult r;
+    r.unstable = true;
+    r.firstBadStep = r.lastBadStep = long(status.firstBadStep);
+    steps_ = long(status.firstBadStep);
+    r.stepsTaken = std::max(0L, steps_ - stepsBefore);
+    const int i = int(status.badVertex % unsigned(nu_)), j = int(status.badVertex / unsigned(nu_));
+    char buf[160];
+    if (status.badKind == gpu::kBadNonFinite)
+        std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
+    else
+        std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
+                      double(status.badSpeed), maxSpeed_, i, j);
+    r.reason = buf;
+    return r;
+}
+
+SimState GpuSolver::read() const {
+    context_.makeCurrent();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // shader writes visible to the read-back
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    const std::vector<glm::vec4> x = downloadVec4(buffers_[gpu::kPositions], n);
+    const std::vector<glm::vec4> v = downloadVec4(buffers_[gpu::kVelocities], n);
+    SimState s;
+    s.nu = nu_;
+    s.nv = nv_;
+    s.positions.resize(n);
+    s.velocities.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        s.positions[k] = glm::dvec3(glm::vec3(x[k]));
+        s.velocities[k] = glm::dvec3(glm::vec3(v[k]));
+    }
+    return s;
+}
+
+}  // namespace cloth

@@ -1,0 +1,145 @@
+#include "gpu/gpu_variant.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <regex>
+
+#include "core/errors.h"
+#include "core/solver.h"
+#include "gpu/egl_context.h"
+
+namespace cloth {
+namespace {
+
+// DESIGN.md §3: no dispatch dimension may exceed 65535 work groups, whatever the device says.
+constexpr long long kMaxGroupsPerDimension = 65535;
+constexpr long long kBytesPerVertexBuffer = 16;  // one vec4 per vertex
+
+std::string integratorDefine(Method m) {
+    switch (m) {
+        case Method::ExplicitEuler:
+            return "INTEGRATOR_EXPLICIT_EULER";
+    }
+    throw InputError("", "integrator.method",
+                     std::string("'") + methodName(m) + "' has no GPU kernel yet");
+}
+
+// The rows of kSpringOffsets whose family the scene declares, as GLSL ivec4(di, dj, family,
+// slot): the shader's one spring loop walks exactly these (src/core/grid.h, the seed's Q10).
+std::pair<int, std::string> springTable(const Scene& scene) {
+    int count = 0;
+    std::string rows;
+    for (std::size_t o = 0; o < kSpringOffsets.size(); ++o) {
+        const SpringOffset& s = kSpringOffsets[o];
+        if (!(scene.springs.of(s.family) > 0)) continue;
+        rows += (count++ ? ", " : "") + std::string("ivec4(") + std::to_string(s.di) + ", " +
+                std::to_string(s.dj) + ", " + std::to_string(int(s.family)) + ", " +
+                std::to_string(o) + ")";
+    }
+    return {count, rows};
+}
+
+// PLANE(n)/SPHERE(n) in the order the scene lists its colliders (DESIGN.md §2).
+std::string colliderOrder(const Scene& scene) {
+    std::string order;
+    int planes = 0, spheres = 0;
+    for (const Collider& c : scene.colliders) {
+        if (!order.empty()) order += " ";
+        order += std::holds_alternative<Plane>(c) ? "PLANE(" + std::to_string(planes++) + ")"
+                                                  : "SPHERE(" + std::to_string(spheres++) + ")";
+    }
+    return order;
+}
+
+WorkGroup parseWorkGroup(const char* text) {
+    static const std::regex re(R"(^\s*(\d{1,6})\s*[xX]\s*(\d{1,6})\s*$)");
+    std::cmatch m;
+    if (!std::regex_match(text, m, re))
+        throw InputError("", "CLOTH_WORKGROUP",
+                         std::string("'") + text + "' is not of the form WXxWY, e.g. 16x16");
+    return {std::stoi(m[1].str()), std::stoi(m[2].str())};
+}
+
+}  // namespace
+
+WorkGroup chooseWorkGroup(WorkGroup requested, const GpuInfo* info) {
+    std::string key = "work-group size";
+    WorkGroup wg = requested;
+    if (const char* env = std::getenv("CLOTH_WORKGROUP"); env != nullptr && *env != '\0') {
+        wg = parseWorkGroup(env);
+        key = "CLOTH_WORKGROUP";
+    }
+    const std::string size = std::to_string(wg.x) + "x" + std::to_string(wg.y);
+    if (wg.x < 1 || wg.y < 1) throw InputError("", key, size + ": sizes must be at least 1");
+    if (info == nullptr) return wg;
+    if (wg.x > info->maxWorkGroupSize[0] || wg.y > info->maxWorkGroupSize[1])
+        throw InputError("", key,
+                         size + " exceeds the device's work-group size limit " +
+                             std::to_string(info->maxWorkGroupSize[0]) + "x" +
+                             std::to_string(info->maxWorkGroupSize[1]));
+    if (static_cast<long long>(wg.x) * wg.y > info->maxInvocations)
+        throw InputError("", key,
+                         size + " is " + std::to_string(static_cast<long long>(wg.x) * wg.y) +
+                             " invocations; the device allows at most " +
+                             std::to_string(info->maxInvocations) + " per work group");
+    return wg;
+}
+
+void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
+    const int nu = scene.cloth.nu, nv = scene.cloth.nv;
+    const std::string grid = std::to_string(nu) + "x" + std::to_string(nv);
+    const long long groups[2] = {(nu + wg.x - 1LL) / wg.x, (nv + wg.y - 1LL) / wg.y};
+    for (int d = 0; d < 2; ++d) {
+        const long long limit =
+            std::min<long long>(kMaxGroupsPerDimension, info.maxWorkGroupCount[d]);
+        if (groups[d] <= limit) continue;
+        throw InputError(scene.source, "cloth.resolution",
+                         "grid " + grid + " needs " + std::to_string(groups[d]) +
+                             " work groups along " + (d == 0 ? "u" : "v") + " with " +
+                             std::to_string(wg.x) + "x" + std::to_string(wg.y) +
+                             " work groups; the GPU backend dispatches at most " +
+                             std::to_string(limit) +
+                             " per dimension (a larger CLOTH_WORKGROUP "
+                             "along that side may help)");
+    }
+    const long long bytes = static_cast<long long>(nu) * nv * kBytesPerVertexBuffer;
+    if (bytes > info.maxStorageBlockSize)
+        throw InputError(scene.source, "cloth.resolution",
+                         "grid " + grid + " needs " + std::to_string(bytes) +
+                             "-byte vertex buffers; " + info.renderer + " allows at most " +
+                             std::to_string(info.maxStorageBlockSize) + " bytes per SSBO (" +
+                             std::to_string(info.maxStorageBlockSize / kBytesPerVertexBuffer) +
+                             " vertices)");
+}
+
+Defines gpuDefines(const Scene& scene, WorkGroup wg) {
+    const Features f = Features::of(scene);
+    Defines d;
+    if (f.structural) d.push_back({"HAS_STRUCTURAL", ""});
+    if (f.shear) d.push_back({"HAS_SHEAR", ""});
+    if (f.bend) d.push_back({"HAS_BEND", ""});
+    if (f.wind) d.push_back({"HAS_WIND", ""});
+    if (!scene.pins.empty()) d.push_back({"HAS_PINS", ""});
+    d.push_back({"NUM_PLANES", std::to_string(f.planes)});
+    d.push_back({"NUM_SPHERES", std::to_string(f.spheres)});
+    if (f.planes > 0) d.push_back({"HAS_PLANES", ""});
+    if (f.spheres > 0) d.push_back({"HAS_SPHERES", ""});
+    if (f.planes + f.spheres > 0) {
+        d.push_back({"HAS_COLLIDERS", ""});
+        d.push_back({"COLLIDERS_IN_SCENE_ORDER", colliderOrder(scene)});
+    }
+    d.push_back({integratorDefine(scene.integrator.method), ""});
+    d.push_back({"WX", std::to_string(wg.x)});
+    d.push_back({"WY", std::to_string(wg.y)});
+    const auto [count, rows] = springTable(scene);
+    d.push_back({"NUM_SPRING_OFFSETS", std::to_string(count)});
+    if (count > 0) d.push_back({"SPRING_OFFSETS", rows});
+    return d;
+}
+
+ShaderSource assembleKernel(const std::string& dir, const std::string& file, const Scene& scene,
+                            WorkGroup wg) {
+    return assembleShader(dir, file, gpuDefines(scene, wg));
+}
+
+}  // namespace cloth

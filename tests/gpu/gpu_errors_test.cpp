@@ -1,0 +1,158 @@
+// What goes wrong reaches the user clearly (STYLE.md "Errors"): a missing shader directory, a
+// shader that does not compile (file and line), a bad work-group override, a grid the device
+// cannot hold; and an unstable run stops at the step the CPU also finds (DESIGN.md §2).
+#include <filesystem>
+#include <fstream>
+
+#include "core/errors.h"
+#include "gpu/gpu_test_support.h"
+
+namespace cloth::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+Scene smallScene(int nu = 6, int nv = 4) {
+    Scene s = parseScene(R"({
+      "name": "small",
+      "cloth": { "resolution": [6, 4], "size": [1, 1], "origin": [0, 1, 0],
+                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1] },
+      "springs": { "structural": 100.0 },
+      "damping": 0.5,
+      "integrator": { "method": "explicit_euler", "dt": 0.001 }
+    })",
+                         "small (test)");
+    s.cloth.nu = nu;
+    s.cloth.nv = nv;
+    return s;
+}
+
+template <typename E, typename F>
+std::string messageOf(F&& f) {
+    try {
+        f();
+    } catch (const E& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << "expected an exception";
+    return {};
+}
+
+class GpuErrors : public GpuTest {};
+
+TEST_F(GpuErrors, MissingShaderDirectoryIsAClearError) {
+    ScopedEnv dir("CLOTH_SHADER_DIR", "/nonexistent");
+    const std::string m = messageOf<std::runtime_error>([] { makeGpuSolver(smallScene()); });
+    EXPECT_NE(m.find("/nonexistent"), std::string::npos) << m;
+    EXPECT_NE(m.find("CLOTH_SHADER_DIR"), std::string::npos) << m;
+}
+
+// A copy of shaders/ with one line broken in an included file: the message names that file
+// and line, not the assembled source's.
+TEST_F(GpuErrors, CompileErrorNamesTheIncludedFileAndLine) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("cloth_shaders_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::copy(CLOTH_SOURCE_DIR "/shaders", dir, fs::copy_options::recursive);
+    {
+        std::ofstream out(dir / "compute" / "common.glsl", std::ios::app);
+        out << "\nfloat broken() { return undeclaredThing; }\n";
+    }
+    std::ifstream in(dir / "compute" / "common.glsl");
+    int lines = 0;
+    for (std::string l; std::getline(in, l);) ++lines;
+    ScopedEnv env("CLOTH_SHADER_DIR", dir.c_str());
+    const std::string m = messageOf<std::runtime_error>([] { makeGpuSolver(smallScene()); });
+    const std::string where =
+        (dir / "compute" / "common.glsl").string() + ":" + std::to_string(lines);
+    EXPECT_NE(m.find(where), std::string::npos) << "expected " << where << " in:\n" << m;
+    std::printf("%s", m.c_str());
+    EXPECT_NE(m.find("forces.comp"), std::string::npos) << m;
+    fs::remove(dir / "compute" / "layout.glsl");
+    const std::string missing = messageOf<std::runtime_error>([] { makeGpuSolver(smallScene()); });
+    EXPECT_NE(missing.find("layout.glsl"), std::string::npos) << missing;
+    EXPECT_NE(missing.find("forces.comp:"), std::string::npos) << "the including line: " << missing;
+    fs::remove_all(dir);
+}
+
+TEST_F(GpuErrors, BadWorkGroupOverrideNamesTheVariable) {
+    for (const char* bad : {"64x64", "abc", "0x16", "2000x1"}) {
+        ScopedEnv wg("CLOTH_WORKGROUP", bad);
+        const std::string m = messageOf<InputError>([] { makeGpuSolver(smallScene()); });
+        EXPECT_NE(m.find("CLOTH_WORKGROUP"), std::string::npos) << bad << ": " << m;
+    }
+    ScopedEnv wg("CLOTH_WORKGROUP", "8x4");
+    std::unique_ptr<Solver> solver = makeGpuSolver(smallScene(37, 53));
+    EXPECT_NE(solver->name().find("8x4"), std::string::npos) << solver->name();
+}
+
+TEST_F(GpuErrors, ImpossibleGridIsAnInputError) {
+    // 65536 rows of 1×1 work groups: one more than a dispatch may have (DESIGN.md §3).
+    const std::string m = messageOf<InputError>([] {
+        makeGpuSolver(smallScene(1, 65536), {1, 1});
+    });
+    EXPECT_NE(m.find("65536 work groups"), std::string::npos) << m;
+    EXPECT_NE(m.find("cloth.resolution"), std::string::npos) << m;
+    // Past the device's SSBO size (llvmpipe: 128 MiB, so 4096² vec4s do not fit); refused
+    // before anything is allocated.
+    const long long limit = GlContext::instance().info().maxStorageBlockSize;
+    if (limit / 16 < 4096LL * 4096) {
+        const std::string big =
+            messageOf<InputError>([] { makeGpuSolver(smallScene(4096, 4096)); });
+        EXPECT_NE(big.find("bytes per SSBO"), std::string::npos) << big;
+    }
+}
+
+// A stiff spring with a large Δt (far outside Δt < μ/λ_max) blows up within a few steps.
+Scene unstableScene() {
+    Scene s = loadShippedScene("spring");
+    s.springs.structural = 1e5;
+    s.integrator.dt = 0.01;
+    return s;
+}
+
+long cpuFirstBadStep(const Scene& scene) {
+    std::unique_ptr<Solver> cpu = makeCpuSolver(scene, {Precision::Float, 1});
+    const StepResult r = cpu->step(1000);
+    EXPECT_TRUE(r.unstable);
+    return r.firstBadStep;
+}
+
+TEST_F(GpuErrors, InstabilityIsCaughtAtTheCpusStep) {
+    const Scene scene = unstableScene();
+    const long cpuStep = cpuFirstBadStep(scene);
+    for (int checkEvery : {1, 4, 64}) {
+        std::unique_ptr<Solver> gpu = makeGpuSolver(scene, {16, 16, checkEvery});
+        StepResult r = gpu->step(3);  // global step numbers carry across calls
+        r = r.unstable ? r : gpu->step(1000);
+        ASSERT_TRUE(r.unstable) << checkEvery;
+        EXPECT_LE(r.firstBadStep, cpuStep) << checkEvery;
+        EXPECT_GE(r.lastBadStep, cpuStep) << checkEvery;
+        EXPECT_EQ(gpu->stepsDone(), r.firstBadStep) << "the state stops at the bad step";
+        EXPECT_FALSE(r.reason.empty());
+        std::printf("checkEvery %2d: GPU first bad step [%ld, %ld], CPU %ld: %s\n", checkEvery,
+                    r.firstBadStep, r.lastBadStep, cpuStep, r.reason.c_str());
+        const StepResult again = gpu->step(10);  // stays stopped
+        EXPECT_TRUE(again.unstable);
+        EXPECT_EQ(again.stepsTaken, 0);
+        EXPECT_EQ(gpu->stepsDone(), r.firstBadStep);
+    }
+}
+
+// With max_speed out of reach the run goes on until a value overflows: caught as non-finite.
+TEST_F(GpuErrors, NonFiniteValuesAreCaught) {
+    Scene scene = unstableScene();
+    scene.maxSpeed = 1e300;
+    const long cpuStep = cpuFirstBadStep(scene);
+    std::unique_ptr<Solver> gpu = makeGpuSolver(scene);
+    const StepResult r = gpu->step(1000);
+    ASSERT_TRUE(r.unstable);
+    EXPECT_LE(r.firstBadStep, cpuStep);
+    EXPECT_GE(r.lastBadStep, cpuStep);
+    EXPECT_NE(r.reason.find("non-finite"), std::string::npos) << r.reason;
+    std::printf("non-finite: GPU [%ld, %ld], CPU %ld: %s\n", r.firstBadStep, r.lastBadStep, cpuStep,
+                r.reason.c_str());
+}
+
+}  // namespace
+}  // namespace cloth::test
