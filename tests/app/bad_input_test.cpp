@@ -1,0 +1,410 @@
+// Malformed input never crashes clothsim: every bad scene, --set override and argument ends in
+// exit code 2 with a message naming the file, the key path and the reason (DESIGN.md §4, §5).
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <typeinfo>
+#include <vector>
+
+#include "core/errors.h"
+#include "core/scene_loader.h"
+#include "support/process.h"
+
+namespace cloth {
+namespace {
+
+namespace fs = std::filesystem;
+using test::ProcessResult;
+using test::runProcess;
+
+constexpr double kTimeout = 30;  // [s] a bad scene is refused at once; this only catches hangs
+const std::string kExe = CLOTH_EXE;
+const fs::path kDataDir = fs::path(CLOTH_SOURCE_DIR) / "tests" / "data";
+const fs::path kBadDir = kDataDir / "bad_scenes";
+const fs::path kGoodScene = kDataDir / "good_scene.json";
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+struct BadScene {
+    std::string file;               // name inside tests/data/bad_scenes
+    std::vector<std::string> keys;  // the message names one of these; empty: no key applies
+};
+
+// gtest prints parameters in failure lines; the file name says it all.
+void PrintTo(const BadScene& b, std::ostream* os) {
+    *os << b.file;
+}
+
+std::vector<BadScene> loadManifest() {
+    std::vector<BadScene> list;
+    const auto manifest = nlohmann::json::parse(readFile(kBadDir / "expected.json"));
+    for (const auto& [file, key] : manifest.items()) {
+        if (file.front() == '_') continue;  // _comment
+        BadScene b{file, {}};
+        if (key.is_array()) {
+            for (const auto& k : key) b.keys.push_back(k.get<std::string>());
+        } else if (!key.get<std::string>().empty()) {
+            b.keys.push_back(key.get<std::string>());
+        }
+        list.push_back(b);
+    }
+    return list;
+}
+
+// Parse errors must point into the file: nlohmann says "line 3, column 5".
+bool isSyntaxError(const std::string& file) {
+    static const std::vector<std::string> kFiles = {
+        "syntax_error.json",  "truncated.json",   "trailing_garbage.json", "comment.json",
+        "single_quotes.json", "nan_literal.json", "bom_then_garbage.json"};
+    return std::find(kFiles.begin(), kFiles.end(), file) != kFiles.end();
+}
+
+bool contains(const std::string& haystack, const std::string& needle) {
+    return haystack.find(needle) != std::string::npos;
+}
+
+// Letters left once the file's path and the key are taken out: a reason, not only a location.
+bool hasReason(std::string err, const std::string& path, const std::vector<std::string>& keys) {
+    for (const std::string& cut : {path, fs::path(path).filename().string()}) {
+        for (size_t at; !cut.empty() && (at = err.find(cut)) != std::string::npos;)
+            err.erase(at, cut.size());
+    }
+    for (const std::string& k : keys) {
+        for (size_t at; !k.empty() && (at = err.find(k)) != std::string::npos;)
+            err.erase(at, k.size());
+    }
+    const auto letters =
+        std::count_if(err.begin(), err.end(), [](unsigned char c) { return std::isalpha(c); });
+    return letters >= 6;
+}
+
+// The checks every refused input shares: exit 2 (not a crash, not a hang, not "internal"),
+// stderr names the file (when there is one), one of the keys (when one applies) and a reason.
+void expectInvalidInput(const ProcessResult& r, const std::string& path,
+                        const std::vector<std::string>& keys) {
+    ASSERT_FALSE(r.crashed) << test::describe(r);
+    ASSERT_FALSE(r.timedOut) << test::describe(r);
+    EXPECT_EQ(r.exitCode, 2) << test::describe(r);
+    if (!path.empty()) {
+        EXPECT_TRUE(contains(r.err, fs::path(path).filename().string()))
+            << "stderr does not name the file " << path << "\n"
+            << test::describe(r);
+    }
+    if (!keys.empty() && !keys.front().empty()) {
+        const bool named = std::any_of(keys.begin(), keys.end(),
+                                       [&](const std::string& k) { return contains(r.err, k); });
+        EXPECT_TRUE(named) << "stderr does not name the key path " << keys.front() << "\n"
+                           << test::describe(r);
+    }
+    EXPECT_TRUE(hasReason(r.err, path, keys)) << "stderr gives no reason\n" << test::describe(r);
+    // A clear message is a line or two, not an echo of the offending document.
+    EXPECT_LT(r.err.size(), 16384u) << "stderr is " << r.err.size() << " bytes";
+}
+
+// ---- every file in tests/data/bad_scenes, through validate and run ------------------------
+
+class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, ValidateExitsTwoNamingFileAndKey) {
+    const BadScene& b = GetParam();
+    const std::string path = (kBadDir / b.file).string();
+    const ProcessResult r = runProcess({kExe, "validate", path}, kTimeout);
+    expectInvalidInput(r, path, b.keys);
+    if (isSyntaxError(b.file)) {
+        EXPECT_TRUE(std::regex_search(r.err, std::regex(R"(line\D{0,3}\d+)", std::regex::icase)))
+            << "a syntax error should give the line\n"
+            << test::describe(r);
+        EXPECT_TRUE(
+            std::regex_search(r.err, std::regex(R"(col(umn)?\D{0,3}\d+)", std::regex::icase)))
+            << "a syntax error should give the column\n"
+            << test::describe(r);
+    }
+}
+
+TEST_P(BadSceneTest, RunExitsTwoNamingFileAndKey) {
+    const BadScene& b = GetParam();
+    const std::string path = (kBadDir / b.file).string();
+    expectInvalidInput(runProcess({kExe, "run", path, "--steps", "1", "--quiet"}, kTimeout), path,
+                       b.keys);
+}
+
+std::string testName(const ::testing::TestParamInfo<BadScene>& info) {
+    std::string n = info.param.file.substr(0, info.param.file.rfind('.'));
+    for (char& c : n) {
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    }
+    return n;
+}
+
+INSTANTIATE_TEST_SUITE_P(BadScenes, BadSceneTest, ::testing::ValuesIn(loadManifest()), testName);
+
+TEST(BadSceneManifest, ListsEveryFileAndEnoughOfThem) {
+    const std::vector<BadScene> manifest = loadManifest();
+    EXPECT_GE(manifest.size(), 35u);
+    for (const auto& entry : fs::directory_iterator(kBadDir)) {
+        const std::string name = entry.path().filename().string();
+        if (name == "expected.json") continue;
+        EXPECT_TRUE(std::any_of(manifest.begin(), manifest.end(),
+                                [&](const BadScene& b) { return b.file == name; }))
+            << name << " is missing from expected.json";
+    }
+    for (const BadScene& b : manifest) EXPECT_TRUE(fs::exists(kBadDir / b.file)) << b.file;
+}
+
+// The bad scenes are mutations of good_scene.json, which must itself pass: otherwise every
+// "bad" file might be refused for the wrong reason.
+TEST(GoodScene, ValidatesAndRuns) {
+    const ProcessResult v = runProcess({kExe, "validate", kGoodScene.string()}, kTimeout);
+    EXPECT_EQ(v.exitCode, 0) << test::describe(v);
+    const ProcessResult r =
+        runProcess({kExe, "run", kGoodScene.string(), "--steps", "1", "--quiet"}, kTimeout);
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+}
+
+// ---- --set overrides ---------------------------------------------------------------------
+
+struct BadOverride {
+    std::string set;  // the argument after --set
+    std::string key;  // the key path stderr must name
+};
+
+void PrintTo(const BadOverride& o, std::ostream* os) {
+    *os << "--set " << o.set;
+}
+
+class BadOverrideTest : public ::testing::TestWithParam<BadOverride> {};
+
+TEST_P(BadOverrideTest, RunExitsTwoNamingKey) {
+    const BadOverride& o = GetParam();
+    const ProcessResult r = runProcess(
+        {kExe, "run", kGoodScene.string(), "--steps", "1", "--quiet", "--set", o.set}, kTimeout);
+    expectInvalidInput(r, "", {o.key});
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Overrides, BadOverrideTest,
+    ::testing::Values(BadOverride{"integrator.dt=-1", "integrator.dt"},
+                      BadOverride{"integrator.dt=0", "integrator.dt"},
+                      BadOverride{"integrator.dt=notjson", "integrator.dt"},
+                      BadOverride{"integrator.dt=\"NaN\"", "integrator.dt"},
+                      BadOverride{"integrator.dt=1e999", "integrator.dt"},
+                      BadOverride{"springs.bnd=3", "springs.bnd"},
+                      BadOverride{"colour=1", "colour"},
+                      BadOverride{"cloth.resolution=[100000,100000]", "cloth.resolution"},
+                      BadOverride{"cloth.resolution=[1,1]", "cloth.resolution"},
+                      BadOverride{"cloth=5", "cloth"}, BadOverride{"pins=[[9,9]]", "pins[0]"},
+                      BadOverride{"pins[0]=[0,99]", "pins[0]"},
+                      BadOverride{"colliders[99999999999999999999].radius=1", "colliders"},
+                      BadOverride{"colliders[1].radius=-1", "colliders[1].radius"},
+                      BadOverride{"nokey", "nokey"}, BadOverride{"=5", ""}),
+    [](const ::testing::TestParamInfo<BadOverride>& p) {
+        return "case" + std::to_string(p.index);
+    });
+
+// ---- files that are not scene files, and bad arguments -----------------------------------
+
+TEST(BadPath, NonexistentFile) {
+    const std::string path = (kBadDir / "no_such_scene.json").string();
+    expectInvalidInput(runProcess({kExe, "validate", path}, kTimeout), path, {});
+    expectInvalidInput(runProcess({kExe, "run", path, "--steps", "1"}, kTimeout), path, {});
+}
+
+TEST(BadPath, DirectoryInsteadOfFile) {
+    const std::string path = kBadDir.string();
+    expectInvalidInput(runProcess({kExe, "validate", path}, kTimeout), path, {});
+    expectInvalidInput(runProcess({kExe, "run", path, "--steps", "1"}, kTimeout), path, {});
+}
+
+TEST(BadPath, UnreadableFile) {
+    if (geteuid() == 0) GTEST_SKIP() << "root reads any file";
+    const fs::path path =
+        fs::temp_directory_path() / ("clothsim_unreadable_" + std::to_string(getpid()) + ".json");
+    fs::copy_file(kGoodScene, path, fs::copy_options::overwrite_existing);
+    chmod(path.c_str(), 0);
+    expectInvalidInput(runProcess({kExe, "validate", path.string()}, kTimeout), path.string(), {});
+    fs::remove(path);
+}
+
+TEST(BadArguments, ExitTwo) {
+    const std::string scene = kGoodScene.string();
+    const std::vector<std::vector<std::string>> cases = {
+        {kExe, "run"},
+        {kExe, "validate"},
+        {kExe, "run", scene, "--steps", "abc"},
+        {kExe, "run", scene, "--steps", "-1"},
+        {kExe, "run", scene, "--steps"},
+        {kExe, "run", scene, "--set"},
+        {kExe, "run", scene, "--no-such-option"},
+        {kExe, "run", scene, "--backend", "abacus"},
+        {kExe, "run", scene, "--precision", "half"},
+    };
+    for (const auto& argv : cases) {
+        const ProcessResult r = runProcess(argv, kTimeout);
+        std::string line;
+        for (const auto& a : argv) line += a + " ";
+        SCOPED_TRACE(line);
+        ASSERT_FALSE(r.crashed) << test::describe(r);
+        EXPECT_EQ(r.exitCode, 2) << test::describe(r);
+        EXPECT_FALSE(r.err.empty()) << "no message";
+    }
+}
+
+// ---- huge resolutions are refused before anything is allocated ---------------------------
+
+TEST(HugeResolution, RefusedBeforeAllocation) {
+    // 1 GiB of address space: enough to start clothsim (the good scene proves it), far too
+    // little for any of these grids, so an allocation attempt would end in exit 1 or a crash.
+    test::ProcessOptions limited;
+    limited.timeoutSeconds = kTimeout;
+    limited.addressSpaceLimit = std::uint64_t(1) << 30;
+    const ProcessResult ok =
+        runProcess({kExe, "run", kGoodScene.string(), "--steps", "1", "--quiet"}, limited);
+    ASSERT_EQ(ok.exitCode, 0) << "clothsim does not start under the limit\n" << test::describe(ok);
+    for (const char* file : {"resolution_huge.json", "resolution_int_max.json",
+                             "resolution_int_overflow.json", "resolution_beyond_int.json"}) {
+        SCOPED_TRACE(file);
+        const std::string path = (kBadDir / file).string();
+        for (const auto& argv : {std::vector<std::string>{kExe, "validate", path},
+                                 std::vector<std::string>{kExe, "run", path, "--quiet"}}) {
+            const ProcessResult r = runProcess(argv, limited);
+            expectInvalidInput(r, path, {"cloth.resolution"});
+            EXPECT_LT(r.seconds, 5.0) << argv[1] << " took " << r.seconds << " s";
+        }
+    }
+}
+
+// ---- the loader itself: InputError with the key path --------------------------------------
+
+std::string goodText() {
+    return readFile(kGoodScene);
+}
+
+// The good scene with the value at `pointer` (JSON pointer) replaced by `value`.
+std::string with(const std::string& pointer, const nlohmann::json& value) {
+    auto j = nlohmann::json::parse(goodText());
+    j[nlohmann::json::json_pointer(pointer)] = value;
+    return j.dump();
+}
+
+// The InputError parseScene throws, failing the test if it throws nothing or something else.
+InputError parseError(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    try {
+        parseScene(text, "mem.json", overrides);
+    } catch (const InputError& e) {
+        return e;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "threw " << typeid(e).name() << " not InputError: " << e.what();
+        return InputError("", "", "");
+    }
+    ADD_FAILURE() << "accepted:\n" << text.substr(0, 400);
+    return InputError("", "", "");
+}
+
+TEST(ParseScene, GoodSceneLoadsWithResolvedPinsAndUnitAxes) {
+    const Scene s = parseScene(goodText(), "mem.json");
+    EXPECT_EQ(s.cloth.nu, 4);
+    EXPECT_EQ(s.cloth.nv, 3);
+    ASSERT_EQ(s.pins.size(), 2u);
+    EXPECT_EQ(s.pins[1].i, 3);  // -1 counts from the end
+    EXPECT_EQ(s.pins[1].j, 0);
+    EXPECT_DOUBLE_EQ(s.integrator.dt, 0.001);
+    EXPECT_EQ(s.colliders.size(), 2u);
+}
+
+TEST(ParseScene, ThrowsInputErrorWithKeyPath) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {with("/integrator/dt", -1), "integrator.dt"},
+        {with("/integrator/dt", 0), "integrator.dt"},
+        {with("/integrator/dt", "NaN"), "integrator.dt"},
+        {with("/cloth/resolution", {1, 1}), "cloth.resolution"},
+        {with("/cloth/resolution", {100000, 100000}), "cloth.resolution"},
+        {with("/cloth/resolution", {2147483647, 2}), "cloth.resolution"},
+        {with("/cloth/mass", -1), "cloth.mass"},
+        {with("/springs/bnd", 3), "springs.bnd"},
+        {with("/colliders/1/radius", 0), "colliders[1].radius"},
+        {with("/colliders/1/type", "cylinder"), "colliders[1].type"},
+        {with("/pins/1", {4, 0}), "pins[1]"},
+        {with("/pins/1", {-5, 0}), "pins[1]"},
+        {with("/wind/direction", {0, 0, 0}), "wind.direction"},
+        {with("/colour", "red"), "colour"},
+    };
+    for (const auto& [text, key] : cases) {
+        SCOPED_TRACE(key);
+        const InputError e = parseError(text);
+        EXPECT_EQ(e.key(), key) << e.what();
+        EXPECT_EQ(e.file(), "mem.json") << e.what();
+        EXPECT_FALSE(e.reason().empty());
+    }
+}
+
+TEST(ParseScene, NotJsonNamesSourceWithoutKey) {
+    for (const std::string text : {"", "{", "[1, 2]", "{\"dt\": 1e999}", "null"}) {
+        SCOPED_TRACE(text);
+        const InputError e = parseError(text);
+        EXPECT_EQ(e.file(), "mem.json") << e.what();
+        EXPECT_FALSE(e.reason().empty());
+    }
+}
+
+TEST(ParseScene, BadOverridesThrowInputErrorWithKeyPath) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"integrator.dt=-1", "integrator.dt"},
+        {"integrator.dt=notjson", "integrator.dt"},
+        {"springs.bnd=3", "springs.bnd"},
+    };
+    for (const auto& [set, key] : cases) {
+        SCOPED_TRACE(set);
+        EXPECT_EQ(parseError(goodText(), {set}).key(), key);
+    }
+    parseError(goodText(), {"nokey"});
+}
+
+TEST(LoadScene, MissingFileAndDirectoryThrowInputError) {
+    for (const fs::path& p : {kBadDir / "no_such_scene.json", kBadDir}) {
+        SCOPED_TRACE(p.string());
+        try {
+            loadScene(p.string());
+            ADD_FAILURE() << "accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.file(), p.string()) << e.what();
+        }
+    }
+}
+
+TEST(LoadScene, EveryBadSceneThrowsInputError) {
+    for (const BadScene& b : loadManifest()) {
+        SCOPED_TRACE(b.file);
+        const std::string path = (kBadDir / b.file).string();
+        try {
+            loadScene(path);
+            ADD_FAILURE() << "accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.file(), path) << e.what();
+            if (!b.keys.empty()) {
+                EXPECT_TRUE(std::any_of(b.keys.begin(), b.keys.end(), [&](const std::string& k) {
+                    return e.key().rfind(k, 0) == 0;  // "cloth.resolution[0]" names it too
+                })) << e.what();
+            }
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "threw " << typeid(e).name() << " not InputError: " << e.what();
+        }
+    }
+}
+
+}  // namespace
+}  // namespace cloth

@@ -1,0 +1,261 @@
+// An unstable run stops with exit 3 and a useful report, and writes no non-finite number; a
+// stable run writes a CSV that round-trips (DESIGN.md §2 "Instability", §5).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <glm/glm.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/process.h"
+
+namespace cloth {
+namespace {
+
+namespace fs = std::filesystem;
+using test::ProcessResult;
+using test::runProcess;
+
+const std::string kExe = CLOTH_EXE;
+constexpr double kTimeout = 60;  // [s]
+
+// A scratch directory per test, removed afterwards.
+class ScratchDir {
+public:
+    ScratchDir() {
+        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+        path_ = fs::temp_directory_path() /
+                ("clothsim_" + std::string(info->name()) + "_" + std::to_string(getpid()));
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~ScratchDir() { fs::remove_all(path_); }
+    fs::path file(const std::string& name, const std::string& text = "") const {
+        const fs::path p = path_ / name;
+        if (!text.empty()) std::ofstream(p) << text;
+        return p;
+    }
+
+private:
+    fs::path path_;
+};
+
+std::string readFile(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Every number written in `text`, in order.
+std::vector<double> numbersIn(const std::string& text) {
+    static const std::regex kNumber(R"([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)");
+    std::vector<double> v;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), kNumber);
+         it != std::sregex_iterator(); ++it) {
+        v.push_back(std::strtod(it->str().c_str(), nullptr));
+    }
+    return v;
+}
+
+bool hasNonFiniteToken(const std::string& text) {
+    static const std::regex kNonFinite(R"((^|[^A-Za-z])(nan|inf|infinity)([^A-Za-z]|$))",
+                                       std::regex::icase);
+    return std::regex_search(text, kNonFinite);
+}
+
+// A 1×2 chain, (0, 0) pinned, its other vertex hanging 1 m below at rest: one stiff spring.
+std::string stiffSpring(double damping) {
+    return R"({ "name": "stiff_spring",
+  "cloth": { "resolution": [1, 2], "size": [1.0, 1.0], "origin": [0, 1, 0],
+             "u_axis": [1, 0, 0], "v_axis": [0, -1, 0] },
+  "springs": { "structural": 1e6 },
+  "damping": )" +
+           std::to_string(damping) + R"(,
+  "pins": [[0, 0]],
+  "integrator": { "method": "explicit_euler", "dt": 0.01 },
+  "duration": 10 })";
+}
+
+struct Blowup {
+    long step = 0;  // 1-based step after which the state is first unstable
+};
+
+// The same spring stepped by DESIGN.md §2's explicit Euler, written out here from the page:
+// the step at which the free vertex first exceeds max_speed (1e4) or stops being finite.
+Blowup referenceBlowup(double k, double damping, double dt) {
+    const glm::dvec3 q{0, 1, 0}, g{0, -9.81, 0};
+    glm::dvec3 p{0, 0, 0}, v{0, 0, 0};
+    for (long n = 1; n < 100000; ++n) {
+        const glm::dvec3 d = q - p;
+        const double len = glm::length(d);
+        const glm::dvec3 f = len > 1e-12 ? k * (len - 1.0) * d / len : glm::dvec3(0);
+        const glm::dvec3 vNew = v + dt * ((f - damping * v) + g);  // m = 1
+        p += dt * v;                                               // the old velocity: seed eq. (6)
+        v = vNew;
+        bool finite = true;
+        for (int c = 0; c < 3; ++c) finite &= std::isfinite(p[c]) && std::isfinite(v[c]);
+        if (!finite || glm::length(v) > 1e4) return {n};
+    }
+    return {};
+}
+
+// The Δt values a message proposes: numbers after "dt"/"Δt" on a line that says "stable"
+// (not "unstable").
+std::vector<double> suggestedDts(const std::string& err) {
+    static const std::regex kStable(R"((^|[^A-Za-z])stable)", std::regex::icase);
+    static const std::regex kDt(R"((dt|Δt)[^0-9\n]{0,30}([0-9]*\.?[0-9]+([eE][-+]?[0-9]+)?))",
+                                std::regex::icase);
+    std::vector<double> dts;
+    std::istringstream lines(err);
+    for (std::string line; std::getline(lines, line);) {
+        if (!std::regex_search(line, kStable)) continue;
+        for (auto it = std::sregex_iterator(line.begin(), line.end(), kDt);
+             it != std::sregex_iterator(); ++it) {
+            dts.push_back(std::strtod((*it)[2].str().c_str(), nullptr));
+        }
+    }
+    return dts;
+}
+
+void expectUnstableReport(const ProcessResult& r, long step, double dt) {
+    ASSERT_FALSE(r.crashed) << test::describe(r);
+    ASSERT_FALSE(r.timedOut) << test::describe(r);
+    EXPECT_EQ(r.exitCode, 3) << test::describe(r);
+    EXPECT_TRUE(std::regex_search(
+        r.err, std::regex("step\\D{0,12}\\b" + std::to_string(step) + "\\b", std::regex::icase)))
+        << "stderr does not name step " << step << "\n"
+        << test::describe(r);
+    bool timeNamed = false;  // the time after the bad step, or at its start
+    for (double x : numbersIn(r.err)) {
+        timeNamed |= std::abs(x - step * dt) < 1e-9 || std::abs(x - (step - 1) * dt) < 1e-9;
+    }
+    EXPECT_TRUE(timeNamed) << "stderr does not give the time " << step * dt << "\n"
+                           << test::describe(r);
+    EXPECT_TRUE(std::regex_search(r.err, std::regex("speed|finite|nan|inf", std::regex::icase)))
+        << "stderr does not say what went wrong\n"
+        << test::describe(r);
+    EXPECT_TRUE(std::regex_search(r.err, std::regex("(^|[^A-Za-z])(dt|Δt)", std::regex::icase)))
+        << "stderr says nothing about the time step\n"
+        << test::describe(r);
+}
+
+void expectNoNonFiniteOutput(const fs::path& p) {
+    if (!fs::exists(p)) return;  // not writing the file at all is allowed
+    const std::string text = readFile(p);
+    EXPECT_FALSE(hasNonFiniteToken(text)) << p << " contains a non-finite number";
+}
+
+TEST(Instability, UndampedStiffSpringExitsThreeAndWritesNothingNonFinite) {
+    const ScratchDir dir;
+    const fs::path scene = dir.file("stiff.json", stiffSpring(0.0));
+    const fs::path csv = dir.file("out.csv"), obj = dir.file("out.obj");
+    const fs::path frames = dir.file("frames");
+    const ProcessResult r =
+        runProcess({kExe, "run", scene.string(), "--steps", "1000", "--out-csv", csv.string(),
+                    "--out-obj", obj.string(), "--frames", frames.string(), "--every", "1"},
+                   kTimeout);
+    const Blowup expected = referenceBlowup(1e6, 0.0, 0.01);
+    ASSERT_EQ(expected.step, 7);  // the reference itself, so a change above is noticed
+    expectUnstableReport(r, expected.step, 0.01);
+    expectNoNonFiniteOutput(csv);
+    expectNoNonFiniteOutput(obj);
+    // Frames of the steps before the blow-up may exist; none may hold a non-finite number.
+    if (fs::exists(frames)) {
+        for (const auto& f : fs::recursive_directory_iterator(frames)) {
+            if (f.is_regular_file()) expectNoNonFiniteOutput(f.path());
+        }
+    }
+}
+
+TEST(Instability, DampedStiffSpringSuggestsSmallerDt) {
+    // μ = 1, λ = 1e6: explicit Euler is stable only for Δt < μ/λ_max ≈ 1e-6 (DESIGN.md §2),
+    // so any honest estimate is below the scene's 0.01.
+    const ScratchDir dir;
+    const fs::path scene = dir.file("stiff.json", stiffSpring(1.0));
+    const fs::path csv = dir.file("out.csv"), obj = dir.file("out.obj");
+    const ProcessResult r = runProcess({kExe, "run", scene.string(), "--steps", "1000", "--out-csv",
+                                        csv.string(), "--out-obj", obj.string()},
+                                       kTimeout);
+    expectUnstableReport(r, referenceBlowup(1e6, 1.0, 0.01).step, 0.01);
+    const std::vector<double> dts = suggestedDts(r.err);
+    ASSERT_FALSE(dts.empty()) << "no stable Δt suggested\n" << test::describe(r);
+    bool smaller = false;
+    for (double dt : dts) smaller |= dt > 0 && dt < 0.01;
+    EXPECT_TRUE(smaller) << "suggested Δt not below the failing 0.01\n" << test::describe(r);
+    expectNoNonFiniteOutput(csv);
+    expectNoNonFiniteOutput(obj);
+}
+
+TEST(Instability, ValidatePrintsTheBoundButAcceptsTheScene) {
+    // An unstable choice of Δt is a property of the run, not invalid input.
+    const ScratchDir dir;
+    const fs::path scene = dir.file("stiff.json", stiffSpring(1.0));
+    const ProcessResult r = runProcess({kExe, "validate", scene.string()}, kTimeout);
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+}
+
+// ---- a stable run: exit 0 and a CSV that round-trips ------------------------------------
+
+TEST(StableRun, CsvHasHeaderOneRowPerVertexAndRoundTrips) {
+    // No pins, no colliders, a weak spring at rest: after one explicit Euler step the positions
+    // are still the rest positions (p advances by the old velocity, 0) and v = Δt·g up to the
+    // spring's rounding. du = 1/3 needs all 17 digits to come back exactly.
+    const ScratchDir dir;
+    const fs::path scene = dir.file("stable.json", R"({ "name": "stable",
+  "cloth": { "resolution": [4, 3], "size": [1.0, 0.5], "origin": [0.1, 1.0, -0.3],
+             "u_axis": [1, 0, 0], "v_axis": [0, 0, 1] },
+  "springs": { "structural": 10.0 },
+  "damping": 0.5,
+  "integrator": { "method": "explicit_euler", "dt": 0.001 },
+  "duration": 1 })");
+    const fs::path csv = dir.file("out.csv");
+    const ProcessResult r =
+        runProcess({kExe, "run", scene.string(), "--steps", "1", "--backend", "cpu", "--precision",
+                    "double", "--out-csv", csv.string(), "--quiet"},
+                   kTimeout);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    ASSERT_TRUE(fs::exists(csv));
+
+    std::istringstream in(readFile(csv));
+    std::string line;
+    ASSERT_TRUE(std::getline(in, line));
+    EXPECT_EQ(line, "i,j,x,y,z,vx,vy,vz");
+    const int nu = 4, nv = 3;
+    const double du = 1.0 / 3, dv = 0.25, dt = 0.001;
+    int rows = 0;
+    for (; std::getline(in, line); ++rows) {
+        if (line.empty()) break;
+        SCOPED_TRACE(line);
+        std::vector<std::string> fields;
+        std::istringstream cells(line);
+        for (std::string c; std::getline(cells, c, ',');) fields.push_back(c);
+        ASSERT_EQ(fields.size(), 8u);
+        const int i = std::stoi(fields[0]), j = std::stoi(fields[1]);
+        EXPECT_EQ(j * nu + i, rows) << "rows not in index order k = j·nu + i";
+        double x[6];
+        for (int c = 0; c < 6; ++c) {
+            char* end = nullptr;
+            x[c] = std::strtod(fields[2 + c].c_str(), &end);
+            EXPECT_EQ(*end, '\0') << "not a number: " << fields[2 + c];
+            EXPECT_TRUE(std::isfinite(x[c]));
+        }
+        // %.17g round-trips exactly; %.9g or fewer digits would be off by ~1e-9 here.
+        const double expected[6] = {0.1 + i * du, 1.0, -0.3 + j * dv, 0, -9.81 * dt, 0};
+        for (int c = 0; c < 6; ++c) {
+            EXPECT_NEAR(x[c], expected[c], 1e-15 * (1 + std::abs(expected[c])))
+                << "column " << c + 2;
+        }
+    }
+    EXPECT_EQ(rows, nu * nv);
+    EXPECT_FALSE(std::getline(in, line) && !line.empty()) << "extra rows";
+}
+
+}  // namespace
+}  // namespace cloth
