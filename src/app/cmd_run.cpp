@@ -1,4 +1,6 @@
 // clothsim run SCENE [options]: a headless simulation (DESIGN.md §5).
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -76,6 +78,20 @@ bool parse(Args& args, RunOptions& o) {
     return true;
 }
 
+// An output that cannot be written is bad input, found before the simulation runs, not after.
+void checkWritable(const std::string& flag, const std::string& file) {
+    if (file.empty()) return;
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(file).parent_path().empty() ? fs::path(".") : fs::path(file).parent_path();
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec))
+        throw InputError("command line", flag, "directory '" + dir.string() + "' does not exist");
+    if (fs::is_directory(file, ec))
+        throw InputError("command line", flag, "'" + file + "' is a directory");
+    if (access(dir.c_str(), W_OK) != 0)
+        throw InputError("command line", flag, "directory '" + dir.string() + "' is not writable");
+}
+
 std::string framePath(const RunOptions& o, const Scene& scene, long step, long total) {
     const int digits = std::max<int>(6, int(std::to_string(total).size()));
     char name[64];
@@ -106,6 +122,8 @@ int runCommand(Args& args) {
         return kOk;
     }
     const Scene scene = loadScene(o.scenePath, o.sets);
+    checkWritable("--out-csv", o.csv);
+    checkWritable("--out-obj", o.obj);
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
     if (!o.framesDir.empty()) std::filesystem::create_directories(o.framesDir);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);

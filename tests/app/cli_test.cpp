@@ -140,6 +140,8 @@ TEST(CliArgs, BadArgumentsExitTwoNamingTheOption) {
         {"run", kScenes + "spring.json", "--precision", "half"},
         {"run", kScenes + "spring.json", "--frames", "/tmp/x"},
         {"run", kScenes + "spring.json", "--bogus"},
+        {"run", kScenes + "spring.json", "--out-csv", "/nonexistent-dir/x.csv"},
+        {"run", kScenes + "spring.json", "--out-obj", "/tmp"},
         {"run"},
         {"frobnicate"},
     };

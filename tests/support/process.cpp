@@ -70,8 +70,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv, const ProcessOpti
     int fds[2] = {outPipe[0], errPipe[0]};
     const auto deadline = start + std::chrono::duration<double>(options.timeoutSeconds);
     while (fds[0] >= 0 || fds[1] >= 0) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline -
-                                                                                Clock::now());
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
         if (left.count() <= 0) {
             r.timedOut = true;
             kill(pid, SIGKILL);
