@@ -25,8 +25,8 @@ run: build
 	$(BUILD_DIR)/clothsim run scenes/drape.json --out-obj out/drape.obj --out-csv out/drape.csv
 	@echo "result: out/drape.obj (Wavefront OBJ, opens in Blender) and out/drape.csv"
 
-# The whole suite: every GoogleTest (CPU, GPU on EGL, CLI) through ctest, then the fuzzer.
-test: unit fuzz
+# The whole suite: the scene-loader fuzzer, then every GoogleTest (CPU, GPU on EGL, CLI) via ctest.
+test: fuzz unit
 
 unit: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
