@@ -19,6 +19,11 @@ vec3 vertexNormal(vec3 right, vec3 left, vec3 up, vec3 down) {
     return c / len;
 }
 
+// The viewer's grab spring (Solver::setGrab): F = K (target − x), no rest length.
+vec3 grabForce(vec3 p, vec3 target, float stiffness) {
+    return stiffness * (target - p);
+}
+
 #ifdef HAS_WIND
 // Wind (seed §5.3): F_w = K_w ⟨n, û_w⟩ n.
 vec3 windForce(vec3 normal, vec3 direction, float strength) {

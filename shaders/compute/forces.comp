@@ -11,6 +11,11 @@ layout(local_size_x = WX, local_size_y = WY) in;
 const ivec4 kSpringOffsets[NUM_SPRING_OFFSETS] = ivec4[](SPRING_OFFSETS);
 #endif
 
+// The viewer's grab (Solver::setGrab): a spring F = K (target − x) on one vertex, part of F
+// like any other force. uGrabVertex = -1 when nothing is grabbed: one compare per vertex.
+layout(location = 0) uniform int uGrabVertex;
+layout(location = 1) uniform vec4 uGrab;  // xyz target [m], w stiffness K [N/m]
+
 vec3 positionAt(int i, int j) { return positions[vertexIndex(ivec2(i, j))].xyz; }
 
 void main() {
@@ -34,6 +39,7 @@ void main() {
 #ifdef HAS_WIND
     f += windForce(n, params.wind.xyz, params.wind.w);
 #endif
+    if (int(k) == uGrabVertex) f += grabForce(p, uGrab.xyz, uGrab.w);
     forces[k] = vec4(f, 0.0);
     normals[k] = vec4(n, 0.0);
 }

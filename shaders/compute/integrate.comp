@@ -41,12 +41,12 @@ void main() {
     vec3 p = x.xyz, vel = v.xyz;
     integrate(p, vel, forces[k].xyz, x.w, params.integration.x, params.gravity.w,
               params.gravity.xyz);
-#ifdef HAS_PINS
-    if (x.w == 0.0) {  // pinned: back to its pinned position, at rest
+    // Pinned (by the scene or at run time): back to its pinned position, at rest. Compiled
+    // always, since setPinned may pin any vertex; one compare of a value already loaded.
+    if (x.w == 0.0) {
         p = pins[int(v.w)].xyz;
         vel = vec3(0.0);
     }
-#endif
 #ifdef HAS_COLLIDERS
 #define PLANE(n) collidePlane(p, vel, colliders[2 * (n)].xyz, colliders[2 * (n) + 1].xyz);
 #define SPHERE(n) collideSphere(p, vel, colliders[2 * NUM_PLANES + (n)]);

@@ -31,11 +31,10 @@ layout(std430, binding = 5) readonly buffer Colliders {
 };
 #endif
 
-#ifdef HAS_PINS
+// Always present: the viewer pins and releases vertices at run time (Solver::setPinned).
 layout(std430, binding = 6) readonly buffer Pins {
     vec4 pins[];  // xyz pinned position [m]
 };
-#endif
 
 int gridU() { return params.grid.x; }
 int gridV() { return params.grid.y; }

@@ -11,9 +11,10 @@ int infoCommand(Args& args) {
     while (!args.done()) {
         const std::string f = args.flag();
         if (f == "--help") {
-            std::fputs("usage: clothsim info\n\nPrints the build, the CPU threads, and the GPU "
-                       "(EGL platform, vendor, GL renderer and version, compute limits).\n",
-                       stdout);
+            std::fputs(
+                "usage: clothsim info\n\nPrints the build, the CPU threads, and the GPU "
+                "(EGL platform, vendor, GL renderer and version, compute limits).\n",
+                stdout);
             return kOk;
         }
         args.unknown(f);

@@ -58,17 +58,28 @@ bool parse(Args& args, RunOptions& o) {
         }
         const std::string f = args.flag();
         if (f == "--help") return false;
-        if (f == "--backend") o.backend.backend = parseBackend(f, args.value(f));
-        else if (f == "--precision") o.backend.precision = parsePrecision(f, args.value(f));
-        else if (f == "--threads") o.backend.threads = int(args.positiveInt(f));
-        else if (f == "--steps") o.steps = args.positiveInt(f);
-        else if (f == "--set") o.sets.push_back(args.value(f));
-        else if (f == "--out-csv") o.csv = args.value(f);
-        else if (f == "--out-obj") o.obj = args.value(f);
-        else if (f == "--frames") o.framesDir = args.value(f);
-        else if (f == "--every") o.every = args.positiveInt(f);
-        else if (f == "--quiet") o.quiet = true;
-        else args.unknown(f);
+        if (f == "--backend")
+            o.backend.backend = parseBackend(f, args.value(f));
+        else if (f == "--precision")
+            o.backend.precision = parsePrecision(f, args.value(f));
+        else if (f == "--threads")
+            o.backend.threads = int(args.positiveInt(f));
+        else if (f == "--steps")
+            o.steps = args.positiveInt(f);
+        else if (f == "--set")
+            o.sets.push_back(args.value(f));
+        else if (f == "--out-csv")
+            o.csv = args.value(f);
+        else if (f == "--out-obj")
+            o.obj = args.value(f);
+        else if (f == "--frames")
+            o.framesDir = args.value(f);
+        else if (f == "--every")
+            o.every = args.positiveInt(f);
+        else if (f == "--quiet")
+            o.quiet = true;
+        else
+            args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "run needs a scene file");
     if (!o.framesDir.empty() && o.every == 0)
@@ -82,7 +93,8 @@ bool parse(Args& args, RunOptions& o) {
 void checkWritable(const std::string& flag, const std::string& file) {
     if (file.empty()) return;
     namespace fs = std::filesystem;
-    const fs::path dir = fs::path(file).parent_path().empty() ? fs::path(".") : fs::path(file).parent_path();
+    const fs::path dir =
+        fs::path(file).parent_path().empty() ? fs::path(".") : fs::path(file).parent_path();
     std::error_code ec;
     if (!fs::is_directory(dir, ec))
         throw InputError("command line", flag, "directory '" + dir.string() + "' does not exist");
@@ -105,7 +117,8 @@ int reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r
         std::fprintf(stderr, "clothsim: %s: unstable at step %ld (t = %.6g s): %s\n",
                      scene.source.c_str(), r.firstBadStep, r.firstBadStep * dt, r.reason.c_str());
     else
-        std::fprintf(stderr, "clothsim: %s: unstable between steps %ld and %ld (t = %.6g..%.6g s): %s\n",
+        std::fprintf(stderr,
+                     "clothsim: %s: unstable between steps %ld and %ld (t = %.6g..%.6g s): %s\n",
                      scene.source.c_str(), r.firstBadStep, r.lastBadStep, r.firstBadStep * dt,
                      r.lastBadStep * dt, r.reason.c_str());
     std::fprintf(stderr, "clothsim: %s [%s]; nothing was written for the unstable state\n",

@@ -26,10 +26,10 @@ std::string vec(const glm::dvec3& v) {
 void printModel(const Scene& s) {
     const Grid g = s.grid();
     std::printf("scene        %s (%s)\n", s.name.c_str(), s.source.c_str());
-    std::printf("cloth        %d x %d = %lld vertices, %g x %g m, spacing %.4g x %.4g m, "
-                "mass %g kg per vertex\n",
-                g.nu, g.nv, (long long)g.count(), s.cloth.size.x, s.cloth.size.y, g.du, g.dv,
-                s.cloth.mass);
+    std::printf(
+        "cloth        %d x %d = %lld vertices, %g x %g m, spacing %.4g x %.4g m, "
+        "mass %g kg per vertex\n",
+        g.nu, g.nv, (long long)g.count(), s.cloth.size.x, s.cloth.size.y, g.du, g.dv, s.cloth.mass);
     std::printf("             origin %s, u axis %s, v axis %s\n", vec(g.origin).c_str(),
                 vec(g.u).c_str(), vec(g.v).c_str());
     for (Family f : {Family::Structural, Family::Shear, Family::Bend}) {
@@ -60,8 +60,8 @@ void printModel(const Scene& s) {
                         sp->radius);
     }
     std::printf("integrator   %s, dt = %g s, %d substeps per frame, duration %g s = %ld steps\n",
-                methodName(s.integrator.method), s.integrator.dt, s.integrator.substeps,
-                s.duration, s.defaultSteps());
+                methodName(s.integrator.method), s.integrator.dt, s.integrator.substeps, s.duration,
+                s.defaultSteps());
     std::printf("max speed    %g m/s\n", s.maxSpeed);
 }
 
@@ -97,8 +97,10 @@ int validateCommand(Args& args) {
             std::fputs(kHelp, stdout);
             return kOk;
         }
-        if (f == "--set") sets.push_back(args.value(f));
-        else args.unknown(f);
+        if (f == "--set")
+            sets.push_back(args.value(f));
+        else
+            args.unknown(f);
     }
     if (path.empty()) throw InputError("command line", "SCENE", "validate needs a scene file");
     const Scene scene = loadScene(path, sets);

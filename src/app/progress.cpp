@@ -7,7 +7,9 @@
 namespace cloth::app {
 
 Progress::Progress(long total, bool enabled)
-    : total_(total), enabled_(enabled && isatty(STDERR_FILENO)), start_(Clock::now()),
+    : total_(total),
+      enabled_(enabled && isatty(STDERR_FILENO)),
+      start_(Clock::now()),
       lastDraw_(start_) {}
 
 void Progress::update(long done) {

@@ -3,6 +3,7 @@
 #include <barrier>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "core/forces.h"
 
@@ -28,23 +29,35 @@ int chooseThreads(int requested, std::int64_t vertices) {
 template <typename T>
 CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
     : grid_(scene.grid()), features_(Features::of(scene)) {
+    const std::int64_t n = grid_.count();
+    x_.resize(n);
+    for (int j = 0; j < grid_.nv; ++j)
+        for (int i = 0; i < grid_.nu; ++i)
+            x_[grid_.index(i, j)] = cast<T>(grid_.restPosition(i, j));
+    v_.assign(n, Vec3<T>(0));
+    f_.assign(n, Vec3<T>(0));
+    pinned_.assign(n, 0);
+    pinPosition_ = x_;
+    for (const Pin& p : scene.pins) pinned_[grid_.index(p.i, p.j)] = 1;
+    takeParameters(scene);
+    const int t = chooseThreads(threads, n);
+    for (int b = 0; b < t; ++b) bands_.push_back(Band{n * b / t, n * (b + 1) / t, -1, {}});
+    pool_ = std::make_unique<WorkerPool>(t);
+}
+
+// Everything a scene sets that leaves the grid, the pins and the features as they are.
+template <typename T>
+void CpuSolver<T>::takeParameters(const Scene& scene) {
+    grid_ = scene.grid();
     Solver::dt_ = scene.integrator.dt;
+    springs_.clear();
     for (const SpringOffset& o : kSpringOffsets) {
         const double k = scene.springs.of(o.family);
         if (k > 0)
             springs_.push_back({o.di, o.dj, std::int64_t(o.dj) * grid_.nu + o.di, T(k),
                                 T(grid_.restLength(o.di, o.dj))});
     }
-    const std::int64_t n = grid_.count();
-    x_.resize(n);
-    for (int j = 0; j < grid_.nv; ++j)
-        for (int i = 0; i < grid_.nu; ++i) x_[grid_.index(i, j)] = cast<T>(grid_.restPosition(i, j));
-    v_.assign(n, Vec3<T>(0));
-    f_.assign(n, Vec3<T>(0));
-    inverseMass_.assign(n, T(1.0 / scene.cloth.mass));
-    pinned_.assign(n, 0);
-    pinPosition_ = x_;
-    for (const Pin& p : scene.pins) pinned_[grid_.index(p.i, p.j)] = 1;
+    inverseMass_.assign(grid_.count(), T(1.0 / scene.cloth.mass));
     dt_t_ = T(scene.integrator.dt);
     damping_ = T(scene.damping);
     gravity_ = cast<T>(scene.gravity);
@@ -52,15 +65,57 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
     windStrength_ = scene.wind ? T(scene.wind->strength) : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
+    colliders_.clear();
     for (const Collider& c : scene.colliders) {
         if (const Plane* p = std::get_if<Plane>(&c))
             colliders_.push_back(PlaneT<T>{cast<T>(p->point), cast<T>(p->normal)});
         else if (const Sphere* s = std::get_if<Sphere>(&c))
             colliders_.push_back(SphereT<T>{cast<T>(s->center), T(s->radius)});
     }
-    const int t = chooseThreads(threads, n);
-    for (int b = 0; b < t; ++b) bands_.push_back(Band{n * b / t, n * (b + 1) / t, -1, {}});
-    pool_ = std::make_unique<WorkerPool>(t);
+}
+
+template <typename T>
+void CpuSolver<T>::setParameters(const Scene& scene) {
+    if (scene.cloth.nu != grid_.nu || scene.cloth.nv != grid_.nv)
+        throw std::invalid_argument("setParameters: the grid size differs; build a new solver");
+    if (!(Features::of(scene) == features_))
+        throw std::invalid_argument("setParameters: the features differ; build a new solver");
+    std::vector<std::uint8_t> pinned(grid_.count(), 0);
+    for (const Pin& p : scene.pins) pinned[grid_.index(p.i, p.j)] = 1;
+    if (pinned != pinned_)
+        throw std::invalid_argument("setParameters: the pins differ; use setPinned");
+    takeParameters(scene);
+}
+
+template <typename T>
+void CpuSolver<T>::write(const SimState& state) {
+    if (state.nu != grid_.nu || state.nv != grid_.nv || state.positions.size() != x_.size() ||
+        state.velocities.size() != v_.size())
+        throw std::invalid_argument("write: the state is for another grid");
+    for (size_t k = 0; k < x_.size(); ++k) {
+        x_[k] = cast<T>(state.positions[k]);
+        v_[k] = cast<T>(state.velocities[k]);
+        if (pinned_[k]) pinPosition_[k] = x_[k];  // a pin holds the vertex where it now is
+    }
+}
+
+template <typename T>
+void CpuSolver<T>::setPinned(int i, int j, bool pinned) {
+    if (!grid_.contains(i, j)) throw std::invalid_argument("setPinned: vertex outside the grid");
+    const std::int64_t k = grid_.index(i, j);
+    pinned_[k] = pinned ? 1 : 0;
+    pinPosition_[k] = x_[k];
+    if (pinned) v_[k] = Vec3<T>(0);
+}
+
+template <typename T>
+void CpuSolver<T>::setGrab(const std::optional<Grab>& grab) {
+    if (grab && (grab->vertex < 0 || grab->vertex >= grid_.count()))
+        throw std::invalid_argument("setGrab: vertex outside the grid");
+    if (grab)
+        grab_ = GrabT{grab->vertex, cast<T>(grab->target), T(grab->stiffness)};
+    else
+        grab_.reset();
 }
 
 // Pass 1: each vertex gathers its springs (one loop over the active offsets) and the wind.
@@ -92,6 +147,9 @@ void CpuSolver<T>::computeForces(std::int64_t begin, std::int64_t end) {
             ++j;
         }
     }
+    // The user's grab spring, F = K (target − x), part of F like any spring.
+    if (grab_ && grab_->vertex >= begin && grab_->vertex < end)
+        f_[grab_->vertex] += grabForce(x_[grab_->vertex], grab_->target, grab_->stiffness);
 }
 
 // Pass 2: the seed's explicit Euler (DESIGN.md §2, seed eq. (6)), then pins, then colliders in
@@ -108,7 +166,8 @@ bool CpuSolver<T>::integrate(Band& band) {
             p = pinPosition_[k];
             v = Vec3<T>(0);
         }
-        for (const auto& c : colliders_) std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
+        for (const auto& c : colliders_)
+            std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
         x_[k] = p;
         v_[k] = v;
         const T speed2 = glm::dot(v, v);
@@ -117,9 +176,11 @@ bool CpuSolver<T>::integrate(Band& band) {
             char buf[160];
             const int i = int(k % grid_.nu), j = int(k / grid_.nu);
             if (!finite)
-                std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
+                std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)",
+                              i, j);
             else
-                std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
+                std::snprintf(buf, sizeof buf,
+                              "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
                               double(std::sqrt(speed2)), maxSpeed_, i, j);
             band.badVertex = k;
             band.reason = buf;

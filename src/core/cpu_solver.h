@@ -22,6 +22,11 @@ public:
     Features features() const override { return features_; }
     std::string name() const override;
 
+    void write(const SimState& state) override;
+    void setPinned(int i, int j, bool pinned) override;
+    void setGrab(const std::optional<Grab>& grab) override;
+    void setParameters(const Scene& scene) override;
+
 private:
     struct Spring {  // one active entry of kSpringOffsets
         int di, dj;
@@ -34,8 +39,15 @@ private:
         std::string reason;
     };
 
+    struct GrabT {
+        std::int64_t vertex;
+        Vec3<T> target;
+        T stiffness;
+    };
+
+    void takeParameters(const Scene& scene);
     void computeForces(std::int64_t begin, std::int64_t end);  // pass 1
-    bool integrate(Band& band);                                 // pass 2; false if unstable
+    bool integrate(Band& band);                                // pass 2; false if unstable
     void runBand(Band& band, long n, long& taken);
     StepResult stepThreaded(long n);
 
@@ -49,6 +61,7 @@ private:
     Vec3<T> gravity_, windDirection_;
     std::vector<std::variant<PlaneT<T>, SphereT<T>>> colliders_;
     double maxSpeed_;
+    std::optional<GrabT> grab_;
     std::vector<Band> bands_;
     std::unique_ptr<WorkerPool> pool_;
 };

@@ -19,8 +19,9 @@ Energy energy(const Scene& scene, const SimState& state) {
                 if (o.dj < 0 || (o.dj == 0 && o.di < 0)) continue;
                 const double stiffness = scene.springs.of(o.family);
                 if (stiffness <= 0 || !g.contains(i + o.di, j + o.dj)) continue;
-                const double stretch = glm::length(state.positions[g.index(i + o.di, j + o.dj)] - p) -
-                                       g.restLength(o.di, o.dj);
+                const double stretch =
+                    glm::length(state.positions[g.index(i + o.di, j + o.dj)] - p) -
+                    g.restLength(o.di, o.dj);
                 e.spring += 0.5 * stiffness * stretch * stretch;
             }
         }
@@ -36,8 +37,8 @@ double maxStrain(const Scene& scene, const SimState& state) {
             for (auto [di, dj] : {std::pair{1, 0}, {0, 1}}) {
                 if (!g.contains(i + di, j + dj)) continue;
                 const double rest = g.restLength(di, dj);
-                const double len =
-                    glm::length(state.positions[g.index(i + di, j + dj)] - state.positions[g.index(i, j)]);
+                const double len = glm::length(state.positions[g.index(i + di, j + dj)] -
+                                               state.positions[g.index(i, j)]);
                 strain = std::max(strain, (len - rest) / rest);
             }
         }

@@ -36,4 +36,10 @@ Vec3<T> windForce(const Vec3<T>& normal, const Vec3<T>& direction, T strength) {
     return (strength * glm::dot(normal, direction)) * normal;
 }
 
+// The user's grab: a spring of rest length 0 from the vertex to a target point, F = K (t − x).
+template <typename T>
+Vec3<T> grabForce(const Vec3<T>& position, const Vec3<T>& target, T stiffness) {
+    return stiffness * (target - position);
+}
+
 }  // namespace cloth

@@ -3,7 +3,6 @@
 
 #include <array>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 namespace cloth {
@@ -16,9 +15,12 @@ inline constexpr int kFamilyCount = 3;
 
 inline const char* familyName(Family f) {
     switch (f) {
-        case Family::Structural: return "structural";
-        case Family::Shear: return "shear";
-        case Family::Bend: return "bend";
+        case Family::Structural:
+            return "structural";
+        case Family::Shear:
+            return "shear";
+        case Family::Bend:
+            return "bend";
     }
     return "?";
 }
@@ -30,17 +32,23 @@ struct SpringOffset {
     Family family;
 };
 inline constexpr std::array<SpringOffset, 12> kSpringOffsets{{
-    {1, 0, Family::Structural}, {-1, 0, Family::Structural},
-    {0, 1, Family::Structural}, {0, -1, Family::Structural},
-    {1, 1, Family::Shear},      {-1, 1, Family::Shear},
-    {1, -1, Family::Shear},     {-1, -1, Family::Shear},
-    {2, 0, Family::Bend},       {-2, 0, Family::Bend},
-    {0, 2, Family::Bend},       {0, -2, Family::Bend},
+    {1, 0, Family::Structural},
+    {-1, 0, Family::Structural},
+    {0, 1, Family::Structural},
+    {0, -1, Family::Structural},
+    {1, 1, Family::Shear},
+    {-1, 1, Family::Shear},
+    {1, -1, Family::Shear},
+    {-1, -1, Family::Shear},
+    {2, 0, Family::Bend},
+    {-2, 0, Family::Bend},
+    {0, 2, Family::Bend},
+    {0, -2, Family::Bend},
 }};
 
 struct Grid {
     int nu = 2, nv = 1;
-    double du = 0, dv = 0;            // spacing along û and v̂ [m]; 0 on a side of one vertex
+    double du = 0, dv = 0;  // spacing along û and v̂ [m]; 0 on a side of one vertex
     glm::dvec3 origin{0}, u{1, 0, 0}, v{0, 0, 1};  // û, v̂ unit vectors
 
     std::int64_t count() const { return std::int64_t(nu) * nv; }

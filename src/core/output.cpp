@@ -52,9 +52,8 @@ void writeCsv(const std::string& path, const SimState& state, Precision precisio
     requireFinite(state, path);
     AtomicFile out(path);
     FILE* f = out.get();
-    const char* row = precision == Precision::Double
-                          ? "%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n"
-                          : "%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n";
+    const char* row = precision == Precision::Double ? "%d,%d,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n"
+                                                     : "%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n";
     std::fputs("i,j,x,y,z,vx,vy,vz\n", f);
     for (int j = 0; j < state.nv; ++j) {
         for (int i = 0; i < state.nu; ++i) {
@@ -74,7 +73,8 @@ void writeObj(const std::string& path, const SimState& state, const std::string&
     auto at = [&](int i, int j) { return state.positions[size_t(j) * nu + i]; };
     std::fprintf(f, "# clothsim: %s, %d x %d vertices\no %s\n", sceneName.c_str(), nu, nv,
                  sceneName.c_str());
-    for (const glm::dvec3& p : state.positions) std::fprintf(f, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
+    for (const glm::dvec3& p : state.positions)
+        std::fprintf(f, "v %.9g %.9g %.9g\n", p.x, p.y, p.z);
     for (int j = 0; j < nv; ++j)
         for (int i = 0; i < nu; ++i)
             std::fprintf(f, "vt %.9g %.9g\n", nu > 1 ? double(i) / (nu - 1) : 0.0,
@@ -95,8 +95,10 @@ void writeObj(const std::string& path, const SimState& state, const std::string&
         for (int j = 0; j + 1 < nv; ++j) {
             for (int i = 0; i + 1 < nu; ++i) {
                 const long a = long(j) * nu + i + 1, b = a + 1, c = a + nu + 1, d = a + nu;
-                std::fprintf(f, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, b, b, b, c, c, c);
-                std::fprintf(f, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, c, c, c, d, d, d);
+                std::fprintf(f, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, b, b, b, c, c,
+                             c);
+                std::fprintf(f, "f %ld/%ld/%ld %ld/%ld/%ld %ld/%ld/%ld\n", a, a, a, c, c, c, d, d,
+                             d);
             }
         }
     }

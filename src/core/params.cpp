@@ -29,7 +29,9 @@ constexpr ParamSpec kParams[] = {
 
 }  // namespace
 
-std::span<const ParamSpec> paramTable() { return kParams; }
+std::span<const ParamSpec> paramTable() {
+    return kParams;
+}
 
 const ParamSpec* findParam(const std::string& path) {
     for (const ParamSpec& p : kParams)
@@ -52,8 +54,8 @@ std::string checkRange(const ParamSpec& spec, double value) {
         return buf;
     }
     if (value > spec.max) {
-        std::snprintf(buf, sizeof buf, "must be <= %g%s%s, got %.17g", spec.max,
-                      unit[0] ? " " : "", unit, value);
+        std::snprintf(buf, sizeof buf, "must be <= %g%s%s, got %.17g", spec.max, unit[0] ? " " : "",
+                      unit, value);
         return buf;
     }
     return "";

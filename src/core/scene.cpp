@@ -7,16 +7,20 @@ namespace cloth {
 
 const char* methodName(Method m) {
     switch (m) {
-        case Method::ExplicitEuler: return "explicit_euler";
+        case Method::ExplicitEuler:
+            return "explicit_euler";
     }
     return "?";
 }
 
 double SpringStiffness::of(Family f) const {
     switch (f) {
-        case Family::Structural: return structural;
-        case Family::Shear: return shear;
-        case Family::Bend: return bend;
+        case Family::Structural:
+            return structural;
+        case Family::Shear:
+            return shear;
+        case Family::Bend:
+            return bend;
     }
     return 0;
 }

@@ -3,12 +3,11 @@
 // modelled at all.
 #pragma once
 
+#include <glm/glm.hpp>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/grid.h"
 
@@ -19,11 +18,11 @@ enum class Method { ExplicitEuler };
 const char* methodName(Method m);
 
 struct ClothSpec {
-    int nu = 2, nv = 2;                      // vertices along u and v
-    glm::dvec2 size{1, 1};                   // extent along û and v̂ [m]
-    glm::dvec3 origin{0};                    // position of vertex (0, 0) [m]
+    int nu = 2, nv = 2;                         // vertices along u and v
+    glm::dvec2 size{1, 1};                      // extent along û and v̂ [m]
+    glm::dvec3 origin{0};                       // position of vertex (0, 0) [m]
     glm::dvec3 uAxis{1, 0, 0}, vAxis{0, 0, 1};  // normalised by the loader
-    double mass = 1;                         // per vertex [kg]
+    double mass = 1;                            // per vertex [kg]
 };
 
 struct SpringStiffness {

@@ -1,9 +1,8 @@
 #include "core/scene_overrides.h"
 
 #include <cctype>
-#include <vector>
-
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "core/errors.h"
 
@@ -36,15 +35,17 @@ std::string applyOverride(nlohmann::json& doc, const std::string& assignment,
                           const std::string& source) {
     const size_t eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0)
-        throw InputError(source, assignment, "--set expects KEY.PATH=JSON, e.g. integrator.dt=0.002");
+        throw InputError(source, assignment,
+                         "--set expects KEY.PATH=JSON, e.g. integrator.dt=0.002");
     const std::string key = assignment.substr(0, eq), text = assignment.substr(eq + 1);
     nlohmann::json value;
     try {
         value = nlohmann::json::parse(text);
     } catch (const nlohmann::json::parse_error&) {
         throw InputError(source, key,
-                         "--set value '" + text + "' is not JSON (strings need quotes: "
-                         "name='\"x\"')");
+                         "--set value '" + text +
+                             "' is not JSON (strings need quotes: "
+                             "name='\"x\"')");
     } catch (const nlohmann::json::exception&) {
         throw InputError(source, key, "--set value '" + text + "' is not a finite number");
     }
@@ -56,16 +57,17 @@ std::string applyOverride(nlohmann::json& doc, const std::string& assignment,
         if (part.empty()) throw InputError(source, key, "--set key has an empty component");
         if (node->is_array()) {
             if (!isIndex(part) || std::stoul(part) >= node->size())
-                throw InputError(source, key, "--set: '" + part + "' is not an index of " + path +
-                                                  " (it has " + std::to_string(node->size()) +
-                                                  " entries)");
+                throw InputError(source, key,
+                                 "--set: '" + part + "' is not an index of " + path + " (it has " +
+                                     std::to_string(node->size()) + " entries)");
             path += "[" + part + "]";
             node = &(*node)[std::stoul(part)];
         } else {
             if (node->is_null()) *node = nlohmann::json::object();
             if (!node->is_object())
-                throw InputError(source, key, "--set: " + (path.empty() ? "the scene" : path) +
-                                                  " is not an object");
+                throw InputError(
+                    source, key,
+                    "--set: " + (path.empty() ? "the scene" : path) + " is not an object");
             path += (path.empty() ? "" : ".") + part;
             node = &(*node)[part];
         }

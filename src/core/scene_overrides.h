@@ -2,9 +2,8 @@
 // so an override is checked by exactly the same rules as the file.
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json_fwd.hpp>
+#include <string>
 
 namespace cloth {
 

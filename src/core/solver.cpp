@@ -4,8 +4,12 @@
 
 namespace cloth {
 
-const char* backendName(Backend b) { return b == Backend::Cpu ? "cpu" : "gpu"; }
-const char* precisionName(Precision p) { return p == Precision::Float ? "float" : "double"; }
+const char* backendName(Backend b) {
+    return b == Backend::Cpu ? "cpu" : "gpu";
+}
+const char* precisionName(Precision p) {
+    return p == Precision::Float ? "float" : "double";
+}
 
 Features Features::of(const Scene& scene) {
     Features f;

@@ -1,11 +1,11 @@
 // The one interface both backends implement (DESIGN.md §1): step(n), read(), features().
 #pragma once
 
+#include <glm/glm.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "core/scene.h"
 
@@ -28,11 +28,11 @@ struct SimState {
 // not finite or a speed exceeds max_speed (DESIGN.md §2); the solver stops there. A backend that
 // checks only every few steps (the GPU) reports the range the first bad step lies in.
 struct StepResult {
-    long stepsTaken = 0;     // steps completed by this call
+    long stepsTaken = 0;  // steps completed by this call
     bool unstable = false;
-    long firstBadStep = 0;   // 1-based global step numbers bracketing the first bad step
+    long firstBadStep = 0;  // 1-based global step numbers bracketing the first bad step
     long lastBadStep = 0;
-    std::string reason;      // e.g. "speed 1.2e+04 m/s > max_speed 1e+04 at vertex (3, 7)"
+    std::string reason;  // e.g. "speed 1.2e+04 m/s > max_speed 1e+04 at vertex (3, 7)"
 };
 
 // The features a scene declares, which decide what a solver computes (and on the GPU, compiles).
@@ -40,7 +40,15 @@ struct Features {
     bool structural = false, shear = false, bend = false, wind = false;
     int planes = 0, spheres = 0;
     static Features of(const Scene& scene);
+    bool operator==(const Features&) const = default;
     std::string describe() const;  // "structural+shear+bend, wind, 1 plane, 1 sphere"
+};
+
+// A spring from one vertex to a point the user drags (the viewer's grab): F = K (target − x).
+struct Grab {
+    std::int64_t vertex = 0;  // k = j·nu + i
+    glm::dvec3 target{0};     // [m]
+    double stiffness = 0;     // [N/m]
 };
 
 class Solver {
@@ -51,7 +59,21 @@ public:
     virtual SimState read() const = 0;
     virtual Features features() const = 0;
     virtual std::string name() const = 0;  // "cpu double, 2 threads", "gpu float (llvmpipe)"
+
+    // Interactive control (the viewer). Each takes effect from the next step.
+    // Replaces positions and velocities (same grid): carries a run across backends.
+    virtual void write(const SimState& state) = 0;
+    // Pins vertex (i, j) where it is now (zero velocity), or releases it.
+    virtual void setPinned(int i, int j, bool pinned) = 0;
+    // Adds the grab spring to the forces pass, or removes it (nullopt).
+    virtual void setGrab(const std::optional<Grab>& grab) = 0;
+    // Takes the scene's parameters (stiffnesses, damping, mass, gravity, wind, collider
+    // placement, dt, max_speed) without rebuilding. The grid, pins and Features::of(scene)
+    // must equal the solver's; otherwise it throws std::invalid_argument and the caller
+    // builds a new solver (and write()s the state into it).
+    virtual void setParameters(const Scene& scene) = 0;
     long stepsDone() const { return steps_; }
+    void resetStepCount() { steps_ = 0; }
     double time() const { return double(steps_) * dt_; }
 
 protected:

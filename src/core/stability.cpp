@@ -41,7 +41,8 @@ StabilityBound estimateStability(const Scene& scene) {
 double stableDt(const Scene& scene) {
     const StabilityBound b = estimateStability(scene);
     switch (scene.integrator.method) {
-        case Method::ExplicitEuler: return b.explicitEulerDt;
+        case Method::ExplicitEuler:
+            return b.explicitEulerDt;
     }
     return b.explicitEulerDt;
 }

@@ -8,9 +8,9 @@
 namespace cloth {
 
 struct StabilityBound {
-    double lambdaMax = 0;         // Gershgorin bound on the stiffness matrix's eigenvalues [N/m]
-    double explicitEulerDt = 0;   // largest stable Δt of the seed's explicit Euler [s] (0: none)
-    double symplecticEulerDt = 0; // same for symplectic Euler, for comparison [s]
+    double lambdaMax = 0;          // Gershgorin bound on the stiffness matrix's eigenvalues [N/m]
+    double explicitEulerDt = 0;    // largest stable Δt of the seed's explicit Euler [s] (0: none)
+    double symplecticEulerDt = 0;  // same for symplectic Euler, for comparison [s]
 };
 
 // λ_max ≤ max over free vertices of Σ_springs K + Σ_springs to free neighbours K (Gershgorin

@@ -21,6 +21,11 @@ enum Binding : unsigned {
     kBindingCount = 8
 };
 
+// Uniform locations. integrate.comp: the 1-based global step number. forces.comp: the grab
+// (Solver::setGrab), int vertex (-1: none) and vec4 (target [m], stiffness [N/m]).
+inline constexpr int kStepLocation = 0;
+inline constexpr int kGrabVertexLocation = 0, kGrabLocation = 1;
+
 struct Params {
     glm::ivec4 grid;          // nu, nv, 0, 0
     glm::vec4 stiffness;      // K structural, shear, bend [N/m], 0

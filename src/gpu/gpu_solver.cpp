@@ -9,40 +9,21 @@
 
 #include "core/errors.h"
 #include "gpu/egl_context.h"
+#include "gpu/gpu_buffers.h"
 #include "gpu/shader_loader.h"
 
 namespace cloth {
 namespace {
 
+using gpu::bufferData;
+using gpu::kVec4;
+using gpu::subData;
+using gpu::vec4;
+
 using Clock = std::chrono::steady_clock;
 
-void bufferData(unsigned buffer, const void* data, std::size_t bytes) {
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
-    // An empty table still gets a vec4: a zero-sized binding is an error in GL.
-    const std::size_t size = std::max<std::size_t>(bytes, sizeof(glm::vec4));
-    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(size), nullptr, GL_DYNAMIC_COPY);
-    if (data != nullptr && bytes > 0)
-        glBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(bytes), data);
-    else
-        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
-}
-
-template <typename T>
-void bufferData(unsigned buffer, const std::vector<T>& v) {
-    bufferData(buffer, v.data(), v.size() * sizeof(T));
-}
-
-std::vector<glm::vec4> downloadVec4(unsigned buffer, std::size_t count) {
-    std::vector<glm::vec4> out(count);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, GLsizeiptr(count * sizeof(glm::vec4)),
-                       out.data());
-    return out;
-}
-
-glm::vec4 vec4(const glm::dvec3& v, double w) {
-    return glm::vec4(glm::vec3(v), float(w));
-}
+// Room for this many pins before setPinned has to grow the table.
+constexpr std::size_t kMinPinCapacity = 16;
 
 // Both kernels of the scene's variant; neither leaks if the other fails to build.
 std::pair<unsigned, unsigned> buildPrograms(const Scene& scene, WorkGroup wg) {
@@ -83,19 +64,17 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
     dt_ = scene.integrator.dt;
+    defines_ = gpuDefines(scene, workGroup_);
     std::tie(forcesProgram_, integrateProgram_) = buildPrograms(scene, workGroup_);
     glGenBuffers(GLsizei(buffers_.size()), buffers_.data());
     upload(scene);
+    glProgramUniform1i(forcesProgram_, gpu::kGrabVertexLocation, -1);  // nothing grabbed
     // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
     // the wall clock.
     if (info.timerQueries && !info.software) glGenQueries(1, &timer_);
     name_ = "gpu float (" + info.renderer.substr(0, info.renderer.find(" (")) + ", work groups " +
             std::to_string(workGroup_.x) + "x" + std::to_string(workGroup_.y) + ")";
-    // Normals are valid before the first step, for a renderer drawing frame 0.
-    bindBuffers();
-    glUseProgram(forcesProgram_);
-    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    computeNormals();  // valid before the first step, for a renderer drawing frame 0
 }
 
 GpuSolver::~GpuSolver() {
@@ -115,25 +94,32 @@ GpuSolver::~GpuSolver() {
 void GpuSolver::upload(const Scene& scene) {
     const Grid g = scene.grid();
     const std::size_t n = std::size_t(g.count());
-    std::vector<glm::vec4> x(n), v(n, glm::vec4(0)), pins;
-    const double inverseMass = 1.0 / scene.cloth.mass;
+    std::vector<glm::vec4> x(n), v(n, glm::vec4(0));
+    inverseMass_ = float(1.0 / scene.cloth.mass);
     for (int j = 0; j < nv_; ++j)
         for (int i = 0; i < nu_; ++i)
-            x[std::size_t(g.index(i, j))] = vec4(g.restPosition(i, j), inverseMass);
+            x[std::size_t(g.index(i, j))] = vec4(g.restPosition(i, j), inverseMass_);
     for (const Pin& p : scene.pins) {
-        glm::vec4& xk = x[std::size_t(g.index(p.i, p.j))];
-        if (xk.w == 0) continue;  // listed twice
-        xk.w = 0;
-        v[std::size_t(g.index(p.i, p.j))].w = float(pins.size());  // exact below 2^24 pins
-        pins.push_back(glm::vec4(glm::vec3(xk), 0));
+        const std::int64_t k = g.index(p.i, p.j);
+        if (pinSlots_.count(k) != 0) continue;  // listed twice
+        x[std::size_t(k)].w = 0;
+        v[std::size_t(k)].w = float(pins_.size());  // exact below 2^24 pins
+        pinSlots_[k] = {int(pins_.size()), true};
+        pins_.push_back(glm::vec4(glm::vec3(x[std::size_t(k)]), 0));
     }
     bufferData(buffers_[gpu::kPositions], x);
     bufferData(buffers_[gpu::kVelocities], v);
-    bufferData(buffers_[gpu::kForces], nullptr, n * sizeof(glm::vec4));
-    bufferData(buffers_[gpu::kNormals], nullptr, n * sizeof(glm::vec4));
-    bufferData(buffers_[gpu::kPins], pins);
+    bufferData(buffers_[gpu::kForces], nullptr, n * kVec4);
+    bufferData(buffers_[gpu::kNormals], nullptr, n * kVec4);
+    std::vector<glm::vec4> table = pins_;  // with room for setPinned
+    pinCapacity_ = std::max(pins_.size(), kMinPinCapacity);
+    table.resize(pinCapacity_, glm::vec4(0));
+    bufferData(buffers_[gpu::kPins], table);
     const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
     bufferData(buffers_[gpu::kStatus], &status, sizeof status);
+    bufferData(buffers_[gpu::kParams], nullptr, sizeof(gpu::Params));
+    bufferData(buffers_[gpu::kColliders], nullptr,
+               std::size_t(2 * features_.planes + features_.spheres) * kVec4);
     uploadParams(scene);
 }
 
@@ -150,7 +136,7 @@ void GpuSolver::uploadParams(const Scene& scene) {
     if (scene.wind) p.wind = vec4(scene.wind->direction, scene.wind->strength);
     p.integration =
         glm::vec4(float(scene.integrator.dt), float(scene.maxSpeed * scene.maxSpeed), 0, 0);
-    bufferData(buffers_[gpu::kParams], &p, sizeof p);
+    subData(buffers_[gpu::kParams], 0, &p, sizeof p);
     // Planes first (point, normal), then spheres (centre, radius): layout.glsl's Colliders.
     std::vector<glm::vec4> planes, spheres;
     for (const Collider& c : scene.colliders) {
@@ -162,7 +148,15 @@ void GpuSolver::uploadParams(const Scene& scene) {
         }
     }
     planes.insert(planes.end(), spheres.begin(), spheres.end());
-    bufferData(buffers_[gpu::kColliders], planes);
+    subData(buffers_[gpu::kColliders], 0, planes.data(), planes.size() * kVec4);
+}
+
+// Pass 1 alone: fresh normals for the renderer (its forces are recomputed by the next step).
+void GpuSolver::computeNormals() const {
+    bindBuffers();
+    glUseProgram(forcesProgram_);
+    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 void GpuSolver::bindBuffers() const {
@@ -176,7 +170,7 @@ void GpuSolver::dispatchStep(long stepNumber) const {
     glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glUseProgram(integrateProgram_);
-    glUniform1ui(0, GLuint(stepNumber));
+    glUniform1ui(gpu::kStepLocation, GLuint(stepNumber));
     glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -242,8 +236,8 @@ SimState GpuSolver::read() const {
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // shader writes visible to the read-back
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
-    const std::vector<glm::vec4> x = downloadVec4(buffers_[gpu::kPositions], n);
-    const std::vector<glm::vec4> v = downloadVec4(buffers_[gpu::kVelocities], n);
+    const std::vector<glm::vec4> x = gpu::downloadVec4(buffers_[gpu::kPositions], n);
+    const std::vector<glm::vec4> v = gpu::downloadVec4(buffers_[gpu::kVelocities], n);
     SimState s;
     s.nu = nu_;
     s.nv = nv_;

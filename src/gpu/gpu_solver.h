@@ -3,7 +3,10 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "core/solver.h"
 #include "gpu/gpu_backend.h"
@@ -27,6 +30,12 @@ public:
     Features features() const override { return features_; }
     std::string name() const override { return name_; }
 
+    // Interactive control: small buffer updates and uniforms, no recompilation.
+    void write(const SimState& state) override;
+    void setPinned(int i, int j, bool pinned) override;
+    void setGrab(const std::optional<Grab>& grab) override;
+    void setParameters(const Scene& scene) override;
+
     // GL buffer names (vec4 per vertex, k = j·nu + i): the renderer binds them as vertex
     // buffers. Valid in the context the solver was made in.
     unsigned positionBuffer() const { return buffers_[gpu::kPositions]; }
@@ -39,8 +48,16 @@ public:
     WorkGroup workGroup() const { return workGroup_; }
 
 private:
+    struct PinSlot {
+        int slot;     // row of the Pins table (velocity.w); kept when released, for re-pinning
+        bool pinned;  // pinned now: position.w = 0
+    };
+
     void upload(const Scene& scene);
     void uploadParams(const Scene& scene);
+    void updateInverseMass(float inverseMass);
+    void storePin(int slot);
+    void computeNormals() const;
     void bindBuffers() const;
     void dispatchStep(long stepNumber) const;
     gpu::Status readStatus() const;
@@ -48,11 +65,16 @@ private:
 
     const GlContext& context_;
     Features features_;
+    Defines defines_;  // the compiled variant: setParameters must not need another
     WorkGroup workGroup_;
     int nu_, nv_;
     int groupsX_, groupsY_;
     int checkEvery_;
     double maxSpeed_;
+    float inverseMass_ = 0;                     // [1/kg], in position.w of every free vertex
+    std::map<std::int64_t, PinSlot> pinSlots_;  // by vertex k: the pins and former pins
+    std::vector<glm::vec4> pins_;               // host copy of the Pins table, by slot
+    std::size_t pinCapacity_ = 0;               // rows allocated in the Pins buffer
     std::string name_;
     std::array<unsigned, gpu::kBindingCount> buffers_{};
     unsigned forcesProgram_ = 0, integrateProgram_ = 0;

@@ -119,7 +119,6 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg) {
     if (f.shear) d.push_back({"HAS_SHEAR", ""});
     if (f.bend) d.push_back({"HAS_BEND", ""});
     if (f.wind) d.push_back({"HAS_WIND", ""});
-    if (!scene.pins.empty()) d.push_back({"HAS_PINS", ""});
     d.push_back({"NUM_PLANES", std::to_string(f.planes)});
     d.push_back({"NUM_SPHERES", std::to_string(f.spheres)});
     if (f.planes > 0) d.push_back({"HAS_PLANES", ""});

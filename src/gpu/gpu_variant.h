@@ -26,8 +26,9 @@ WorkGroup chooseWorkGroup(WorkGroup requested, const GpuInfo* info);
 void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info);
 
 // The scene's kernel variant: HAS_STRUCTURAL/HAS_SHEAR/HAS_BEND, HAS_WIND, NUM_PLANES,
-// NUM_SPHERES, HAS_PINS, the integrator, WX/WY, and the generated spring table and collider
-// order. A feature the scene lacks is absent, not multiplied by zero.
+// NUM_SPHERES, the integrator, WX/WY, and the generated spring table and collider order. A
+// feature the scene lacks is absent, not multiplied by zero. Pins and the grab are not
+// features: the viewer changes them at run time, so their (one-compare) code is always there.
 Defines gpuDefines(const Scene& scene, WorkGroup wg);
 
 // The assembled source of compute/forces.comp or compute/integrate.comp for `scene`.

@@ -1,9 +1,9 @@
 // The command line of DESIGN.md §5 on valid input: run's summary and files, validate's report,
 // info, --help on every subcommand, and the commands not built yet.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "support/process.h"
 
@@ -32,7 +32,8 @@ TEST(CliRun, PrintsOneSummaryLineWithVertexStepsPerSecond) {
 }
 
 TEST(CliRun, QuietPrintsNothing) {
-    const auto r = runProcess({kExe, "run", kScenes + "spring.json", "--steps", "10", "--quiet"}, 60);
+    const auto r =
+        runProcess({kExe, "run", kScenes + "spring.json", "--steps", "10", "--quiet"}, 60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     EXPECT_EQ(r.out, "");
     EXPECT_EQ(r.err, "");
@@ -70,7 +71,8 @@ TEST(CliRun, SetOverridesChangeTheRun) {
         ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     }
     std::ifstream a(d / "10.csv"), b(d / "0.csv");
-    const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
+    const std::string sa((std::istreambuf_iterator<char>(a)), {}),
+        sb((std::istreambuf_iterator<char>(b)), {});
     EXPECT_NE(sa, sb);
     fs::remove_all(d);
 }
@@ -78,13 +80,15 @@ TEST(CliRun, SetOverridesChangeTheRun) {
 TEST(CliRun, ThreadCountDoesNotChangeTheResult) {
     const fs::path d = tempDir("threads");
     for (const char* t : {"1", "2"}) {
-        const auto r = runProcess({kExe, "run", kScenes + "drape.json", "--steps", "500", "--threads",
-                                   t, "--out-csv", (d / (std::string(t) + ".csv")).string(), "--quiet"},
-                                  60);
+        const auto r =
+            runProcess({kExe, "run", kScenes + "drape.json", "--steps", "500", "--threads", t,
+                        "--out-csv", (d / (std::string(t) + ".csv")).string(), "--quiet"},
+                       60);
         ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     }
     std::ifstream a(d / "1.csv"), b(d / "2.csv");
-    const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
+    const std::string sa((std::istreambuf_iterator<char>(a)), {}),
+        sb((std::istreambuf_iterator<char>(b)), {});
     EXPECT_EQ(sa, sb);
     fs::remove_all(d);
 }

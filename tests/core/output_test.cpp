@@ -1,5 +1,9 @@
 // Output files (DESIGN.md §5): the CSV round-trips, the OBJ is a consistent mesh whose faces
 // wind about the written normals, and nothing non-finite or half-written ever reaches the disk.
+#include "core/output.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -7,9 +11,6 @@
 #include <limits>
 #include <sstream>
 
-#include <gtest/gtest.h>
-
-#include "core/output.h"
 #include "core/scene_loader.h"
 
 namespace cloth {
@@ -45,8 +46,8 @@ TEST(Csv, DoubleValuesRoundTripExactly) {
         ASSERT_TRUE(std::getline(in, line));
         int i, j;
         double x, y, z, vx, vy, vz;
-        ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%lf,%lf,%lf,%lf,%lf,%lf", &i, &j, &x, &y, &z, &vx,
-                              &vy, &vz),
+        ASSERT_EQ(std::sscanf(line.c_str(), "%d,%d,%lf,%lf,%lf,%lf,%lf,%lf", &i, &j, &x, &y, &z,
+                              &vx, &vy, &vz),
                   8);
         EXPECT_EQ(size_t(j * s.nu + i), k);  // index order k = j·nu + i
         EXPECT_EQ(x, s.positions[k].x);
@@ -144,8 +145,8 @@ TEST(Obj, GridMeshHasTwoTrianglesPerCellWindingAboutTheNormals) {
         "u_axis": [1, 0, 0], "v_axis": [0, 0, 1]}, "integrator": {"dt": 0.001}})",
                                    "obj");
     SimState s = bumpyState(7, 4);
-    for (size_t k = 0; k < s.positions.size(); ++k) s.positions[k] = glm::dvec3(
-        0.2 * (k % 7), 0.02 * std::sin(double(k)), 0.2 * (k / 7));
+    for (size_t k = 0; k < s.positions.size(); ++k)
+        s.positions[k] = glm::dvec3(0.2 * (k % 7), 0.02 * std::sin(double(k)), 0.2 * (k / 7));
     const std::string path = tempPath("mesh.obj");
     writeObj(path, s, scene.name);
     const Obj o = readObj(path);
@@ -157,7 +158,8 @@ TEST(Obj, GridMeshHasTwoTrianglesPerCellWindingAboutTheNormals) {
     EXPECT_EQ(o.vt.back(), glm::dvec2(1, 1));
     for (const auto& f : o.faces) {
         for (int idx : f) ASSERT_TRUE(idx >= 1 && idx <= 28);
-        const glm::dvec3 n = glm::cross(o.v[f[1] - 1] - o.v[f[0] - 1], o.v[f[2] - 1] - o.v[f[0] - 1]);
+        const glm::dvec3 n =
+            glm::cross(o.v[f[1] - 1] - o.v[f[0] - 1], o.v[f[2] - 1] - o.v[f[0] - 1]);
         // Counter-clockwise seen from the vertex normal's side.
         EXPECT_GT(glm::dot(n, o.vn[f[0] - 1]), 0);
         EXPECT_NEAR(glm::length(o.vn[f[0] - 1]), 1.0, 1e-5);

@@ -1,10 +1,11 @@
 // The loader's semantics on valid input (DESIGN.md §4): defaults, normalisation, negative pin
 // indices, and --set overrides validated like the file.
+#include "core/scene_loader.h"
+
 #include <gtest/gtest.h>
 
 #include "core/errors.h"
 #include "core/params.h"
-#include "core/scene_loader.h"
 
 namespace cloth {
 namespace {
@@ -70,8 +71,9 @@ TEST(SceneLoader, ColliderOrderIsKept) {
 
 TEST(Overrides, SetChangesTheKeyAndCreatesSections) {
     const Scene s = parseScene(kMinimal, "o",
-                               {"integrator.dt=0.002", "springs.bend=7", "wind={\"direction\":[1,0,0],"
-                                                                          "\"strength\":3}"});
+                               {"integrator.dt=0.002", "springs.bend=7",
+                                "wind={\"direction\":[1,0,0],"
+                                "\"strength\":3}"});
     EXPECT_EQ(s.integrator.dt, 0.002);
     EXPECT_EQ(s.springs.bend, 7.0);
     ASSERT_TRUE(s.wind.has_value());
@@ -83,10 +85,12 @@ TEST(Overrides, ListEntriesAreReachedByIndexInEitherSpelling) {
         "integrator": {"dt": 0.01}, "colliders": [
         {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]},
         {"type": "sphere", "center": [0, 0, 0], "radius": 1}]})";
-    EXPECT_EQ(std::get<Sphere>(parseScene(text, "o", {"colliders.1.radius=0.5"}).colliders[1]).radius,
-              0.5);
-    EXPECT_EQ(std::get<Sphere>(parseScene(text, "o", {"colliders[1].radius=0.25"}).colliders[1]).radius,
-              0.25);
+    EXPECT_EQ(
+        std::get<Sphere>(parseScene(text, "o", {"colliders.1.radius=0.5"}).colliders[1]).radius,
+        0.5);
+    EXPECT_EQ(
+        std::get<Sphere>(parseScene(text, "o", {"colliders[1].radius=0.25"}).colliders[1]).radius,
+        0.25);
 }
 
 TEST(Overrides, BadOverrideIsRejectedLikeTheFileWouldBe) {
@@ -116,7 +120,8 @@ TEST(Params, TableRangesAreEnforcedWithUnits) {
     const ParamSpec* substeps = findParam("integrator.substeps");
     ASSERT_NE(substeps, nullptr);
     EXPECT_NE(checkRange(*substeps, 1.5).find("integer"), std::string::npos);
-    for (const ParamSpec& p : paramTable()) EXPECT_GT(std::string(p.description).size(), 5u) << p.path;
+    for (const ParamSpec& p : paramTable())
+        EXPECT_GT(std::string(p.description).size(), 5u) << p.path;
 }
 
 }  // namespace

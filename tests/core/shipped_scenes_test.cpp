@@ -1,8 +1,8 @@
 // Every shipped scene sits inside its integrator's predicted stability bound (DESIGN.md §2) and
 // stays stable, on the CPU in double and in float, for its whole duration.
-#include <filesystem>
-
 #include <gtest/gtest.h>
+
+#include <filesystem>
 
 #include "core/diagnostics.h"
 #include "core/scene_loader.h"
@@ -47,7 +47,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, testing::ValuesIn(shippedScenes()
 
 TEST(ShippedScenes, AllFiveExist) {
     for (const char* name : {"spring", "chain", "hanging", "drape", "flag"})
-        EXPECT_TRUE(std::filesystem::exists(std::string(CLOTH_SOURCE_DIR "/scenes/") + name + ".json"))
+        EXPECT_TRUE(
+            std::filesystem::exists(std::string(CLOTH_SOURCE_DIR "/scenes/") + name + ".json"))
             << name;
 }
 

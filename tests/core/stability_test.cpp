@@ -1,13 +1,14 @@
 // The stability law of DESIGN.md §2 for the seed's explicit Euler: stable iff Δt < μ/λ_max,
 // independent of the mass. A pinned 1×2 spring moving along its axis is exactly one mode with
 // λ = K, so the predicted bound is exact there and the law can be checked on both sides of it.
-#include <cmath>
+#include "core/stability.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/scene_loader.h"
 #include "core/solver.h"
-#include "core/stability.h"
 
 namespace cloth {
 namespace {

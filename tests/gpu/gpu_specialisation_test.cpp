@@ -54,12 +54,25 @@ TEST(GpuSpecialisation, UndeclaredFeaturesLeaveNoCodeInTheSource) {
     const std::string plain = bothKernels(plainScene());
     // (Params keeps its `wind` member: the block's layout is fixed, its use is not compiled.)
     for (const char* absent : {"windForce", "params.wind", "collide", "Colliders", "colliders[",
-                               "PLANE(", "SPHERE(", "pins[", "Pins", "HAS_SHEAR", "HAS_BEND"})
+                               "PLANE(", "SPHERE(", "HAS_SHEAR", "HAS_BEND"})
         EXPECT_EQ(plain.find(absent), std::string::npos) << "'" << absent << "' in:\n" << plain;
     const std::string full = bothKernels(fullScene());
-    for (const char* present : {"windForce", "collidePlane", "collideSphere", "pins[",
+    for (const char* present : {"windForce", "collidePlane", "collideSphere",
                                 "#define COLLIDERS_IN_SCENE_ORDER SPHERE(0) PLANE(0)"})
         EXPECT_NE(full.find(present), std::string::npos) << "'" << present << "' missing";
+}
+
+// Pins and the grab are run-time state (Solver::setPinned, setGrab), not features: their code
+// is in every variant, and a scene's pins do not change the kernel.
+TEST(GpuSpecialisation, PinsAndGrabAreInEveryVariant) {
+    for (const Scene& scene : {plainScene(), fullScene()}) {
+        const std::string text = bothKernels(scene);
+        for (const char* present : {"pins[", "uGrabVertex", "grabForce("})
+            EXPECT_NE(text.find(present), std::string::npos) << scene.name << ": " << present;
+    }
+    Scene unpinned = fullScene();
+    unpinned.pins.clear();
+    EXPECT_EQ(gpuDefines(unpinned, {}), gpuDefines(fullScene(), {}));
 }
 
 // The one spring loop walks the generated table: structural rows only, in kSpringOffsets order.

@@ -1,0 +1,139 @@
+// GpuSolver's interactive control (the viewer, Solver's second half): small buffer updates and
+// two uniforms, never a recompilation. Each takes effect from the next step.
+#include <GL/glew.h>
+
+#include <set>
+#include <stdexcept>
+
+#include "gpu/egl_context.h"
+#include "gpu/gpu_buffers.h"
+#include "gpu/gpu_solver.h"
+
+namespace cloth {
+
+using gpu::bufferData;
+using gpu::kVec4;
+using gpu::subData;
+using gpu::vec4;
+
+void GpuSolver::write(const SimState& state) {
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    if (state.nu != nu_ || state.nv != nv_ || state.positions.size() != n ||
+        state.velocities.size() != n)
+        throw std::invalid_argument("write: the state is for another grid");
+    std::vector<glm::vec4> x(n), v(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        x[k] = vec4(state.positions[k], inverseMass_);
+        v[k] = vec4(state.velocities[k], 0);
+    }
+    for (const auto& [k, pin] : pinSlots_) {
+        v[std::size_t(k)].w = float(pin.slot);
+        if (!pin.pinned) continue;
+        x[std::size_t(k)].w = 0;
+        pins_[std::size_t(pin.slot)] = glm::vec4(glm::vec3(x[std::size_t(k)]), 0);  // held here
+    }
+    context_.makeCurrent();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
+    subData(buffers_[gpu::kVelocities], 0, v.data(), n * kVec4);
+    subData(buffers_[gpu::kPins], 0, pins_.data(), pins_.size() * kVec4);
+    // A written state starts afresh: an earlier instability no longer freezes the kernels.
+    const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
+    subData(buffers_[gpu::kStatus], 0, &status, sizeof status);
+    computeNormals();
+}
+
+// Pinning reads the vertex back (16 bytes) and holds it there at rest; releasing gives it its
+// inverse mass again, so it moves on from where it is with its (zero) velocity.
+void GpuSolver::setPinned(int i, int j, bool pinned) {
+    if (i < 0 || j < 0 || i >= nu_ || j >= nv_)
+        throw std::invalid_argument("setPinned: vertex outside the grid");
+    const std::int64_t k = std::int64_t(j) * nu_ + i;
+    auto it = pinSlots_.find(k);
+    if (!pinned && (it == pinSlots_.end() || !it->second.pinned)) return;
+    context_.makeCurrent();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    const std::size_t at = std::size_t(k) * kVec4;
+    if (!pinned) {
+        it->second.pinned = false;
+        subData(buffers_[gpu::kPositions], at + 3 * sizeof(float), &inverseMass_, sizeof(float));
+        return;
+    }
+    if (it == pinSlots_.end()) {
+        it = pinSlots_.emplace(k, PinSlot{int(pins_.size()), true}).first;
+        pins_.emplace_back(0);
+    }
+    it->second.pinned = true;
+    glm::vec4 x = gpu::readElement(buffers_[gpu::kPositions], k);
+    pins_[std::size_t(it->second.slot)] = glm::vec4(glm::vec3(x), 0);
+    storePin(it->second.slot);
+    x.w = 0;
+    const glm::vec4 v(0, 0, 0, float(it->second.slot));
+    subData(buffers_[gpu::kPositions], at, &x, kVec4);
+    subData(buffers_[gpu::kVelocities], at, &v, kVec4);
+}
+
+// Row `slot` of pins_ to the GPU; a full table is reallocated at twice the size.
+void GpuSolver::storePin(int slot) {
+    if (pins_.size() <= pinCapacity_) {
+        subData(buffers_[gpu::kPins], std::size_t(slot) * kVec4, &pins_[std::size_t(slot)], kVec4);
+        return;
+    }
+    pinCapacity_ = 2 * pins_.size();
+    std::vector<glm::vec4> table = pins_;
+    table.resize(pinCapacity_, glm::vec4(0));
+    bufferData(buffers_[gpu::kPins], table);
+}
+
+// Two uniforms of the forces kernel: no buffer traffic, no recompilation.
+void GpuSolver::setGrab(const std::optional<Grab>& grab) {
+    if (grab && (grab->vertex < 0 || grab->vertex >= std::int64_t(nu_) * nv_))
+        throw std::invalid_argument("setGrab: vertex outside the grid");
+    context_.makeCurrent();
+    glProgramUniform1i(forcesProgram_, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);
+    if (grab) {
+        const glm::vec4 g = vec4(grab->target, grab->stiffness);  // as the CPU float converts
+        glProgramUniform4f(forcesProgram_, gpu::kGrabLocation, g.x, g.y, g.z, g.w);
+    }
+}
+
+// Everything but the compiled variant is data: the Params block and the Colliders table are
+// rewritten in place, and a new mass rewrites position.w. Checks come first, so a refused
+// scene changes nothing.
+void GpuSolver::setParameters(const Scene& scene) {
+    if (scene.cloth.nu != nu_ || scene.cloth.nv != nv_)
+        throw std::invalid_argument("setParameters: the grid size differs; build a new solver");
+    if (!(Features::of(scene) == features_))
+        throw std::invalid_argument("setParameters: the features differ; build a new solver");
+    if (gpuDefines(scene, workGroup_) != defines_)
+        throw std::invalid_argument(
+            "setParameters: the scene compiles to another GPU kernel (collider order or "
+            "integrator); build a new solver");
+    const Grid g = scene.grid();
+    std::set<std::int64_t> scenePins, pinnedNow;
+    for (const Pin& p : scene.pins) scenePins.insert(g.index(p.i, p.j));
+    for (const auto& [k, pin] : pinSlots_)
+        if (pin.pinned) pinnedNow.insert(k);
+    if (scenePins != pinnedNow)
+        throw std::invalid_argument("setParameters: the pins differ; use setPinned");
+    context_.makeCurrent();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    dt_ = scene.integrator.dt;
+    maxSpeed_ = scene.maxSpeed;
+    uploadParams(scene);
+    updateInverseMass(float(1.0 / scene.cloth.mass));
+}
+
+// position.w of every free vertex (pinned ones keep 0): one read-back and upload of the
+// positions, only when the mass changed.
+void GpuSolver::updateInverseMass(float inverseMass) {
+    if (inverseMass == inverseMass_) return;
+    inverseMass_ = inverseMass;
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    std::vector<glm::vec4> x = gpu::downloadVec4(buffers_[gpu::kPositions], n);
+    for (glm::vec4& xk : x)
+        if (xk.w != 0) xk.w = inverseMass;
+    subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
+}
+
+}  // namespace cloth
