@@ -19,11 +19,21 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD_DIR) -j$(JOBS)
 
-# The main job: simulate the drape scene headless and write its final frame.
+# The main job: the drape scene in the viewer where there is a display; without one (or when no
+# window can be opened), simulated headless, its final frame written as a picture, OBJ and CSV.
 run: build
 	@mkdir -p out
-	$(BUILD_DIR)/clothsim run scenes/drape.json --out-obj out/drape.obj --out-csv out/drape.csv
-	@echo "result: out/drape.obj (Wavefront OBJ, opens in Blender) and out/drape.csv"
+	@status=4; \
+	if [ -n "$$DISPLAY$$WAYLAND_DISPLAY" ]; then \
+	    $(BUILD_DIR)/clothsim view scenes/drape.json; status=$$?; \
+	else \
+	    echo "no display (DISPLAY and WAYLAND_DISPLAY are unset): rendering headless"; \
+	fi; \
+	if [ $$status -eq 4 ]; then \
+	    $(BUILD_DIR)/clothsim render scenes/drape.json --png out/drape.png && \
+	    $(BUILD_DIR)/clothsim run scenes/drape.json --out-obj out/drape.obj --out-csv out/drape.csv && \
+	    echo "result: out/drape.png (picture), out/drape.obj (Wavefront OBJ, opens in Blender), out/drape.csv"; \
+	else exit $$status; fi
 
 # The whole suite: the scene-loader fuzzer, then every GoogleTest (CPU, GPU on EGL, CLI) via ctest.
 test: fuzz unit

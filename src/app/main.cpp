@@ -29,7 +29,9 @@ int dispatch(const std::string& command, cloth::app::Args& args) {
     if (command == "run") return runCommand(args);
     if (command == "validate") return validateCommand(args);
     if (command == "info") return infoCommand(args);
-    if (command == "view" || command == "render" || command == "bench") return notBuiltCommand(args);
+    if (command == "view") return viewCommand(args);
+    if (command == "render") return renderCommand(args);
+    if (command == "bench") return notBuiltCommand(args);
     throw cloth::InputError("command line", command, "unknown command; see clothsim --help");
 }
 

@@ -1,0 +1,83 @@
+// clothsim view [SCENE]: the interactive viewer (docs/viewer.md).
+#include <cstdio>
+
+#include "app/cli.h"
+#include "app/solver_factory.h"
+#include "core/errors.h"
+
+#ifdef CLOTH_HAVE_VIEWER
+#include "app/viewer.h"
+#endif
+
+namespace cloth::app {
+namespace {
+
+constexpr const char* kHelp = R"(usage: clothsim view [SCENE] [options]
+
+Opens SCENE (default scenes/drape.json) in a window: the simulation runs live, a panel edits
+every parameter, the mouse orbits, pans, zooms, grabs and pins. See docs/viewer.md.
+
+options:
+  --backend cpu|gpu         solver backend to start with (default cpu; switchable live)
+  --precision float|double  CPU arithmetic (default double)
+  --set KEY.PATH=JSON       change a parameter after loading, as the panel does (repeatable)
+  --size WxH                window size (default 1280x800)
+  --no-vsync                draw as fast as possible
+  --frames N                draw N frames, then exit (with --screenshot: for tests)
+  --screenshot FILE         after the last of --frames N, write the window as PNG
+  --help                    this text
+
+exit codes: 0 ok, 1 internal error, 2 invalid input, 4 no window with OpenGL 4.3
+)";
+
+}  // namespace
+
+int viewCommand(Args& args) {
+#ifdef CLOTH_HAVE_VIEWER
+    ViewerOptions o;
+    bool sceneGiven = false;
+    while (!args.done()) {
+        if (!args.isFlag()) {
+            if (sceneGiven)
+                throw InputError("command line", args.next(), "only one scene may be given");
+            o.scenePath = args.next();
+            sceneGiven = true;
+            continue;
+        }
+        const std::string f = args.flag();
+        if (f == "--help") {
+            std::fputs(kHelp, stdout);
+            return kOk;
+        }
+        if (f == "--backend")
+            o.backend.backend = parseBackend(f, args.value(f));
+        else if (f == "--precision")
+            o.backend.precision = parsePrecision(f, args.value(f));
+        else if (f == "--set")
+            o.sets.push_back(args.value(f));
+        else if (f == "--no-vsync")
+            o.vsync = false;
+        else if (f == "--frames")
+            o.frames = int(args.positiveInt(f));
+        else if (f == "--screenshot")
+            o.screenshot = args.value(f);
+        else if (f == "--size") {
+            const std::string v = args.value(f);
+            if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 ||
+                o.height < 64)
+                throw InputError("command line", f,
+                                 "expected WxH (at least 64x64), got '" + v + "'");
+        } else
+            args.unknown(f);
+    }
+    if (!o.screenshot.empty() && o.frames == 0)
+        throw InputError("command line", "--screenshot", "--screenshot FILE needs --frames N");
+    if (o.frames > 0) o.vsync = false;  // a scripted run need not wait for the display
+    return runViewer(o);
+#else
+    (void)args;
+    throw GpuUnavailable("this clothsim was built without the viewer (GLFW, Dear ImGui)");
+#endif
+}
+
+}  // namespace cloth::app

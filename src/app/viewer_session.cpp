@@ -1,0 +1,189 @@
+#include "app/viewer_session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/diagnostics.h"
+#include "core/stability.h"
+
+namespace cloth::app {
+namespace {
+
+std::int64_t vertexIndex(const Scene& s, const Pin& p) {
+    return std::int64_t(p.j) * s.cloth.nu + p.i;
+}
+
+}  // namespace
+
+Scene ViewerParams::effective() const {
+    Scene s = scene;
+    s.colliders.clear();
+    for (std::size_t c = 0; c < scene.colliders.size(); ++c)
+        if (c >= colliderOn.size() || colliderOn[c]) s.colliders.push_back(scene.colliders[c]);
+    return s;
+}
+
+void ViewerHistory::push(float e, float strain, float ms) {
+    for (auto [series, value] : {std::pair{&energy, e}, {&maxStrain, strain}, {&stepMs, ms}}) {
+        if (series->size() == kSamples) series->erase(series->begin());
+        series->push_back(value);
+    }
+}
+
+bool gridDiffers(const Scene& a, const Scene& b) {
+    const ClothSpec &x = a.cloth, &y = b.cloth;
+    return x.nu != y.nu || x.nv != y.nv || x.size != y.size || x.origin != y.origin ||
+           x.uAxis != y.uAxis || x.vAxis != y.vAxis;
+}
+
+std::vector<Pin> remapPins(const std::vector<Pin>& pins, const ClothSpec& from,
+                           const ClothSpec& to) {
+    const auto map = [](int i, int n0, int n1) {
+        return n0 <= 1 ? 0 : int(std::lround(double(i) * (n1 - 1) / (n0 - 1)));
+    };
+    std::vector<Pin> out;
+    for (const Pin& p : pins) {
+        const Pin q{map(p.i, from.nu, to.nu), map(p.j, from.nv, to.nv)};
+        const bool seen = std::any_of(out.begin(), out.end(),
+                                      [&](const Pin& o) { return o.i == q.i && o.j == q.j; });
+        if (!seen) out.push_back(q);
+    }
+    return out;
+}
+
+ViewerSession::ViewerSession(const Scene& scene, const BackendChoice& backend) : backend_(backend) {
+    params_.scene = scene;
+    params_.colliderOn.assign(scene.colliders.size(), true);
+    rebuild();
+}
+
+void ViewerSession::applyParameters(const ViewerParams& next) {
+    ViewerParams p = next;
+    p.colliderOn.resize(p.scene.colliders.size(), true);
+    const bool grid = gridDiffers(p.scene, params_.scene);
+    if (grid) p.scene.pins = remapPins(params_.scene.pins, params_.scene.cloth, p.scene.cloth);
+    params_ = std::move(p);
+    if (grid || unstable()) {
+        rebuild();
+        return;
+    }
+    const Scene effective = params_.effective();
+    try {
+        solver_->setParameters(effective);
+    } catch (const std::invalid_argument&) {
+        replaceSolver(effective, backend_);  // another variant (a family, a collider) is needed
+    }
+    if (grab_) grab(grab_->vertex, grab_->target);  // the grab spring's stiffness follows dt
+}
+
+long ViewerSession::advance(bool stepOnce) {
+    lastSteps_ = 0;
+    if (unstable() || (paused_ && !stepOnce)) return 0;
+    const long n = std::max(1, params_.scene.integrator.substeps);
+    const auto t0 = std::chrono::steady_clock::now();
+    const StepResult r = solver_->step(n);
+    lastStepSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    lastSteps_ = r.stepsTaken;
+    totalSteps_ += r.stepsTaken;
+    simTime_ += double(r.stepsTaken) * params_.scene.integrator.dt;
+    if (r.unstable) {
+        instability_ = "unstable at step " + std::to_string(totalSteps_) + ": " + r.reason + ". " +
+                       stabilityAdvice(params_.effective());
+        grab_.reset();
+    }
+    return r.stepsTaken;
+}
+
+void ViewerSession::reset() {
+    grab_.reset();
+    rebuild();
+}
+
+void ViewerSession::setBackend(const BackendChoice& backend) {
+    if (unstable()) {  // nothing finite to carry over: start again on the new backend
+        backend_ = backend;
+        rebuild();
+        return;
+    }
+    replaceSolver(params_.effective(), backend);
+}
+
+void ViewerSession::replaceSolver(const Scene& effective, const BackendChoice& backend) {
+    const SimState state = solver_->read();
+    std::unique_ptr<Solver> next = makeSolver(effective, backend);  // may throw: keep the old
+    next->write(state);
+    for (const Pin& p : params_.scene.pins) next->setPinned(p.i, p.j, true);  // where they are
+    solver_ = std::move(next);
+    backend_ = backend;
+    ++rebuilds_;
+    if (grab_) solver_->setGrab(grab_);
+}
+
+void ViewerSession::rebuild() {
+    solver_ = makeSolver(params_.effective(), backend_);
+    ++rebuilds_;
+    instability_.clear();
+    simTime_ = 0;
+    totalSteps_ = 0;
+    history_ = {};
+    if (grab_) solver_->setGrab(grab_);
+}
+
+void ViewerSession::togglePin(std::int64_t k) {
+    const int nu = params_.scene.cloth.nu;
+    const Pin pin{int(k % nu), int(k / nu)};
+    auto& pins = params_.scene.pins;
+    const auto it = std::find_if(pins.begin(), pins.end(),
+                                 [&](const Pin& p) { return p.i == pin.i && p.j == pin.j; });
+    const bool pinned = it == pins.end();
+    if (pinned)
+        pins.push_back(pin);
+    else
+        pins.erase(it);
+    solver_->setPinned(pin.i, pin.j, pinned);
+}
+
+void ViewerSession::clearPins() {
+    for (const Pin& p : params_.scene.pins) solver_->setPinned(p.i, p.j, false);
+    params_.scene.pins.clear();
+}
+
+std::vector<std::int64_t> ViewerSession::pinnedVertices() const {
+    std::vector<std::int64_t> v;
+    for (const Pin& p : params_.scene.pins) v.push_back(vertexIndex(params_.scene, p));
+    return v;
+}
+
+double ViewerSession::grabStiffness() const {
+    // Explicit Euler stays stable while Δt < μ/λ_max (DESIGN.md §2): the grab spring adds its K
+    // to λ_max, so take half of the margin the scene leaves, within [0.1, 2]·K_structural.
+    const Scene s = params_.effective();
+    const double k = std::max(s.springs.structural, 1.0);
+    if (s.damping <= 0) return 0.1 * k;
+    const double margin = s.damping / s.integrator.dt - estimateStability(s).lambdaMax;
+    return std::clamp(0.5 * margin, 0.1 * k, 2.0 * k);
+}
+
+void ViewerSession::grab(std::int64_t k, const glm::dvec3& target) {
+    if (unstable()) return;
+    grab_ = Grab{k, target, grabStiffness()};
+    solver_->setGrab(grab_);
+}
+
+void ViewerSession::release() {
+    grab_.reset();
+    solver_->setGrab(std::nullopt);
+}
+
+void ViewerSession::sampleDiagnostics() {
+    if (unstable()) return;
+    const SimState state = solver_->read();
+    if (!allFinite(state)) return;  // never plot a non-finite number
+    const Scene s = params_.effective();
+    const double msPerStep = lastSteps_ > 0 ? 1e3 * lastStepSeconds_ / double(lastSteps_) : 0;
+    history_.push(float(energy(s, state).total()), float(maxStrain(s, state)), float(msPerStep));
+}
+
+}  // namespace cloth::app

@@ -1,0 +1,66 @@
+// What the viewer's panel and input handling share besides the session: camera, display
+// options, requests for the main loop, and frame timing.
+#pragma once
+
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "render/camera.h"
+#include "render/renderer.h"
+
+struct GLFWwindow;
+
+namespace cloth::app {
+
+class ViewerSession;
+
+struct ViewerUi {
+    render::Camera camera;
+    render::Camera homeCamera;  // what "reset view" returns to
+    render::RenderOptions render;
+    bool vsync = true;
+    bool screenshotRequested = false;
+    bool frameRequested = false;  // "frame the cloth" on the next frame
+    bool stepOnce = false;
+    std::string sceneDirectory;
+    std::vector<std::string> sceneFiles;  // *.json in sceneDirectory
+    std::optional<std::string> loadRequest;
+    std::string message;         // the last file written, or an error
+    std::string device;          // GL renderer of the window
+    int resolution[2] = {0, 0};  // the panel's pending grid size; 0: take the scene's
+    int width = 1, height = 1;   // the 3-D view right of the panel, framebuffer [px]
+    int viewX = 0;               // its left edge, framebuffer [px]
+    float pixelScale = 1;        // framebuffer pixels per window unit (HiDPI)
+
+    // Timing of the last frame.
+    double frameSeconds = 0;  // wall time between frames
+    double fps = 0;
+
+    // Mouse interaction in progress.
+    enum class Drag { None, Orbit, Pan, Grab } drag = Drag::None;
+    glm::vec3 grabPlanePoint{0};
+};
+
+// The panel (viewer_panel.cpp): edits a copy of the parameters and hands it to
+// session.applyParameters() when anything changed.
+void drawPanel(ViewerSession& session, ViewerUi& ui);
+inline constexpr float kPanelWidth = 360;  // [window units]
+// Its lower sections (viewer_panel_info.cpp): display modes, diagnostics and plots, output.
+void drawDisplaySection(ViewerUi& ui);
+void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui);
+void drawOutputSection(const ViewerSession& session, ViewerUi& ui);
+// A centred notice with a reset button while the run is unstable.
+void drawInstabilityNotice(ViewerSession& session);
+
+// Mouse and keyboard (viewer_input.cpp): camera, picking, grab, pins, shortcuts.
+void handleInput(GLFWwindow* window, ViewerSession& session, ViewerUi& ui);
+
+// Files (viewer_output.cpp); each returns the path written and throws std::runtime_error.
+std::string saveScreenshot(const ViewerUi& ui, const std::string& path = "");
+std::string exportObj(const ViewerSession& session);
+std::string saveSceneJson(const ViewerSession& session);
+
+}  // namespace cloth::app

@@ -1,0 +1,400 @@
+#include "render/renderer.h"
+
+#include <GL/glew.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gpu/gpu_solver.h"
+#include "render/geometry.h"
+#include "render/gl_program.h"
+
+namespace cloth::render {
+namespace {
+
+// Colours (linear RGB). Front = the side the DESIGN.md §2 normal points to.
+const glm::vec3 kFront0{0.86f, 0.36f, 0.16f}, kFront1{0.97f, 0.66f, 0.32f};
+const glm::vec3 kBack0{0.16f, 0.34f, 0.72f}, kBack1{0.36f, 0.58f, 0.92f};
+const glm::vec3 kSphere{0.24f, 0.66f, 0.58f};
+const glm::vec3 kWire{0.08f, 0.08f, 0.1f};
+const glm::vec3 kPin{0.95f, 0.15f, 0.2f};
+const glm::vec3 kWind{0.35f, 0.9f, 1.0f};
+const glm::vec3 kFamilyColours[3] = {{1.0f, 0.3f, 0.25f}, {0.3f, 1.0f, 0.35f}, {1.0f, 0.4f, 1.0f}};
+constexpr float kCheckers = 10;
+constexpr GLuint kPositionBinding = 0;  // the SSBO binding the vertex shaders read (gpu_layout.h)
+
+glm::vec3 lightDirection() {
+    return glm::normalize(glm::vec3(0.35f, 1.0f, 0.45f));
+}
+
+// Two unit vectors spanning the plane with normal n.
+void planeBasis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
+    const glm::vec3 other = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    t = glm::normalize(glm::cross(other, n));
+    b = glm::cross(n, t);
+}
+
+GLuint makeBuffer() {
+    GLuint b = 0;
+    glGenBuffers(1, &b);
+    return b;
+}
+
+template <typename T>
+void upload(GLenum target, GLuint buffer, const std::vector<T>& data) {
+    glBindBuffer(target, buffer);
+    glBufferData(target, GLsizeiptr(data.size() * sizeof(T)), data.data(), GL_DYNAMIC_DRAW);
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+    GlProgram cloth{"render/cloth.vert", "render/cloth.frag"};
+    GlProgram mesh{"render/mesh.vert", "render/mesh.frag"};
+    GlProgram ground{"render/ground.vert", "render/ground.frag"};
+    GlProgram lines{"render/lines.vert", "render/lines.frag"};
+    GlProgram springs{"render/springs.vert", "render/lines.frag"};
+    GlProgram points{"render/points.vert", "render/points.frag"};
+
+    GLuint clothVao = 0, clothIndices = 0, pinIndices = 0, ownPositions = 0, ownNormals = 0;
+    GLuint sphereVao = 0, sphereVertices = 0, sphereIndices = 0;
+    GLuint linesVao = 0, linesBuffer = 0, emptyVao = 0;
+    GLsizei clothIndexCount = 0, sphereIndexCount = 0, pinCount = 0;
+    bool clothLines = false;
+    GLuint positions = 0, normals = 0;  // the buffers drawn from now
+    Scene scene;
+    std::vector<glm::vec4> packedPositions, packedNormals;
+
+    Impl();
+    ~Impl();
+    void bindCloth() const;
+    void drawGround(const glm::mat4& viewProj) const;
+    void drawSpheres(const glm::mat4& viewProj) const;
+    void drawCloth(const glm::mat4& viewProj, const RenderOptions& o) const;
+    void drawMarkers(const glm::mat4& viewProj, const RenderOptions& o) const;
+    void drawSprings(const glm::mat4& viewProj, const RenderOptions& o) const;
+    void drawWind(const glm::mat4& viewProj) const;
+    Bounds restBounds() const;
+};
+
+Renderer::Impl::Impl() {
+    glGenVertexArrays(1, &clothVao);
+    glGenVertexArrays(1, &sphereVao);
+    glGenVertexArrays(1, &linesVao);
+    glGenVertexArrays(1, &emptyVao);
+    clothIndices = makeBuffer();
+    pinIndices = makeBuffer();
+    ownPositions = makeBuffer();
+    ownNormals = makeBuffer();
+    linesBuffer = makeBuffer();
+    // The cloth: vec4 positions and normals, 16-byte stride, from whichever buffers are current.
+    glBindVertexArray(clothVao);
+    for (GLuint a : {0u, 1u}) {
+        glEnableVertexAttribArray(a);
+        glVertexAttribFormat(a, 4, GL_FLOAT, GL_FALSE, 0);
+        glVertexAttribBinding(a, a);
+    }
+    // Unit sphere.
+    const SphereMesh sphere = uvSphere(48, 24);
+    sphereVertices = makeBuffer();
+    sphereIndices = makeBuffer();
+    glBindVertexArray(sphereVao);
+    upload(GL_ARRAY_BUFFER, sphereVertices, sphere.positions);
+    upload(GL_ELEMENT_ARRAY_BUFFER, sphereIndices, sphere.indices);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
+    sphereIndexCount = GLsizei(sphere.indices.size());
+    // Lines: interleaved position, colour.
+    glBindVertexArray(linesVao);
+    glBindBuffer(GL_ARRAY_BUFFER, linesBuffer);
+    for (GLuint a : {0u, 1u}) {
+        glEnableVertexAttribArray(a);
+        glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, 2 * sizeof(glm::vec3),
+                              reinterpret_cast<const void*>(std::uintptr_t(a * sizeof(glm::vec3))));
+    }
+    glBindVertexArray(0);
+}
+
+Renderer::Impl::~Impl() {
+    const GLuint arrays[] = {clothVao, sphereVao, linesVao, emptyVao};
+    glDeleteVertexArrays(4, arrays);
+    const GLuint buffers[] = {clothIndices, pinIndices,     ownPositions, ownNormals,
+                              linesBuffer,  sphereVertices, sphereIndices};
+    glDeleteBuffers(7, buffers);
+}
+
+Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
+Renderer::~Renderer() = default;
+
+void Renderer::setScene(const Scene& scene) {
+    Impl& m = *impl_;
+    const bool gridChanged = scene.cloth.nu != m.scene.cloth.nu ||
+                             scene.cloth.nv != m.scene.cloth.nv || m.clothIndexCount == 0;
+    m.scene = scene;
+    if (!gridChanged) return;
+    const ClothIndices c = clothIndices(scene.cloth.nu, scene.cloth.nv);
+    glBindVertexArray(m.clothVao);
+    upload(GL_ELEMENT_ARRAY_BUFFER, m.clothIndices, c.indices);
+    glBindVertexArray(0);
+    m.clothIndexCount = GLsizei(c.indices.size());
+    m.clothLines = c.lines;
+    haveCloth_ = false;
+}
+
+void Renderer::setPins(const std::vector<std::int64_t>& vertices) {
+    std::vector<std::uint32_t> indices(vertices.begin(), vertices.end());
+    upload(GL_ARRAY_BUFFER, impl_->pinIndices, indices);
+    impl_->pinCount = GLsizei(indices.size());
+}
+
+bool Renderer::updateCloth(const Solver& solver) {
+    Impl& m = *impl_;
+    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) {
+        m.positions = gpu->positionBuffer();
+        m.normals = gpu->normalBuffer();
+        haveCloth_ = true;
+        return true;
+    }
+    haveCloth_ = packCloth(solver.read(), m.packedPositions, m.packedNormals);
+    if (!haveCloth_) return false;
+    upload(GL_ARRAY_BUFFER, m.ownPositions, m.packedPositions);
+    upload(GL_ARRAY_BUFFER, m.ownNormals, m.packedNormals);
+    m.positions = m.ownPositions;
+    m.normals = m.ownNormals;
+    return true;
+}
+
+void Renderer::draw(const Camera& camera, const RenderOptions& o, int width, int height, int x) {
+    const Impl& m = *impl_;
+    glClearColor(o.background.x, o.background.y, o.background.z, 1);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glViewport(x, 0, width, height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);  // markers drawn at a vertex already drawn (a chain's) still show
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    const glm::mat4 viewProj =
+        camera.projection(float(width) / float(std::max(height, 1))) * camera.view();
+    for (const GlProgram* p : {&m.cloth, &m.mesh, &m.ground}) {
+        p->use();
+        p->set("uEye", camera.eye());
+        p->set("uLightDir", lightDirection());
+    }
+    if (o.colliders) {
+        m.drawGround(viewProj);
+        m.drawSpheres(viewProj);
+    }
+    if (haveCloth_) {
+        m.bindCloth();
+        m.drawCloth(viewProj, o);
+        m.drawMarkers(viewProj, o);
+        m.drawSprings(viewProj, o);
+    }
+    if (o.wind) m.drawWind(viewProj);
+    glBindVertexArray(0);
+    glUseProgram(0);
+}
+
+void Renderer::Impl::bindCloth() const {
+    glBindVertexArray(clothVao);
+    glBindVertexBuffer(0, positions, 0, sizeof(glm::vec4));
+    glBindVertexBuffer(1, normals, 0, sizeof(glm::vec4));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionBinding, positions);
+}
+
+void Renderer::Impl::drawGround(const glm::mat4& viewProj) const {
+    const Bounds rest = restBounds();
+    const float halfSize = std::max(3.0f * rest.radius(), 2.0f);
+    glBindVertexArray(emptyVao);
+    ground.use();
+    ground.set("uViewProj", viewProj);
+    ground.set("uHalfSize", halfSize);
+    ground.set("uSpacing", halfSize > 20 ? 1.0f : 0.1f);
+    for (const Collider& c : scene.colliders) {
+        const Plane* p = std::get_if<Plane>(&c);
+        if (p == nullptr) continue;
+        const glm::vec3 n = glm::vec3(p->normal), point = glm::vec3(p->point);
+        glm::vec3 t, b;
+        planeBasis(n, t, b);
+        // Centred under the cloth: its rest centre projected onto the plane.
+        const glm::vec3 centre = rest.centre() - glm::dot(rest.centre() - point, n) * n;
+        ground.set("uCentre", centre);
+        ground.set("uTangent", t);
+        ground.set("uBitangent", b);
+        ground.set("uNormal", n);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+    }
+}
+
+void Renderer::Impl::drawSpheres(const glm::mat4& viewProj) const {
+    glBindVertexArray(sphereVao);
+    mesh.use();
+    mesh.set("uViewProj", viewProj);
+    mesh.set("uColour", kSphere);
+    for (const Collider& c : scene.colliders) {
+        const Sphere* s = std::get_if<Sphere>(&c);
+        if (s == nullptr) continue;
+        // Drawn 2 % small: the cloth resting on it touches it at its vertices only, and its flat
+        // triangles would cut into a full-size sphere.
+        const float r = float(s->radius) * 0.98f;
+        glm::mat4 model(r);
+        model[3] = glm::vec4(glm::vec3(s->center), 1);
+        mesh.set("uModel", model);
+        glDrawElements(GL_TRIANGLES, sphereIndexCount, GL_UNSIGNED_INT, nullptr);
+    }
+}
+
+void Renderer::Impl::drawCloth(const glm::mat4& viewProj, const RenderOptions& o) const {
+    const Grid g = scene.grid();
+    cloth.use();
+    cloth.set("uViewProj", viewProj);
+    cloth.set("uGrid", glm::ivec2(g.nu, g.nv));
+    cloth.set("uRest", glm::vec2(float(g.restLength(1, 0)), float(g.restLength(0, 1))));
+    cloth.set("uColourMode", o.colour == ColourMode::Strain ? 1 : 0);
+    cloth.set("uStrainScale", o.strainScale);
+    cloth.set("uCheckers", kCheckers);
+    cloth.set("uFront0", kFront0);
+    cloth.set("uFront1", kFront1);
+    cloth.set("uBack0", kBack0);
+    cloth.set("uBack1", kBack1);
+    if (clothLines) {
+        cloth.set("uFlat", 1);
+        cloth.set("uFlatColour", kFront1);
+        glDrawElements(GL_LINE_STRIP, clothIndexCount, GL_UNSIGNED_INT, nullptr);
+        return;
+    }
+    cloth.set("uFlat", 0);
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1, 1);  // the wireframe pass draws on top
+    glDrawElements(GL_TRIANGLES, clothIndexCount, GL_UNSIGNED_INT, nullptr);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    if (!o.wireframe) return;
+    cloth.set("uFlat", 1);
+    cloth.set("uFlatColour", kWire);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+    glDrawElements(GL_TRIANGLES, clothIndexCount, GL_UNSIGNED_INT, nullptr);
+    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
+void Renderer::Impl::drawMarkers(const glm::mat4& viewProj, const RenderOptions& o) const {
+    points.use();
+    points.set("uViewProj", viewProj);
+    if (clothLines) {  // a chain: every vertex is a mass worth seeing
+        points.set("uPointSize", 9.0f);
+        points.set("uColour", kFront0);
+        glDrawElements(GL_POINTS, clothIndexCount, GL_UNSIGNED_INT, nullptr);
+    }
+    if (!o.pins || pinCount == 0) return;
+    points.set("uPointSize", 11.0f);
+    points.set("uColour", kPin);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pinIndices);
+    glDrawElements(GL_POINTS, pinCount, GL_UNSIGNED_INT, nullptr);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, clothIndices);
+}
+
+void Renderer::Impl::drawSprings(const glm::mat4& viewProj, const RenderOptions& o) const {
+    const Grid g = scene.grid();
+    springs.use();
+    springs.set("uViewProj", viewProj);
+    springs.set("uGrid", glm::ivec2(g.nu, g.nv));
+    if (o.grabVertex && *o.grabVertex < g.count()) {
+        springs.set("uMode", 1);
+        springs.set("uCentre", int(*o.grabVertex));
+        springs.set("uTarget", o.grabTarget);
+        glDrawArrays(GL_LINES, 0, 2);
+    }
+    if (!o.springs) return;
+    GLint offsets[12 * 3];
+    for (std::size_t s = 0; s < kSpringOffsets.size(); ++s) {
+        offsets[3 * s] = kSpringOffsets[s].di;
+        offsets[3 * s + 1] = kSpringOffsets[s].dj;
+        offsets[3 * s + 2] = GLint(kSpringOffsets[s].family);
+    }
+    glUniform3iv(glGetUniformLocation(springs.id(), "uOffsets"), 12, offsets);
+    const GLint on[3] = {scene.springs.structural > 0, scene.springs.shear > 0,
+                         scene.springs.bend > 0};
+    glUniform3iv(glGetUniformLocation(springs.id(), "uFamilyOn"), 1, on);
+    glUniform3fv(glGetUniformLocation(springs.id(), "uFamilyColour"), 3, &kFamilyColours[0].x);
+    springs.set("uMode", 0);
+    std::vector<std::int64_t> vertices = o.springVertices;
+    if (vertices.empty())
+        vertices = {g.index(0, 0), g.index(g.nu / 2, 0), g.index(g.nu / 2, g.nv / 2)};
+    glDisable(GL_DEPTH_TEST);  // an overlay: visible through the cloth
+    for (const std::int64_t k : vertices) {
+        if (k < 0 || k >= g.count()) continue;
+        springs.set("uCentre", int(k));
+        glDrawArrays(GL_LINES, 0, 24);
+    }
+    glEnable(GL_DEPTH_TEST);
+}
+
+void Renderer::Impl::drawWind(const glm::mat4& viewProj) const {
+    if (!scene.wind || scene.wind->strength == 0) return;
+    const Bounds rest = restBounds();
+    const glm::vec3 dir = glm::normalize(glm::vec3(scene.wind->direction));
+    // Above the cloth's rest centre, inside the framed view.
+    const float length = 0.6f * std::max(rest.radius(), 0.3f);
+    const glm::vec3 tail =
+        rest.centre() + glm::vec3(0, 0.8f * rest.radius(), 0) - 0.5f * length * dir;
+    const glm::vec3 head = tail + length * dir;
+    glm::vec3 side, unused;
+    planeBasis(dir, side, unused);
+    const glm::vec3 back = head - 0.25f * length * dir;
+    const std::vector<glm::vec3> v = {tail,
+                                      kWind,
+                                      head,
+                                      kWind,
+                                      head,
+                                      kWind,
+                                      back + 0.12f * length * side,
+                                      kWind,
+                                      head,
+                                      kWind,
+                                      back - 0.12f * length * side,
+                                      kWind};
+    glBindVertexArray(linesVao);
+    upload(GL_ARRAY_BUFFER, linesBuffer, v);
+    lines.use();
+    lines.set("uViewProj", viewProj);
+    glDrawArrays(GL_LINES, 0, GLsizei(v.size() / 2));
+}
+
+Bounds Renderer::Impl::restBounds() const {
+    Bounds b;
+    const Grid g = scene.grid();
+    for (int j : {0, g.nv - 1})
+        for (int i : {0, g.nu - 1}) b.add(glm::vec3(g.restPosition(i, j)));
+    return b;
+}
+
+Bounds Renderer::sceneBounds() const {
+    Bounds b = impl_->restBounds();
+    for (const Collider& c : impl_->scene.colliders) {
+        if (const Sphere* s = std::get_if<Sphere>(&c)) {
+            b.add(glm::vec3(s->center) - float(s->radius));
+            b.add(glm::vec3(s->center) + float(s->radius));
+        } else {  // the plane's point under the cloth: the cloth may fall to it
+            const Plane& p = std::get<Plane>(c);
+            const glm::vec3 n(p.normal), centre = b.centre();
+            b.add(centre - glm::dot(centre - glm::vec3(p.point), n) * n);
+        }
+    }
+    return b;
+}
+
+Bounds stateBounds(const SimState& state) {
+    Bounds b;
+    for (const glm::dvec3& p : state.positions)
+        if (std::isfinite(p.x + p.y + p.z)) b.add(glm::vec3(p));
+    return b;
+}
+
+Camera framedCamera(const Renderer& renderer, const SimState* state) {
+    Bounds b = renderer.sceneBounds();
+    if (state != nullptr) b.add(stateBounds(*state));
+    Camera c;
+    c.frame(b);
+    return c;
+}
+
+}  // namespace cloth::render
