@@ -45,6 +45,15 @@ long Args::positiveInt(const std::string& f) {
     return n;
 }
 
+bool Args::takeScene(std::string& scenePath) {
+    if (done() || isFlag()) return false;
+    const std::string a = next();
+    if (sceneTaken_) throw InputError("command line", a, "only one scene may be given");
+    scenePath = a;
+    sceneTaken_ = true;
+    return true;
+}
+
 void Args::unknown(const std::string& f) const {
     throw InputError("command line", f,
                      "unknown option for '" + command_ + "'; see clothsim " + command_ + " --help");

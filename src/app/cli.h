@@ -21,6 +21,8 @@ public:
     std::string value(const std::string& f);  // the flag's value; InputError if missing
     long positiveInt(const std::string& f);
     [[noreturn]] void unknown(const std::string& f) const;
+    // Takes the next argument as the scene file when it is not a flag (a second is an error).
+    bool takeScene(std::string& scenePath);
     const std::string& command() const { return command_; }
 
 private:
@@ -29,6 +31,7 @@ private:
     size_t pos_ = 0;
     std::string pendingValue_;
     bool hasPending_ = false;
+    bool sceneTaken_ = false;
 };
 
 int runCommand(Args& args);

@@ -67,25 +67,16 @@ long parseSteps(const std::string& flag, const std::string& v) {
 
 bool parse(Args& args, RenderArgs& o) {
     while (!args.done()) {
-        if (!args.isFlag()) {
-            const std::string a = args.next();
-            if (!o.scenePath.empty())
-                throw InputError("command line", a, "only one scene may be given");
-            o.scenePath = a;
-            continue;
-        }
+        if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help") return false;
+        if (parseBackendFlag(f, args, o.backend)) continue;
         if (f == "--png")
             o.png = args.value(f);
         else if (f == "--steps")
             o.steps = parseSteps(f, args.value(f));
         else if (f == "--size")
             parseSize(f, args.value(f), o);
-        else if (f == "--backend")
-            o.backend.backend = parseBackend(f, args.value(f));
-        else if (f == "--precision")
-            o.backend.precision = parsePrecision(f, args.value(f));
         else if (f == "--set")
             o.sets.push_back(args.value(f));
         else if (f == "--colour") {

@@ -49,22 +49,11 @@ struct RunOptions {
 // Returns false when --help was asked for.
 bool parse(Args& args, RunOptions& o) {
     while (!args.done()) {
-        if (!args.isFlag()) {
-            const std::string a = args.next();
-            if (!o.scenePath.empty())
-                throw InputError("command line", a, "only one scene may be given");
-            o.scenePath = a;
-            continue;
-        }
+        if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help") return false;
-        if (f == "--backend")
-            o.backend.backend = parseBackend(f, args.value(f));
-        else if (f == "--precision")
-            o.backend.precision = parsePrecision(f, args.value(f));
-        else if (f == "--threads")
-            o.backend.threads = int(args.positiveInt(f));
-        else if (f == "--steps")
+        if (parseBackendFlag(f, args, o.backend)) continue;
+        if (f == "--steps")
             o.steps = args.positiveInt(f);
         else if (f == "--set")
             o.sets.push_back(args.value(f));

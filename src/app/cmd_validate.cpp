@@ -87,11 +87,7 @@ int validateCommand(Args& args) {
     std::string path;
     std::vector<std::string> sets;
     while (!args.done()) {
-        if (!args.isFlag()) {
-            if (!path.empty()) throw InputError("command line", args.next(), "only one scene");
-            path = args.next();
-            continue;
-        }
+        if (args.takeScene(path)) continue;
         const std::string f = args.flag();
         if (f == "--help") {
             std::fputs(kHelp, stdout);

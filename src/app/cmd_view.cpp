@@ -35,25 +35,15 @@ exit codes: 0 ok, 1 internal error, 2 invalid input, 4 no window with OpenGL 4.3
 int viewCommand(Args& args) {
 #ifdef CLOTH_HAVE_VIEWER
     ViewerOptions o;
-    bool sceneGiven = false;
     while (!args.done()) {
-        if (!args.isFlag()) {
-            if (sceneGiven)
-                throw InputError("command line", args.next(), "only one scene may be given");
-            o.scenePath = args.next();
-            sceneGiven = true;
-            continue;
-        }
+        if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help") {
             std::fputs(kHelp, stdout);
             return kOk;
         }
-        if (f == "--backend")
-            o.backend.backend = parseBackend(f, args.value(f));
-        else if (f == "--precision")
-            o.backend.precision = parsePrecision(f, args.value(f));
-        else if (f == "--set")
+        if (parseBackendFlag(f, args, o.backend)) continue;
+        if (f == "--set")
             o.sets.push_back(args.value(f));
         else if (f == "--no-vsync")
             o.vsync = false;

@@ -10,7 +10,8 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(clothsim — a mass-spring cloth simulator (GPU compute shaders and CPU)
+constexpr const char* kUsage =
+    R"(clothsim — a mass-spring cloth simulator (GPU compute shaders and CPU)
 
 usage:
   clothsim view     [SCENE]                     interactive viewer

@@ -10,6 +10,18 @@
 
 namespace cloth::app {
 
+bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice) {
+    if (flag == "--backend")
+        choice.backend = parseBackend(flag, args.value(flag));
+    else if (flag == "--precision")
+        choice.precision = parsePrecision(flag, args.value(flag));
+    else if (flag == "--threads")
+        choice.threads = int(args.positiveInt(flag));
+    else
+        return false;
+    return true;
+}
+
 Backend parseBackend(const std::string& flag, const std::string& value) {
     if (value == "cpu") return Backend::Cpu;
     if (value == "gpu") return Backend::Gpu;

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "app/cli.h"
 #include "core/solver.h"
 
 namespace cloth::app {
@@ -13,6 +14,10 @@ struct BackendChoice {
     Precision precision = Precision::Double;  // CPU only; the GPU computes in float
     int threads = 0;                          // CPU only; 0 = automatic
 };
+
+// --backend cpu|gpu, --precision float|double, --threads N: true when `flag` was one of them
+// (its value then taken from `args` into `choice`).
+bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice);
 
 Backend parseBackend(const std::string& flag, const std::string& value);
 Precision parsePrecision(const std::string& flag, const std::string& value);
