@@ -105,11 +105,7 @@ bool simulate(const Scene& scene, Solver& solver, long total) {
     while (solver.stepsDone() < total) {
         const StepResult r = solver.step(std::min(total - solver.stepsDone(), 10000L));
         if (!r.unstable) continue;
-        std::fprintf(stderr, "clothsim: %s: unstable at step %ld (t = %.6g s): %s\n",
-                     scene.source.c_str(), r.firstBadStep,
-                     double(r.firstBadStep) * scene.integrator.dt, r.reason.c_str());
-        std::fprintf(stderr, "clothsim: %s; no image was written\n",
-                     stabilityAdvice(scene).c_str());
+        reportUnstable(scene, solver, r, "no image was written");
         return false;
     }
     return true;

@@ -100,21 +100,6 @@ std::string framePath(const RunOptions& o, const Scene& scene, long step, long t
     return (std::filesystem::path(o.framesDir) / (scene.name + name)).string();
 }
 
-int reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r) {
-    const double dt = scene.integrator.dt;
-    if (r.firstBadStep == r.lastBadStep)
-        std::fprintf(stderr, "clothsim: %s: unstable at step %ld (t = %.6g s): %s\n",
-                     scene.source.c_str(), r.firstBadStep, r.firstBadStep * dt, r.reason.c_str());
-    else
-        std::fprintf(stderr,
-                     "clothsim: %s: unstable between steps %ld and %ld (t = %.6g..%.6g s): %s\n",
-                     scene.source.c_str(), r.firstBadStep, r.lastBadStep, r.firstBadStep * dt,
-                     r.lastBadStep * dt, r.reason.c_str());
-    std::fprintf(stderr, "clothsim: %s [%s]; nothing was written for the unstable state\n",
-                 stabilityAdvice(scene).c_str(), solver.name().c_str());
-    return kUnstable;
-}
-
 }  // namespace
 
 int runCommand(Args& args) {
@@ -147,7 +132,8 @@ int runCommand(Args& args) {
         deviceSeconds += deviceSecondsPerStep(*solver) * double(r.stepsTaken);
         if (r.unstable) {
             progress.finish();
-            return reportUnstable(scene, *solver, r);
+            reportUnstable(scene, *solver, r, "nothing was written for the unstable state");
+            return kUnstable;
         }
         if (o.every > 0 && solver->stepsDone() % o.every == 0)
             writeObj(framePath(o, scene, solver->stepsDone(), total), solver->read(), scene.name);

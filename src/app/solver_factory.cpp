@@ -1,6 +1,9 @@
 #include "app/solver_factory.h"
 
+#include <cstdio>
+
 #include "core/errors.h"
+#include "core/stability.h"
 
 #if defined(CLOTH_HAVE_GPU) && __has_include("gpu/gpu_backend.h")
 #include "gpu/gpu_backend.h"
@@ -56,6 +59,21 @@ std::string deviceTimingSource([[maybe_unused]] const Solver& solver) {
     if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->timingSource();
 #endif
     return "";
+}
+
+void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r,
+                    const std::string& consequence) {
+    const double dt = scene.integrator.dt;
+    if (r.firstBadStep == r.lastBadStep)
+        std::fprintf(stderr, "clothsim: %s: unstable at step %ld (t = %.6g s): %s\n",
+                     scene.source.c_str(), r.firstBadStep, r.firstBadStep * dt, r.reason.c_str());
+    else
+        std::fprintf(stderr,
+                     "clothsim: %s: unstable between steps %ld and %ld (t = %.6g..%.6g s): %s\n",
+                     scene.source.c_str(), r.firstBadStep, r.lastBadStep, r.firstBadStep * dt,
+                     r.lastBadStep * dt, r.reason.c_str());
+    std::fprintf(stderr, "clothsim: %s [%s]; %s\n", stabilityAdvice(scene).c_str(),
+                 solver.name().c_str(), consequence.c_str());
 }
 
 Precision effectivePrecision(const BackendChoice& choice) {

@@ -30,6 +30,11 @@ std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choi
 double deviceSecondsPerStep(const Solver& solver);
 std::string deviceTimingSource(const Solver& solver);
 
+// Says on stderr that the run became unstable (DESIGN.md §5, exit 3): the step or step range,
+// the simulated time, what went wrong, a stable Δt or damping, and `consequence`.
+void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r,
+                    const std::string& consequence);
+
 // The precision a backend's numbers carry (for the CSV's digits).
 Precision effectivePrecision(const BackendChoice& choice);
 

@@ -12,8 +12,10 @@
 #include <sstream>
 
 #include "core/errors.h"
+#include "core/key_path.h"
 #include "core/params.h"
 #include "core/scene_overrides.h"
+#include "core/scene_text.h"
 
 namespace cloth {
 namespace {
@@ -42,13 +44,6 @@ std::string describe(const Json& j) {
         default:
             return "a value of another type";
     }
-}
-
-std::string child(const std::string& parent, const std::string& key) {
-    return parent.empty() ? key : parent + "." + key;
-}
-std::string element(const std::string& parent, size_t n) {
-    return parent + "[" + std::to_string(n) + "]";
 }
 
 // Reads one JSON document into a Scene, naming the file and key path in every complaint.
@@ -297,80 +292,11 @@ Scene SceneReader::read(const Json& doc) {
     return scene;
 }
 
-// Follows the parser through the document so that an error inside a value (a number that
-// overflows a double, 1e999) can still name its key path.
-class PathTracker {
-public:
-    bool operator()(int, Json::parse_event_t event, Json& parsed) {
-        using E = Json::parse_event_t;
-        switch (event) {
-            case E::object_start:
-                push(false);
-                break;
-            case E::array_start:
-                push(true);
-                break;
-            case E::key:
-                frames_.back().key = parsed.get<std::string>();
-                break;
-            case E::object_end:
-            case E::array_end:
-                frames_.pop_back();
-                completeElement();
-                break;
-            case E::value:
-                completeElement();
-                break;
-        }
-        return true;
-    }
-    std::string path() const {
-        std::string p;
-        for (const Frame& f : frames_)
-            p = f.isArray ? element(p, f.count) : f.key.empty() ? p : child(p, f.key);
-        return p;
-    }
-
-private:
-    struct Frame {
-        bool isArray;
-        size_t count = 0;  // elements of an array completed so far = index of the current one
-        std::string key;
-    };
-    void push(bool isArray) { frames_.push_back({isArray, 0, {}}); }
-    void completeElement() {
-        if (!frames_.empty() && frames_.back().isArray) ++frames_.back().count;
-    }
-    std::vector<Frame> frames_;
-};
-
-Json parseJson(const std::string& text, const std::string& source) {
-    if (text.find_first_not_of(" \t\r\n") == std::string::npos)
-        throw InputError(source, "", "the file is empty; expected a JSON object");
-    PathTracker tracker;
-    try {
-        return Json::parse(text, std::ref(tracker));
-    } catch (const Json::parse_error& e) {
-        std::string what = e.what();
-        const size_t cut = what.find("] ");  // drop nlohmann's "[json.exception...] " tag
-        throw InputError(
-            source, "",
-            "not valid JSON: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
-    } catch (const Json::exception& e) {
-        // Lexically valid but not representable, e.g. 1e999 overflows a double.
-        std::string what = e.what();
-        const size_t cut = what.find("] ");
-        throw InputError(
-            source, tracker.path(),
-            "not a finite number: " + (cut == std::string::npos ? what : what.substr(cut + 2)));
-    }
-}
-
 }  // namespace
 
 Scene parseScene(const std::string& text, const std::string& source,
                  const std::vector<std::string>& overrides) {
-    Json doc = parseJson(text, source);
+    Json doc = parseSceneText(text, source);
     std::vector<std::string> keys;
     for (const std::string& o : overrides) keys.push_back(applyOverride(doc, o, source));
     try {
