@@ -1,6 +1,7 @@
 // The command line of DESIGN.md §5 on valid input: run's summary and files, validate's report,
 // info, --help on every subcommand, and the commands not built yet.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -63,7 +64,11 @@ TEST(CliRun, WritesPaddedFramesEveryKStepsAndTheFinalFiles) {
 
 // Runs `clothsim run SCENE --quiet --out-csv TMP extra...` and returns the CSV's text.
 std::string runToCsv(const std::string& scene, std::vector<std::string> extra) {
-    const fs::path csv = fs::temp_directory_path() / "clothsim_cli_test_run.csv";
+    // Unique per process and call: ctest runs tests side by side in separate processes.
+    static int calls = 0;
+    const fs::path csv =
+        fs::temp_directory_path() / ("clothsim_cli_test_run_" + std::to_string(getpid()) + "_" +
+                                     std::to_string(++calls) + ".csv");
     std::vector<std::string> argv = {kExe,      "run",       kScenes + scene,
                                      "--quiet", "--out-csv", csv.string()};
     argv.insert(argv.end(), extra.begin(), extra.end());
