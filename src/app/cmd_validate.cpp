@@ -1,4 +1,5 @@
 // clothsim validate SCENE: checks a scene and prints what it models (DESIGN.md §5).
+#include <cmath>
 #include <cstdio>
 
 #include "app/cli.h"
@@ -65,14 +66,28 @@ void printModel(const Scene& s) {
     std::printf("max speed    %g m/s\n", s.maxSpeed);
 }
 
+// Power iterations for validate's tight estimate of λ_max: each is one stencil pass.
+constexpr int kPowerIterations = 40;
+
+std::string formatDt(double dt) {
+    if (std::isinf(dt)) return "any (unconditional)";
+    if (dt <= 0) return "none";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g s", dt);
+    return buf;
+}
+
 void printStability(const Scene& s) {
-    const StabilityBound b = estimateStability(s);
-    const double bound = stableDt(s), dt = s.integrator.dt;
+    const StabilityBound b = estimateStability(s, kPowerIterations);
+    const double bound = b.safeDt(s.integrator.method), dt = s.integrator.dt;
     std::printf("stability    lambda_max <= %.6g N/m (Gershgorin, DESIGN.md §2)\n", b.lambdaMax);
-    std::printf("             explicit Euler stable for dt < %.4g s (mu/lambda_max, 2m/mu)\n",
-                b.explicitEulerDt);
-    std::printf("             symplectic Euler would be stable for dt < %.4g s\n",
-                b.symplecticEulerDt);
+    std::printf("             lambda_max ~= %.6g N/m (%d power iterations at the initial state)\n",
+                b.lambdaPower, kPowerIterations);
+    std::printf("             largest stable dt   safe (Gershgorin)      tight (power)\n");
+    for (Method m : kMethods)
+        std::printf("             %-18s  %-22s %s%s\n", methodName(m),
+                    formatDt(b.safeDt(m)).c_str(), formatDt(b.tightDt(m)).c_str(),
+                    m == s.integrator.method ? "   <- the scene's" : "");
     if (dt < bound)
         std::printf("             dt = %g s is inside the bound (%.0f%% of it)\n", dt,
                     100 * dt / bound);

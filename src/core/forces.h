@@ -2,6 +2,7 @@
 // kernels in shaders/compute/common.glsl mirror these function for function.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/grid.h"
@@ -16,6 +17,20 @@ Vec3<T> springForce(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLen
     const T len = glm::length(d);
     if (!(len >= T(1e-12) * restLength)) return Vec3<T>(0);
     return (stiffness * (len - restLength) / len) * d;
+}
+
+// J_s w for the spring from k to q, J_s = ∂F_k/∂x_q its 3×3 Jacobian with the compressive part
+// clamped (docs/integrators.md, implicit_euler): J_s = K (d̂d̂ᵀ + max(0, 1 − L/l)(I − d̂d̂ᵀ)).
+// Positive semi-definite; 0 where the spring force is (a spring squeezed to a point).
+template <typename T>
+Vec3<T> springJacobianTimes(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLength,
+                            const Vec3<T>& w) {
+    const Vec3<T> d = pq - pk;
+    const T len = glm::length(d);
+    if (!(len >= T(1e-12) * restLength)) return Vec3<T>(0);
+    const Vec3<T> n = d / len;
+    const T transverse = stiffness * std::max(T(0), T(1) - restLength / len);
+    return transverse * w + ((stiffness - transverse) * glm::dot(n, w)) * n;
 }
 
 // Unit vertex normal from central differences clamped at the border (DESIGN.md §2);

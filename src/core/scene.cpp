@@ -9,8 +9,41 @@ const char* methodName(Method m) {
     switch (m) {
         case Method::ExplicitEuler:
             return "explicit_euler";
+        case Method::SymplecticEuler:
+            return "symplectic_euler";
+        case Method::Verlet:
+            return "verlet";
+        case Method::Rk4:
+            return "rk4";
+        case Method::ImplicitEuler:
+            return "implicit_euler";
     }
     return "?";
+}
+
+std::optional<Method> methodFromName(const std::string& name) {
+    for (Method m : kMethods)
+        if (name == methodName(m)) return m;
+    return std::nullopt;
+}
+
+std::string methodList() {
+    std::string s;
+    for (Method m : kMethods) s += std::string(s.empty() ? "" : ", ") + methodName(m);
+    return s;
+}
+
+int forceEvaluationsPerStep(Method m) {
+    switch (m) {
+        case Method::Rk4:
+            return 4;
+        case Method::ExplicitEuler:
+        case Method::SymplecticEuler:
+        case Method::Verlet:  // F(x_{n+1}) of one step is F(x_n) of the next
+        case Method::ImplicitEuler:
+            return 1;
+    }
+    return 1;
 }
 
 double SpringStiffness::of(Family f) const {

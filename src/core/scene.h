@@ -13,9 +13,16 @@
 
 namespace cloth {
 
-enum class Method { ExplicitEuler };
+// The integrators of docs/integrators.md. explicit_euler is the seed's scheme (DESIGN.md §2).
+enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler };
 
-const char* methodName(Method m);
+inline constexpr Method kMethods[] = {Method::ExplicitEuler, Method::SymplecticEuler,
+                                      Method::Verlet, Method::Rk4, Method::ImplicitEuler};
+
+const char* methodName(Method m);                          // "explicit_euler", ...
+std::optional<Method> methodFromName(const std::string& name);
+std::string methodList();                                  // "explicit_euler, symplectic_euler, ..."
+int forceEvaluationsPerStep(Method m);  // spring-force passes one step costs (implicit: + CG)
 
 struct ClothSpec {
     int nu = 2, nv = 2;                         // vertices along u and v
@@ -34,6 +41,10 @@ struct IntegratorSpec {
     Method method = Method::ExplicitEuler;
     double dt = 1e-3;  // [s]
     int substeps = 1;  // steps per displayed frame in the viewer
+    // implicit_euler only: the conjugate gradient stops at |r| <= tolerance·|b| or after
+    // maxIterations (then the step goes on with the last iterate and the miss is reported).
+    double tolerance = 1e-5;
+    int maxIterations = 200;
 };
 
 struct Plane {

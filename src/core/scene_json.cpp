@@ -39,6 +39,10 @@ std::string sceneToJson(const Scene& s) {
     j["integrator"] = {{"method", methodName(s.integrator.method)},
                        {"dt", s.integrator.dt},
                        {"substeps", s.integrator.substeps}};
+    if (s.integrator.method == Method::ImplicitEuler) {
+        j["integrator"]["tolerance"] = s.integrator.tolerance;
+        j["integrator"]["max_iterations"] = s.integrator.maxIterations;
+    }
     Json colliders = Json::array();
     for (const Collider& c : s.colliders) colliders.push_back(collider(c));
     j["colliders"] = colliders;

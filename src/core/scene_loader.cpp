@@ -189,15 +189,20 @@ void SceneReader::readSprings(const Json& j, SpringStiffness& springs) const {
 }
 
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
-    expectObject(j, "integrator", {"method", "dt", "substeps"});
+    expectObject(j, "integrator", {"method", "dt", "substeps", "tolerance", "max_iterations"});
     if (j.contains("method")) {
         const Json& m = j["method"];
         if (!m.is_string()) fail("integrator.method", "expected a string, got " + describe(m));
-        if (m.get<std::string>() != methodName(Method::ExplicitEuler))
+        const std::optional<Method> method = methodFromName(m.get<std::string>());
+        if (!method)
             fail("integrator.method",
-                 "unknown method \"" + m.get<std::string>() + "\"; known: explicit_euler");
-        integrator.method = Method::ExplicitEuler;
+                 "unknown method \"" + m.get<std::string>() + "\"; known: " + methodList());
+        integrator.method = *method;
     }
+    integrator.tolerance = param(j, "tolerance", "integrator.tolerance", "integrator.tolerance",
+                                 integrator.tolerance);
+    integrator.maxIterations = int(param(j, "max_iterations", "integrator.max_iterations",
+                                         "integrator.max_iterations", integrator.maxIterations));
     required(j, "dt", "integrator");
     integrator.dt = param(j, "dt", "integrator.dt", "integrator.dt", 0);
     integrator.substeps =

@@ -51,6 +51,18 @@ struct Grab {
     double stiffness = 0;     // [N/m]
 };
 
+// implicit_euler's conjugate-gradient solves since the solver was made (all zero for the other
+// integrators). A solve that reaches max_iterations is a miss: the step goes on with its last
+// iterate, and callers report the misses.
+struct SolveStats {
+    long solves = 0;
+    long iterations = 0;        // summed over solves
+    int mostIterations = 0;     // in one solve
+    long misses = 0;            // solves that stopped at max_iterations
+    long firstMissStep = 0;     // 1-based step of the first miss
+    double worstResidual = 0;   // largest final |r|/|b| of a miss
+};
+
 class Solver {
 public:
     virtual ~Solver() = default;
@@ -75,9 +87,11 @@ public:
     long stepsDone() const { return steps_; }
     void resetStepCount() { steps_ = 0; }
     double time() const { return double(steps_) * dt_; }
+    const SolveStats& solveStats() const { return solveStats_; }
 
 protected:
     long steps_ = 0;
+    SolveStats solveStats_;
     double dt_ = 0;
 };
 
