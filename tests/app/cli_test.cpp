@@ -99,7 +99,9 @@ TEST(CliValidate, ReportsWhatTheSceneModelsAndItsStableStep) {
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     for (const char* s : {"structural K = 400", "shear      K = 100", "bend       K = 10",
                           "wind not modelled", "plane through", "sphere at", "explicit_euler",
-                          "explicit Euler stable for dt <", "inside the bound", "valid"})
+                          "largest stable dt", "symplectic_euler", "verlet", "rk4",
+                          "implicit_euler      any (unconditional)", "power iterations",
+                          "inside the bound", "valid"})
         EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }
 
