@@ -47,8 +47,10 @@ double rk4Dt(double w2max, double c) {
     return lo;
 }
 
+}  // namespace
+
 // Rayleigh-quotient power iteration on H at the rest state.
-double powerEstimate(const Scene& scene, int iterations) {
+StiffMode stiffestMode(const Scene& scene, int iterations) {
     const Grid g = scene.grid();
     const std::int64_t n = g.count();
     std::vector<std::uint8_t> pinned(std::size_t(n), 0);
@@ -66,9 +68,9 @@ double powerEstimate(const Scene& scene, int iterations) {
             const glm::dvec3 start = su * g.u + sv * g.v + su * sv * glm::cross(g.u, g.v);
             p[k] = pinned[k] ? glm::dvec3(0) : start + glm::dvec3(r, -r, 0.5 * r);
         }
+    StiffMode mode;
     const auto springs = activeSprings<double>(scene);
-    if (springs.empty()) return 0;
-    double lambda = 0;
+    if (springs.empty()) return mode;
     for (int it = 0; it < iterations; ++it) {
         stiffnessProduct(g.nu, g.nv, springs, x.data(), p.data(), pinned.data(), y.data(), 0, n);
         double pp = 0, py = 0, yy = 0;
@@ -77,15 +79,14 @@ double powerEstimate(const Scene& scene, int iterations) {
             py += glm::dot(p[k], y[k]);
             yy += glm::dot(y[k], y[k]);
         }
-        if (!(pp > 0) || !(yy > 0)) return lambda;
-        lambda = std::max(lambda, py / pp);
+        if (!(pp > 0) || !(yy > 0)) break;
+        mode.lambda = std::max(mode.lambda, py / pp);
         const double scale = 1 / std::sqrt(yy);
         for (std::size_t k = 0; k < p.size(); ++k) p[k] = y[k] * scale;
     }
-    return lambda;
+    mode.shape = std::move(p);
+    return mode;
 }
-
-}  // namespace
 
 double methodDt(Method method, double lambda, double mass, double damping) {
     const double c = damping / mass, w2 = lambda / mass;
@@ -137,7 +138,7 @@ StabilityBound estimateStability(const Scene& scene, int powerIterations) {
     b.lambdaMax = lambda;
     b.mass = scene.cloth.mass;
     b.damping = scene.damping;
-    if (powerIterations > 0) b.lambdaPower = powerEstimate(scene, powerIterations);
+    if (powerIterations > 0) b.lambdaPower = stiffestMode(scene, powerIterations).lambda;
     b.explicitEulerDt = b.safeDt(Method::ExplicitEuler);
     b.symplecticEulerDt = b.safeDt(Method::SymplecticEuler);
     return b;

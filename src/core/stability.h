@@ -2,7 +2,9 @@
 // and docs/stability.md).
 #pragma once
 
+#include <glm/glm.hpp>
 #include <string>
+#include <vector>
 
 #include "core/scene.h"
 
@@ -38,6 +40,15 @@ struct StabilityBound {
 // powerIterations > 0 also estimates λ_max of H = −∂F/∂x at the initial (rest) state by that
 // many power iterations (a Rayleigh quotient; the cost is one stencil pass each).
 StabilityBound estimateStability(const Scene& scene, int powerIterations = 0);
+
+// The stiffest mode of H = −∂F/∂x at the rest state by `iterations` power iterations: its
+// Rayleigh-quotient estimate λ [N/m] (≤ the true λ_max) and the unit-norm shape the iteration
+// ended on (zero on pinned vertices), k = j·nu + i. What estimateStability's lambdaPower uses.
+struct StiffMode {
+    double lambda = 0;
+    std::vector<glm::dvec3> shape;
+};
+StiffMode stiffestMode(const Scene& scene, int iterations);
 
 // The safe bound for the scene's own integrator.
 double stableDt(const Scene& scene);
