@@ -12,6 +12,7 @@ PACKAGES=(
     libglfw3-dev libimgui-dev libstb-dev      # viewer window, its panel, PNG output
     xvfb xauth                                # viewer tests without a display (xvfb-run)
     clang-14 libfuzzer-14-dev                 # the scene-loader fuzzer
+    gnuplot-nox                               # bench accuracy/stability plots (PNG, SVG)
 )
 
 missing=()

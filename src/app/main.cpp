@@ -5,6 +5,7 @@
 #include <exception>
 #include <string>
 
+#include "app/bench.h"
 #include "app/cli.h"
 #include "core/errors.h"
 
@@ -32,7 +33,7 @@ int dispatch(const std::string& command, cloth::app::Args& args) {
     if (command == "info") return infoCommand(args);
     if (command == "view") return viewCommand(args);
     if (command == "render") return renderCommand(args);
-    if (command == "bench") return notBuiltCommand(args);
+    if (command == "bench") return benchCommand(args);
     throw cloth::InputError("command line", command, "unknown command; see clothsim --help");
 }
 

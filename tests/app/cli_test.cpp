@@ -1,5 +1,5 @@
 // The command line of DESIGN.md §5 on valid input: run's summary and files, validate's report,
-// info, --help on every subcommand, and the commands not built yet.
+// info, --help on every subcommand (bench: tests/app/bench_test.cpp).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -130,12 +130,6 @@ TEST(CliHelp, EverySubcommandHasHelp) {
     EXPECT_NE(top.out.find("exit codes"), std::string::npos);
     const auto none = runProcess({kExe}, 60);
     EXPECT_EQ(none.exitCode, 2);
-}
-
-TEST(CliNotBuilt, BenchSaysSoWithExitOne) {
-    const auto r = runProcess({kExe, "bench"}, 60);
-    EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.err.find("not built yet"), std::string::npos);
 }
 
 TEST(CliArgs, BadArgumentsExitTwoNamingTheOption) {

@@ -1,0 +1,69 @@
+// What `clothsim bench accuracy` and `clothsim bench stability` share: flag values (method and
+// number lists, the backends to run), the output folder, the CSV file and the gnuplot call.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/cli.h"
+#include "app/solver_factory.h"
+#include "core/scene.h"
+
+namespace cloth::app {
+
+int benchCommand(Args& args);           // cmd_bench.cpp: bench accuracy|stability|speed
+int benchAccuracyCommand(Args& args);   // bench_accuracy.cpp
+int benchStabilityCommand(Args& args);  // bench_stability.cpp
+
+// One backend and arithmetic a benchmark runs on.
+struct BenchTarget {
+    Backend backend = Backend::Cpu;
+    Precision precision = Precision::Double;
+    std::string id() const;  // "cpu_double", "gpu_float": the CSV's and the plot's name
+};
+
+// "all" or a comma-separated list of integrator names; InputError naming `flag` otherwise.
+std::vector<Method> parseMethods(const std::string& flag, const std::string& value);
+
+// A comma-separated list of positive finite numbers (at least one).
+std::vector<double> parsePositiveList(const std::string& flag, const std::string& value);
+double parsePositive(const std::string& flag, const std::string& value);
+
+// cpu|gpu|both; the CPU in each of `cpuPrecisions`, the GPU in float.
+std::vector<BenchTarget> parseTargets(const std::string& flag, const std::string& value,
+                                      const std::vector<Precision>& cpuPrecisions);
+
+// Drops the GPU targets when no GPU context can be made and the user did not ask for the GPU
+// alone (`gpuOnly`, then GpuUnavailable propagates: exit 4); says so on stderr.
+std::vector<BenchTarget> availableTargets(std::vector<BenchTarget> targets, const Scene& scene,
+                                          bool gpuOnly, int threads);
+
+BackendChoice choiceFor(const BenchTarget& target, int threads);
+
+// Creates `dir` (InputError naming --out when it cannot) and returns dir/name.
+std::string outputPath(const std::string& dir, const std::string& name);
+
+// Writes `text` to `path` atomically (through a temporary file).
+void writeTextFile(const std::string& path, const std::string& text);
+
+// A CSV cell: %.6g, or empty for a value that is not finite (nothing non-finite is written).
+std::string cell(double value);
+
+// The items joined by `separator`: a CSV row (with its newline added by the caller) or the
+// space-separated word lists the plot scripts take.
+std::string join(const std::vector<std::string>& items, char separator);
+std::string targetIds(const std::vector<BenchTarget>& targets);  // "cpu_double gpu_float"
+std::string methodNames(const std::vector<Method>& methods);     // "explicit_euler rk4"
+
+// Runs bench/`script` with gnuplot, once for PNG and once for SVG, into `outStem`.png/.svg, with
+// `vars` set as gnuplot string variables. Returns the files written, or prints why not (gnuplot
+// missing or failing) on stderr and returns none: the CSV stands on its own.
+std::vector<std::string> plot(const std::string& script, const std::string& outStem,
+                              const std::vector<std::pair<std::string, std::string>>& vars);
+
+// bench/ of the project: CLOTH_BENCH_DIR, else bench/ next to the executable, else the source
+// tree's.
+std::string benchScriptDir();
+
+}  // namespace cloth::app

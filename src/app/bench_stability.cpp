@@ -1,0 +1,301 @@
+// clothsim bench stability SCENE: the largest stable Δt of each integrator, measured by bisection
+// (core/stability_probe.h), beside the predicted bounds (core/stability.h), over stiffness, and
+// over mass and damping for explicit Euler (the Δt < μ/λ_max law, docs/physics.md).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <tuple>
+
+#include "app/bench.h"
+#include "core/errors.h"
+#include "core/scene_loader.h"
+#include "core/stability.h"
+#include "core/stability_probe.h"
+
+namespace cloth::app {
+namespace {
+
+constexpr const char* kHelp = R"(usage: clothsim bench stability SCENE [options]
+
+For each integrator and each structural stiffness (the other spring families scaled with it),
+finds the largest stable time step by bisection and prints it beside the predicted bounds:
+'safe' from Gershgorin's bound on lambda_max, 'tight' from a power iteration. For explicit
+Euler it repeats the sweep over the mass and over the damping (stable iff dt < mu/lambda_max
+and dt < 2m/mu). Runs on the CPU (double) and the GPU (float).
+
+A trial runs the scene linearised about its rest state (no gravity, wind or colliders) from a
+velocity kick along the stiffest mode, for --time of simulated time (at least 200 steps, at most
+--max-steps). It is unstable when the state runs away (not finite, or 1e4 times the kick's
+speed), or, for explicit Euler, when its discrete energy |v|^2 + c<x,v> + <x,Hx>/m grows (that
+integrator leaves its bound too slowly to run away in a short trial). Methods stable at --cap are
+reported as stable to the cap (implicit Euler has no predicted bound).
+
+options:
+  --backend cpu|gpu|both    where to run (default both; without a GPU, both means cpu)
+  --methods LIST            integrators, comma-separated, or all (default all)
+  --sweeps LIST             stiffness,mass,damping (default all three)
+  --stiffness LIST          structural stiffnesses [N/m] (default 1e1,1e2,...,1e7)
+  --mass LIST               masses per vertex [kg] (default the scene's times 1e-4 ... 1e2)
+  --damping LIST            dampings [N*s/m] (default the scene's times 1e-3 ... 1e3)
+  --time T                  simulated time of one trial [s] (default 0.5)
+  --max-steps N             most steps of one trial (default 20000)
+  --tolerance R             bisection ends at unstable/stable <= 1 + R (default 0.02)
+  --cap DT                  largest time step tried [s] (default 1)
+  --set KEY.PATH=JSON       override a scene key (repeatable), e.g. --set cloth.resolution=[8,8]
+  --out DIR                 output folder (default bench/results)
+  --label NAME              file names stability_NAME.csv/.png/.svg (default the scene's name)
+  --threads N               CPU threads (default automatic)
+  --quick                   a small run: 3 values per sweep, 2000 steps, 5% tolerance
+  --help                    this text
+
+writes DIR/stability_NAME.csv (one row per sweep value, backend and integrator) and the plots
+DIR/stability_NAME.png/.svg (stiffness), stability_mass_NAME, stability_damping_NAME.
+)";
+
+struct Options {
+    std::string scenePath, out = "bench/results", label, backend = "both";
+    std::vector<std::string> sets;
+    std::vector<Method> methods{std::begin(kMethods), std::end(kMethods)};
+    std::vector<std::string> sweeps{"stiffness", "mass", "damping"};
+    std::vector<double> stiffness, mass, damping;  // empty: the defaults
+    ProbeOptions probe;
+    int threads = 0;
+    bool quick = false;
+};
+
+std::vector<std::string> parseSweeps(const std::string& flag, const std::string& value) {
+    std::vector<std::string> sweeps;
+    std::string rest = value + ",";
+    for (size_t at; (at = rest.find(',')) != std::string::npos; rest.erase(0, at + 1)) {
+        const std::string s = rest.substr(0, at);
+        if (s != "stiffness" && s != "mass" && s != "damping")
+            throw InputError("command line", flag,
+                             "expected stiffness, mass or damping, got '" + s + "'");
+        sweeps.push_back(s);
+    }
+    return sweeps;
+}
+
+bool parseFlag(const std::string& f, Args& args, Options& o) {
+    if (f == "--backend")
+        o.backend = args.value(f);
+    else if (f == "--methods")
+        o.methods = parseMethods(f, args.value(f));
+    else if (f == "--sweeps")
+        o.sweeps = parseSweeps(f, args.value(f));
+    else if (f == "--stiffness")
+        o.stiffness = parsePositiveList(f, args.value(f));
+    else if (f == "--mass")
+        o.mass = parsePositiveList(f, args.value(f));
+    else if (f == "--damping")
+        o.damping = parsePositiveList(f, args.value(f));
+    else if (f == "--time")
+        o.probe.trialTime = parsePositive(f, args.value(f));
+    else if (f == "--max-steps")
+        o.probe.maxSteps = args.positiveInt(f);
+    else if (f == "--tolerance")
+        o.probe.tolerance = parsePositive(f, args.value(f));
+    else if (f == "--cap")
+        o.probe.cap = parsePositive(f, args.value(f));
+    else if (f == "--set")
+        o.sets.push_back(args.value(f));
+    else if (f == "--out")
+        o.out = args.value(f);
+    else if (f == "--label")
+        o.label = args.value(f);
+    else if (f == "--threads")
+        o.threads = int(args.positiveInt(f));
+    else if (f == "--quick")
+        o.quick = true;
+    else
+        return false;
+    return true;
+}
+
+// Returns false when --help was asked for.
+bool parse(Args& args, Options& o) {
+    bool steps = false, tolerance = false;
+    while (!args.done()) {
+        if (args.takeScene(o.scenePath)) continue;
+        const std::string f = args.flag();
+        if (f == "--help") return false;
+        steps |= f == "--max-steps";
+        tolerance |= f == "--tolerance";
+        if (!parseFlag(f, args, o)) args.unknown(f);
+    }
+    if (o.scenePath.empty())
+        throw InputError("command line", "SCENE", "bench stability needs a scene file");
+    parseTargets("--backend", o.backend, {Precision::Double});  // checks the value early
+    if (o.quick && !steps) o.probe.maxSteps = 2000;
+    if (o.quick && !tolerance) o.probe.tolerance = 0.05;
+    o.probe.minSteps = std::min(o.probe.minSteps, o.probe.maxSteps);
+    return true;
+}
+
+// One value of one sweep: the scene it runs and the integrators it measures.
+struct Point {
+    std::string sweep;
+    Scene scene;
+    std::vector<Method> methods;
+};
+
+std::vector<double> decades(double base, int from, int to, bool quick) {
+    std::vector<double> v;
+    const int step = quick ? (to - from) / 2 : 1;
+    for (int e = from; e <= to; e += step) v.push_back(base * std::pow(10.0, e));
+    return v;
+}
+
+std::vector<Point> sweepPoints(const Scene& scene, const Options& o) {
+    std::vector<Point> points;
+    const std::vector<Method> euler{Method::ExplicitEuler};
+    for (const std::string& sweep : o.sweeps) {
+        if (sweep == "stiffness") {
+            if (scene.springs.structural <= 0)
+                throw InputError(scene.source, "springs.structural",
+                                 "the stiffness sweep scales the structural springs; none here");
+            const std::vector<double> ks = !o.stiffness.empty() ? o.stiffness
+                                           : o.quick            ? std::vector<double>{1e1, 1e3, 1e5}
+                                                                : decades(1, 1, 7, false);
+            for (double k : ks) {
+                Scene s = scene;
+                const double factor = k / scene.springs.structural;
+                s.springs = {k, scene.springs.shear * factor, scene.springs.bend * factor};
+                points.push_back({sweep, s, o.methods});
+            }
+        } else if (sweep == "mass") {
+            for (double m : !o.mass.empty() ? o.mass : decades(scene.cloth.mass, -4, 2, o.quick)) {
+                Scene s = scene;
+                s.cloth.mass = m;
+                points.push_back({sweep, s, euler});
+            }
+        } else {
+            for (double mu :
+                 !o.damping.empty() ? o.damping : decades(scene.damping, -3, 3, o.quick)) {
+                Scene s = scene;
+                s.damping = mu;
+                points.push_back({sweep, s, euler});
+            }
+        }
+    }
+    return points;
+}
+
+struct Row {
+    const Point* point;
+    BenchTarget target;
+    Method method;
+    StabilityBound bound;
+    ProbeResult probe;
+    double wall = 0;
+};
+
+Row measure(const Point& p, const BenchTarget& target, Method method, const Options& o) {
+    Row row{&p, target, method, estimateStability(p.scene, 40), {}, 0};
+    ProbeOptions probe = o.probe;
+    probe.kick = target.precision == Precision::Double ? 1e-6 : 1e-3;  // above float's rounding
+    const BackendChoice choice = choiceFor(target, o.threads);
+    const auto t0 = std::chrono::steady_clock::now();
+    row.probe = probeStableDt(
+        p.scene, method, row.bound.tightDt(method),
+        [&](const Scene& s) { return makeSolver(s, choice); }, probe);
+    row.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return row;
+}
+
+constexpr const char* kColumns =
+    "sweep,target,backend,precision,method,k_structural_N_per_m,mass_kg,damping_Ns_per_m,"
+    "lambda_gershgorin_N_per_m,lambda_power_N_per_m,predicted_safe_dt_s,predicted_tight_dt_s,"
+    "measured_dt_s,unstable_dt_s,status,measured_over_tight,trials,steps,wall_s\n";
+
+std::string csvRow(const Row& r) {
+    const Scene& s = r.point->scene;
+    const double tight = r.bound.tightDt(r.method);
+    const double measured = r.probe.stableDt > 0 ? r.probe.stableDt : NAN;
+    std::vector<std::string> cells{r.point->sweep, r.target.id(), backendName(r.target.backend),
+                                   precisionName(r.target.precision), methodName(r.method)};
+    for (double x : {s.springs.structural, s.cloth.mass, s.damping, r.bound.lambdaMax,
+                     r.bound.lambdaPower, r.bound.safeDt(r.method), tight, measured,
+                     r.probe.unstableDt > 0 ? r.probe.unstableDt : NAN})
+        cells.push_back(cell(x));
+    cells.insert(cells.end(),
+                 {probeStatusName(r.probe.status), cell(measured / tight),
+                  std::to_string(r.probe.trials), std::to_string(r.probe.steps), cell(r.wall)});
+    return join(cells, ',') + "\n";
+}
+
+void printRow(const Row& r) {
+    const Scene& s = r.point->scene;
+    const double x = r.point->sweep == "stiffness" ? s.springs.structural
+                     : r.point->sweep == "mass"    ? s.cloth.mass
+                                                   : s.damping;
+    std::printf("%-9s %-9.3g %-10s %-16s %-11.4g %-11.4g %-11.4g %-19s %4d %6.2f\n",
+                r.point->sweep.c_str(), x, r.target.id().c_str(), methodName(r.method),
+                r.probe.stableDt, r.bound.safeDt(r.method), r.bound.tightDt(r.method),
+                probeStatusName(r.probe.status), r.probe.trials, r.wall);
+    std::fflush(stdout);
+}
+
+void plotSweeps(const Options& o, const Scene& scene, const std::string& csv,
+                const std::vector<BenchTarget>& targets) {
+    for (const std::string& sweep : o.sweeps) {
+        const std::string stem =
+            outputPath(o.out, "stability_" + (sweep == "stiffness" ? "" : sweep + "_") + o.label);
+        const bool euler = sweep != "stiffness";
+        const auto files = plot("stability.gp", stem,
+                                {{"csv", csv},
+                                 {"sweep", sweep},
+                                 {"targets", targetIds(targets)},
+                                 {"methods", euler ? "explicit_euler" : methodNames(o.methods)},
+                                 {"title", scene.name + ": largest stable dt against " + sweep}});
+        for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());
+    }
+}
+
+}  // namespace
+
+int benchStabilityCommand(Args& args) {
+    Options o;
+    if (!parse(args, o)) {
+        std::fputs(kHelp, stdout);
+        return kOk;
+    }
+    const Scene scene = loadScene(o.scenePath, o.sets);
+    if (o.label.empty()) o.label = scene.name;
+    const std::string csv = outputPath(o.out, "stability_" + o.label + ".csv");
+    const std::vector<Point> points = sweepPoints(scene, o);
+    const auto targets = availableTargets(parseTargets("--backend", o.backend, {Precision::Double}),
+                                          scene, o.backend == "gpu", o.threads);
+    std::printf(
+        "%s: %d x %d vertices; trial %g s simulated, %ld..%ld steps, tolerance %g, "
+        "cap %g s\n",
+        scene.name.c_str(), scene.cloth.nu, scene.cloth.nv, o.probe.trialTime, o.probe.minSteps,
+        o.probe.maxSteps, o.probe.tolerance, o.probe.cap);
+    std::printf("%-9s %-9s %-10s %-16s %-11s %-11s %-11s %-19s %4s %6s\n", "sweep", "value",
+                "target", "method", "measured_s", "safe_s", "tight_s", "status", "runs", "wall");
+    std::string text = "# clothsim bench stability " + scene.source + ": trial " +
+                       cell(o.probe.trialTime) + " s simulated, steps " +
+                       std::to_string(o.probe.minSteps) + ".." + std::to_string(o.probe.maxSteps) +
+                       ", tolerance " + cell(o.probe.tolerance) + ", cap " + cell(o.probe.cap) +
+                       " s\n" + kColumns;
+    std::vector<Row> rows;
+    for (const Point& p : points)
+        for (const BenchTarget& t : targets)
+            for (Method m : p.methods) {
+                rows.push_back(measure(p, t, m, o));
+                printRow(rows.back());
+            }
+    // One curve's rows together (sweep, target, integrator), as the plot's lines need.
+    std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) {
+        return std::tie(a.point->sweep, a.target.backend, a.method) <
+               std::tie(b.point->sweep, b.target.backend, b.method);
+    });
+    for (const Row& r : rows) text += csvRow(r);
+    writeTextFile(csv, text);
+    std::printf("wrote %s\n", csv.c_str());
+    plotSweeps(o, scene, csv, targets);
+    return kOk;
+}
+
+}  // namespace cloth::app

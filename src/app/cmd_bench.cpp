@@ -1,0 +1,48 @@
+// clothsim bench accuracy|stability|speed (DESIGN.md §5): picks the benchmark.
+#include <cstdio>
+#include <cstring>
+
+#include "app/bench.h"
+#include "core/errors.h"
+
+namespace cloth::app {
+namespace {
+
+constexpr const char* kHelp = R"(usage: clothsim bench accuracy|stability|speed SCENE [options]
+
+  accuracy SCENE    error against a converged RK4 reference versus wall time, for every
+                    integrator, time step and backend: the CSV and a log-log plot of the
+                    Pareto front (error per cost)
+  stability SCENE   the largest stable time step of every integrator found by bisection,
+                    beside the predicted bounds, over stiffness (and mass and damping for
+                    explicit Euler): the CSV and log-log plots
+  speed             not built yet
+
+'clothsim bench accuracy --help' and 'clothsim bench stability --help' list the options.
+Results go to --out DIR (default bench/results) as CSV (header with units), PNG and SVG plots
+(drawn by gnuplot from bench/*.gp; without gnuplot only the CSV is written).
+
+exit codes: 0 ok, 1 internal error, 2 invalid input, 4 GPU asked for and unavailable
+)";
+
+}  // namespace
+
+int benchCommand(Args& args) {
+    const std::string which = args.done() ? "" : args.next();
+    if (which == "--help" || which == "-h") {
+        std::fputs(kHelp, stdout);
+        return kOk;
+    }
+    Args sub("bench " + which, [&] {
+        std::vector<std::string> rest;
+        while (!args.done()) rest.push_back(args.next());
+        return rest;
+    }());
+    if (which == "accuracy") return benchAccuracyCommand(sub);
+    if (which == "stability") return benchStabilityCommand(sub);
+    if (which == "speed") return notBuiltCommand(sub);
+    throw InputError("command line", which.empty() ? "bench" : which,
+                     "expected bench accuracy|stability|speed; see clothsim bench --help");
+}
+
+}  // namespace cloth::app
