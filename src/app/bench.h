@@ -41,6 +41,10 @@ std::vector<BenchTarget> availableTargets(std::vector<BenchTarget> targets, cons
 
 BackendChoice choiceFor(const BenchTarget& target, int threads);
 
+// Whether `target` runs `method` on `scene`: the GPU backend refuses (InputError) an integrator it
+// has no kernel for; that is said on stderr and the runs are skipped. Other errors propagate.
+bool runsMethod(const BenchTarget& target, const Scene& scene, Method method, int threads);
+
 // Creates `dir` (InputError naming --out when it cannot) and returns dir/name.
 std::string outputPath(const std::string& dir, const std::string& name);
 

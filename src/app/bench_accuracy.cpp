@@ -307,7 +307,8 @@ int benchAccuracyCommand(Args& args) {
     const StabilityBound bound = estimateStability(scene, 40);
     std::vector<Row> rows;
     for (const BenchTarget& t : targets)
-        for (Method m : o.methods)
+        for (Method m : o.methods) {
+            if (!runsMethod(t, scene, m, o.threads)) continue;
             for (double wanted : o.dts.empty() ? ladder(m, bound, time, o.rungs) : o.dts) {
                 const long n = std::max(1L, std::lround(time / wanted));
                 Scene s = scene;
@@ -319,6 +320,7 @@ int benchAccuracyCommand(Args& args) {
                 printRow(row);
                 rows.push_back(std::move(row));
             }
+        }
     std::string text = "# clothsim bench accuracy " + scene.source + ", t = " + cell(time) +
                        " s, extent " + cell(extent) + " m\n# " + referenceLine(ref) + "\n" +
                        kColumns;

@@ -78,6 +78,20 @@ BackendChoice choiceFor(const BenchTarget& target, int threads) {
     return BackendChoice{target.backend, target.precision, threads};
 }
 
+bool runsMethod(const BenchTarget& target, const Scene& scene, Method method, int threads) {
+    if (target.backend != Backend::Gpu) return true;
+    Scene s = scene;
+    s.integrator.method = method;
+    try {
+        makeSolver(s, choiceFor(target, threads));
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "clothsim bench: skipping %s on %s: %s\n", methodName(method),
+                     target.id().c_str(), e.what());
+        return false;
+    }
+    return true;
+}
+
 std::vector<BenchTarget> availableTargets(std::vector<BenchTarget> targets, const Scene& scene,
                                           bool gpuOnly, int threads) {
     std::vector<BenchTarget> kept;

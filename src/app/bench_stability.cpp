@@ -283,6 +283,7 @@ int benchStabilityCommand(Args& args) {
     for (const Point& p : points)
         for (const BenchTarget& t : targets)
             for (Method m : p.methods) {
+                if (!runsMethod(t, p.scene, m, o.threads)) continue;
                 rows.push_back(measure(p, t, m, o));
                 printRow(rows.back());
             }

@@ -96,6 +96,7 @@ TEST(BenchAccuracy, ReportsTheReferenceHalvingCheck) {
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     EXPECT_TRUE(contains(r.out, "reference: rk4 cpu double, dt = ")) << r.out;
     EXPECT_TRUE(contains(r.out, "halving dt changed the positions by ")) << r.out;
+    EXPECT_TRUE(contains(r.out, "(< 1e-09: converged)")) << r.out;
     const Csv csv = readCsv(d / "accuracy_spring.csv");
     ASSERT_EQ(csv.comments.size(), 2u);
     EXPECT_TRUE(contains(csv.comments[1], "halving dt changed the positions by"));
@@ -124,6 +125,20 @@ TEST(BenchStability, ExplicitEulerOnTheSpringMeetsMuOverK) {
         EXPECT_NEAR(std::stod(row.at("predicted_tight_dt_s")), mu / k, 1e-9);
     }
     EXPECT_TRUE(fs::exists(d / "stability_spring.png") || contains(r.err, "gnuplot"));
+}
+
+TEST(BenchStability, ImplicitEulerIsReportedStableToTheCap) {
+    const fs::path d = tempDir("cap");
+    const auto r = runProcess({kExe, "bench", "stability", kScenes + "spring.json", "--backend",
+                               "cpu", "--methods", "implicit_euler", "--sweeps", "stiffness",
+                               "--stiffness", "100", "--cap", "0.05", "--out", d.string()},
+                              120);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    const Csv csv = readCsv(d / "stability_spring.csv");
+    ASSERT_EQ(csv.rows.size(), 1u);
+    EXPECT_EQ(csv.rows[0].at("predicted_tight_dt_s"), "");  // no predicted bound
+    EXPECT_EQ(csv.rows[0].at("status"), "stable_to_cap");
+    EXPECT_EQ(csv.rows[0].at("measured_dt_s"), "0.05");
 }
 
 TEST(BenchPlots, WithoutGnuplotTheCsvIsStillWrittenAndTheReasonSaid) {
