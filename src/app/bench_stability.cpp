@@ -239,6 +239,9 @@ void printRow(const Row& r) {
 
 void plotSweeps(const Options& o, const Scene& scene, const std::string& csv,
                 const std::vector<BenchTarget>& targets) {
+    // The mass and damping sweeps keep λ: their predicted bound min(μ/λ, 2m/μ) is drawn as a
+    // curve, kink included, from these.
+    const StabilityBound b = estimateStability(scene, 40);
     for (const std::string& sweep : o.sweeps) {
         const std::string stem =
             outputPath(o.out, "stability_" + (sweep == "stiffness" ? "" : sweep + "_") + o.label);
@@ -248,6 +251,10 @@ void plotSweeps(const Options& o, const Scene& scene, const std::string& csv,
                                  {"sweep", sweep},
                                  {"targets", targetIds(targets)},
                                  {"methods", euler ? "explicit_euler" : methodNames(o.methods)},
+                                 {"lambda_safe", cell(b.lambdaMax)},
+                                 {"lambda_tight", cell(b.lambdaPower)},
+                                 {"mass", cell(scene.cloth.mass)},
+                                 {"damping", cell(scene.damping)},
                                  {"title", scene.name + ": largest stable dt against " + sweep}});
         for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());
     }
