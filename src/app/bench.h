@@ -2,6 +2,7 @@
 // number lists, the backends to run), the output folder, the CSV file and the gnuplot call.
 #pragma once
 
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,6 +46,15 @@ BackendChoice choiceFor(const BenchTarget& target, int threads);
 // has no kernel for; that is said on stderr and the runs are skipped. Other errors propagate.
 bool runsMethod(const BenchTarget& target, const Scene& scene, Method method, int threads);
 
+// runsMethod asked once per target and integrator: the answer does not change along a sweep.
+class MethodSupport {
+public:
+    bool runs(const BenchTarget& target, const Scene& scene, Method method, int threads);
+
+private:
+    std::map<std::pair<std::string, Method>, bool> known_;
+};
+
 // Creates `dir` (InputError naming --out when it cannot) and returns dir/name.
 std::string outputPath(const std::string& dir, const std::string& name);
 
@@ -60,11 +70,19 @@ std::string join(const std::vector<std::string>& items, char separator);
 std::string targetIds(const std::vector<BenchTarget>& targets);  // "cpu_double gpu_float"
 std::string methodNames(const std::vector<Method>& methods);     // "explicit_euler rk4"
 
+// The curves of a plot, one per (integrator, target) that has rows, as the word lists the plot
+// scripts take: series_methods, series_targets, series_colours (the integrator's place in
+// kMethods, so that a colour means the same integrator in every plot) and series_styles (1 cpu
+// double, 2 cpu float, 3 gpu float: dash and point type); methods, method_colours and
+// method_targets (its first curve's) likewise for the integrators alone.
+using PlotVars = std::vector<std::pair<std::string, std::string>>;
+PlotVars seriesVars(const std::vector<std::pair<Method, BenchTarget>>& curves);
+
 // Runs bench/`script` with gnuplot, once for PNG and once for SVG, into `outStem`.png/.svg, with
 // `vars` set as gnuplot string variables. Returns the files written, or prints why not (gnuplot
 // missing or failing) on stderr and returns none: the CSV stands on its own.
 std::vector<std::string> plot(const std::string& script, const std::string& outStem,
-                              const std::vector<std::pair<std::string, std::string>>& vars);
+                              const PlotVars& vars);
 
 // bench/ of the project: CLOTH_BENCH_DIR, else bench/ next to the executable, else the source
 // tree's.

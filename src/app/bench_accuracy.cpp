@@ -266,19 +266,23 @@ std::string referenceLine(const Reference& ref) {
 }
 
 void plotRows(const Options& o, const Scene& scene, const std::string& csv,
-              const std::vector<BenchTarget>& targets, const std::vector<Row>& rows, double time) {
+              const std::vector<Row>& rows, double time) {
     double worst = 0;
-    for (const Row& r : rows)
+    std::vector<std::pair<Method, BenchTarget>> curves;
+    for (const Row& r : rows) {
         if (std::isfinite(r.rms)) worst = std::max(worst, r.rms);
+        if (curves.empty() || curves.back().first != r.method ||
+            curves.back().second.id() != r.target.id())
+            curves.emplace_back(r.method, r.target);
+    }
     const double top = worst > 0 ? std::pow(10.0, std::ceil(std::log10(worst)) + 1) : 1;
-    const auto files =
-        plot("accuracy.gp", outputPath(o.out, "accuracy_" + o.label),
-             {{"csv", csv},
-              {"targets", targetIds(targets)},
-              {"methods", methodNames(o.methods)},
-              {"unstable_y", cell(top)},
-              {"title", scene.name + ": position error at t = " + cell(time) + " s against cost"}});
-    for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());
+    PlotVars vars = seriesVars(curves);
+    vars.insert(vars.end(), {{"csv", csv},
+                             {"unstable_y", cell(top)},
+                             {"title", scene.name + ": position error at t = " + cell(time) +
+                                           " s against cost"}});
+    for (const std::string& f : plot("accuracy.gp", outputPath(o.out, "accuracy_" + o.label), vars))
+        std::printf("wrote %s\n", f.c_str());
 }
 
 }  // namespace
@@ -327,7 +331,7 @@ int benchAccuracyCommand(Args& args) {
     for (const Row& r : rows) text += csvRow(r);
     writeTextFile(csv, text);
     std::printf("wrote %s\n", csv.c_str());
-    plotRows(o, scene, csv, targets, rows, time);
+    plotRows(o, scene, csv, rows, time);
     return kOk;
 }
 

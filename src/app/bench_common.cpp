@@ -2,6 +2,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -90,6 +91,14 @@ bool runsMethod(const BenchTarget& target, const Scene& scene, Method method, in
         return false;
     }
     return true;
+}
+
+bool MethodSupport::runs(const BenchTarget& target, const Scene& scene, Method method,
+                         int threads) {
+    const auto key = std::make_pair(target.id(), method);
+    const auto it = known_.find(key);
+    if (it != known_.end()) return it->second;
+    return known_[key] = runsMethod(target, scene, method, threads);
 }
 
 std::vector<BenchTarget> availableTargets(std::vector<BenchTarget> targets, const Scene& scene,
@@ -204,8 +213,36 @@ int spawn(const std::vector<std::string>& argv) {
 
 }  // namespace
 
+PlotVars seriesVars(const std::vector<std::pair<Method, BenchTarget>>& curves) {
+    auto colour = [](Method m) {
+        return std::to_string(std::find(std::begin(kMethods), std::end(kMethods), m) -
+                              std::begin(kMethods) + 1);
+    };
+    std::vector<std::string> methods, targets, colours, styles;
+    std::vector<std::string> uniqueMethods, uniqueColours, uniqueTargets;
+    for (const auto& [m, t] : curves) {
+        methods.push_back(methodName(m));
+        targets.push_back(t.id());
+        colours.push_back(colour(m));
+        styles.push_back(t.backend == Backend::Gpu          ? "3"
+                         : t.precision == Precision::Double ? "1"
+                                                            : "2");
+        if (std::find(uniqueMethods.begin(), uniqueMethods.end(), methods.back()) ==
+            uniqueMethods.end()) {
+            uniqueMethods.push_back(methods.back());
+            uniqueColours.push_back(colours.back());
+            uniqueTargets.push_back(targets.back());
+        }
+    }
+    return {
+        {"series_methods", join(methods, ' ')},      {"series_targets", join(targets, ' ')},
+        {"series_colours", join(colours, ' ')},      {"series_styles", join(styles, ' ')},
+        {"methods", join(uniqueMethods, ' ')},       {"method_colours", join(uniqueColours, ' ')},
+        {"method_targets", join(uniqueTargets, ' ')}};
+}
+
 std::vector<std::string> plot(const std::string& script, const std::string& outStem,
-                              const std::vector<std::pair<std::string, std::string>>& vars) {
+                              const PlotVars& vars) {
     const std::string path = (fs::path(benchScriptDir()) / script).string();
     std::vector<std::string> written;
     for (const char* format : {"png", "svg"}) {

@@ -238,25 +238,28 @@ void printRow(const Row& r) {
 }
 
 void plotSweeps(const Options& o, const Scene& scene, const std::string& csv,
-                const std::vector<BenchTarget>& targets) {
+                const std::vector<Row>& rows) {
     // The mass and damping sweeps keep λ: their predicted bound min(μ/λ, 2m/μ) is drawn as a
     // curve, kink included, from these.
     const StabilityBound b = estimateStability(scene, 40);
     for (const std::string& sweep : o.sweeps) {
-        const std::string stem =
-            outputPath(o.out, "stability_" + (sweep == "stiffness" ? "" : sweep + "_") + o.label);
-        const bool euler = sweep != "stiffness";
-        const auto files = plot("stability.gp", stem,
-                                {{"csv", csv},
+        std::vector<std::pair<Method, BenchTarget>> curves;
+        for (const Row& r : rows)  // sorted by sweep, target, integrator
+            if (r.point->sweep == sweep && (curves.empty() || curves.back().first != r.method ||
+                                            curves.back().second.id() != r.target.id()))
+                curves.emplace_back(r.method, r.target);
+        PlotVars vars = seriesVars(curves);
+        vars.insert(vars.end(), {{"csv", csv},
                                  {"sweep", sweep},
-                                 {"targets", targetIds(targets)},
-                                 {"methods", euler ? "explicit_euler" : methodNames(o.methods)},
                                  {"lambda_safe", cell(b.lambdaMax)},
                                  {"lambda_tight", cell(b.lambdaPower)},
                                  {"mass", cell(scene.cloth.mass)},
                                  {"damping", cell(scene.damping)},
                                  {"title", scene.name + ": largest stable dt against " + sweep}});
-        for (const std::string& f : files) std::printf("wrote %s\n", f.c_str());
+        const std::string stem =
+            outputPath(o.out, "stability_" + (sweep == "stiffness" ? "" : sweep + "_") + o.label);
+        for (const std::string& f : plot("stability.gp", stem, vars))
+            std::printf("wrote %s\n", f.c_str());
     }
 }
 
@@ -287,10 +290,11 @@ int benchStabilityCommand(Args& args) {
                        ", tolerance " + cell(o.probe.tolerance) + ", cap " + cell(o.probe.cap) +
                        " s\n" + kColumns;
     std::vector<Row> rows;
+    MethodSupport support;
     for (const Point& p : points)
         for (const BenchTarget& t : targets)
             for (Method m : p.methods) {
-                if (!runsMethod(t, p.scene, m, o.threads)) continue;
+                if (!support.runs(t, p.scene, m, o.threads)) continue;
                 rows.push_back(measure(p, t, m, o));
                 printRow(rows.back());
             }
@@ -302,7 +306,7 @@ int benchStabilityCommand(Args& args) {
     for (const Row& r : rows) text += csvRow(r);
     writeTextFile(csv, text);
     std::printf("wrote %s\n", csv.c_str());
-    plotSweeps(o, scene, csv, targets);
+    plotSweeps(o, scene, csv, rows);
     return kOk;
 }
 
