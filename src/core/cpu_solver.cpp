@@ -53,7 +53,10 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
     const int t = int(std::min<std::int64_t>(chooseThreads(threads, n), chunks));
     for (int b = 0; b < t; ++b)
         bands_.push_back(Band{std::min(n, chunks * b / t * kChunk),
-                              std::min(n, chunks * (b + 1) / t * kChunk), -1, {}, 0});
+                              std::min(n, chunks * (b + 1) / t * kChunk),
+                              -1,
+                              {},
+                              0});
     pool_ = std::make_unique<WorkerPool>(t);
 }
 
@@ -333,15 +336,14 @@ double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value
 template <typename T>
 void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
                                  std::vector<Vec3<T>>& out) {
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), p.data(), pinned_.data(),
-                     out.data(), band.begin, band.end);
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), p.data(), pinned_.data(), out.data(),
+                     band.begin, band.end);
     const T h2 = dt_t_ * dt_t_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         if (pinned_[k]) continue;
         out[k] = (T(1) / inverseMass_[k] + dt_t_ * damping_) * p[k] + h2 * out[k];
     }
-    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end &&
-        !pinned_[grab_->vertex])
+    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
         out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
 }
 
@@ -352,14 +354,14 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     computeForces(band.begin, band.end);
     const T h = dt_t_;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), v_.data(), pinned_.data(),
-                     ap_.data(), band.begin, band.end);
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), v_.data(), pinned_.data(), ap_.data(),
+                     band.begin, band.end);
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end)
         ap_[grab_->vertex] += grab_->stiffness * v_[grab_->vertex];
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> b = pinned_[k] ? Vec3<T>(0)
-                                     : h * (f_[k] - damping_ * v_[k] + gravity_ / inverseMass_[k] -
-                                            h * ap_[k]);
+        const Vec3<T> b =
+            pinned_[k] ? Vec3<T>(0)
+                       : h * (f_[k] - damping_ * v_[k] + gravity_ / inverseMass_[k] - h * ap_[k]);
         dv_[k] = Vec3<T>(0);
         r_[k] = b;
         p_[k] = b;
