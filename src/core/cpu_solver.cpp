@@ -176,7 +176,7 @@ Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) const {
 
 // Pins, then colliders in scene order (DESIGN.md §2), then the instability check.
 template <typename T>
-bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
+inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
     if (pinned_[k]) {
         p = pinPosition_[k];
         v = Vec3<T>(0);
@@ -186,18 +186,24 @@ bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v
     x_[k] = p;
     v_[k] = v;
     const T speed2 = glm::dot(v, v);
-    const bool finite = std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2);
-    if (finite && !(speed2 > maxSpeed2_)) return true;
+    if (std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2) && !(speed2 > maxSpeed2_))
+        return true;
+    reportBad(band, k, p, speed2);
+    return false;  // the rest of the band is not advanced: the run stops at this step
+}
+
+// Out of the hot loop: the message for the first bad vertex of a band.
+template <typename T>
+void CpuSolver<T>::reportBad(Band& band, std::int64_t k, const Vec3<T>& p, T speed2) const {
     char buf[160];
     const int i = int(k % grid_.nu), j = int(k / grid_.nu);
-    if (!finite)
+    if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2))
         std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
     else
         std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
                       double(std::sqrt(speed2)), maxSpeed_, i, j);
     band.badVertex = k;
     band.reason = buf;
-    return false;  // the rest of the band is not advanced: the run stops at this step
 }
 
 template <typename T>
