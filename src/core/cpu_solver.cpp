@@ -53,7 +53,10 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
     const int t = int(std::min<std::int64_t>(chooseThreads(threads, n), chunks));
     for (int b = 0; b < t; ++b)
         bands_.push_back(Band{std::min(n, chunks * b / t * kChunk),
-                              std::min(n, chunks * (b + 1) / t * kChunk), -1, {}, 0});
+                              std::min(n, chunks * (b + 1) / t * kChunk),
+                              -1,
+                              {},
+                              0});
     pool_ = std::make_unique<WorkerPool>(t);
 }
 
@@ -173,7 +176,7 @@ Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) const {
 
 // Pins, then colliders in scene order (DESIGN.md §2), then the instability check.
 template <typename T>
-bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
+inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
     if (pinned_[k]) {
         p = pinPosition_[k];
         v = Vec3<T>(0);
@@ -183,18 +186,24 @@ bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v
     x_[k] = p;
     v_[k] = v;
     const T speed2 = glm::dot(v, v);
-    const bool finite = std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2);
-    if (finite && !(speed2 > maxSpeed2_)) return true;
+    if (std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2) && !(speed2 > maxSpeed2_))
+        return true;
+    reportBad(band, k, p, speed2);
+    return false;  // the rest of the band is not advanced: the run stops at this step
+}
+
+// Out of the hot loop: the message for the first bad vertex of a band.
+template <typename T>
+void CpuSolver<T>::reportBad(Band& band, std::int64_t k, const Vec3<T>& p, T speed2) const {
     char buf[160];
     const int i = int(k % grid_.nu), j = int(k / grid_.nu);
-    if (!finite)
+    if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2))
         std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
     else
         std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
                       double(std::sqrt(speed2)), maxSpeed_, i, j);
     band.badVertex = k;
     band.reason = buf;
-    return false;  // the rest of the band is not advanced: the run stops at this step
 }
 
 template <typename T>
@@ -333,15 +342,14 @@ double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value
 template <typename T>
 void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
                                  std::vector<Vec3<T>>& out) {
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), p.data(), pinned_.data(),
-                     out.data(), band.begin, band.end);
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), p.data(), pinned_.data(), out.data(),
+                     band.begin, band.end);
     const T h2 = dt_t_ * dt_t_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         if (pinned_[k]) continue;
         out[k] = (T(1) / inverseMass_[k] + dt_t_ * damping_) * p[k] + h2 * out[k];
     }
-    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end &&
-        !pinned_[grab_->vertex])
+    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
         out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
 }
 
@@ -352,14 +360,14 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     computeForces(band.begin, band.end);
     const T h = dt_t_;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), v_.data(), pinned_.data(),
-                     ap_.data(), band.begin, band.end);
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), v_.data(), pinned_.data(), ap_.data(),
+                     band.begin, band.end);
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end)
         ap_[grab_->vertex] += grab_->stiffness * v_[grab_->vertex];
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> b = pinned_[k] ? Vec3<T>(0)
-                                     : h * (f_[k] - damping_ * v_[k] + gravity_ / inverseMass_[k] -
-                                            h * ap_[k]);
+        const Vec3<T> b =
+            pinned_[k] ? Vec3<T>(0)
+                       : h * (f_[k] - damping_ * v_[k] + gravity_ / inverseMass_[k] - h * ap_[k]);
         dv_[k] = Vec3<T>(0);
         r_[k] = b;
         p_[k] = b;

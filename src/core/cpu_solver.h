@@ -62,6 +62,8 @@ private:
     bool stepImplicit(Band& band, const Team& team, long stepNumber);
     // The end of every step: pins, colliders in scene order, then the instability check.
     bool finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
+    [[gnu::cold, gnu::noinline]] void reportBad(Band& band, std::int64_t k, const Vec3<T>& p,
+                                                T speed2) const;
     Vec3<T> acceleration(std::int64_t k, const Vec3<T>& v) const;
     // Σ over all vertices of one value per vertex, the same bits whatever the thread count:
     // fixed chunks summed in order.

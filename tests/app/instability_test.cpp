@@ -222,10 +222,10 @@ TEST(Instability, EachExplicitIntegratorPastItsBoundExitsThree) {
         for (double factor : {0.8, 1.5}) {
             char dt[64];
             std::snprintf(dt, sizeof dt, "integrator.dt=%.9g", factor * x.bound);
-            const ProcessResult r =
-                runProcess({kExe, "run", spring, "--quiet", "--steps", "20000", "--set", "max_speed=5", "--set",
-                            std::string("integrator.method=\"") + x.method + "\"", "--set", dt},
-                           kTimeout);
+            const ProcessResult r = runProcess(
+                {kExe, "run", spring, "--quiet", "--steps", "20000", "--set", "max_speed=5",
+                 "--set", std::string("integrator.method=\"") + x.method + "\"", "--set", dt},
+                kTimeout);
             if (factor < 1) {
                 EXPECT_EQ(r.exitCode, 0) << x.method << "\n" << test::describe(r);
                 continue;

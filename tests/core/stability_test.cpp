@@ -13,8 +13,7 @@
 namespace cloth {
 namespace {
 
-Scene spring(double k, double mu, double m, double dt,
-             Method method = Method::ExplicitEuler) {
+Scene spring(double k, double mu, double m, double dt, Method method = Method::ExplicitEuler) {
     char text[600];
     std::snprintf(text, sizeof text,
                   R"({"cloth": {"resolution": [1, 2], "size": [1, 1], "u_axis": [1, 0, 0],
