@@ -84,7 +84,7 @@ Trial prepareTrial(const Scene& linear, Solver& solver, const ProbeOptions& o) {
     t.start.velocities = kickVelocities(linear, t.pinned, o);
     double fastest = 0;
     for (const glm::dvec3& v : t.start.velocities) fastest = std::max(fastest, glm::length(v));
-    t.scene.maxSpeed = kRunaway * fastest;
+    t.scene.maxSpeed = fastest * std::min(kRunaway, kLinearReach / o.kick);
     t.qStart = explicitEulerEnergy(t, t.start);
     return t;
 }

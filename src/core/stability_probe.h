@@ -4,7 +4,9 @@
 // (the rest state is then an equilibrium) from a small velocity kick along the stiffest mode.
 //
 // A trial at Δt is unstable when, within its steps, the state runs away (a position or velocity
-// is not finite, or a speed exceeds kRunaway times the kick), or, for explicit Euler only, when
+// is not finite, or a speed exceeds kRunaway times the kick's, or the speed of a displacement of
+// kLinearReach of the shortest spring if that is lower: past it the spring is no longer linear
+// and an unstable mode grows more slowly), or, for explicit Euler only, when
 // its discrete energy Q grows. Explicit Euler leaves its bound slowly (a mode grows by
 // c·Δt·ε/2 per step at Δt = (1 + ε)·μ/λ, c = μ/m), far too slowly to run away in a short trial;
 // but for one mode of H, Q = |v|² + c⟨x, v⟩ + ⟨x, H x⟩/m (x the displacement from rest) obeys
@@ -21,8 +23,10 @@
 
 namespace cloth {
 
-// Speed, in multiples of the kick's largest speed, at which a trial counts as a runaway.
+// Speed, in multiples of the kick's largest speed, at which a trial counts as a runaway, and the
+// displacement (a fraction of the shortest rest length) whose speed caps it.
 inline constexpr double kRunaway = 1e4;
+inline constexpr double kLinearReach = 0.1;
 
 struct ProbeOptions {
     double trialTime = 0.5;   // simulated time of one trial [s] ...
