@@ -33,7 +33,7 @@ stable(i, col) = mine(i) && strcol('status') eq 'stable' ? column(col) : NaN
 unstableCost(i) = mine(i) && strcol('status') eq 'unstable' ? column('wall_per_sim_s') : NaN
 
 plot for [i=1:n] csv using (stable(i, 'wall_per_sim_s')):(stable(i, 'pos_rms_err_rel')) \
-         with linespoints lc (colour(i)) dt (style(i)) pt (2 * style(i) + 5) lw 1.5 \
+         with linespoints lc (colour(i)) dt style(i) pt (2 * style(i) + 5) lw 1.5 \
          title method(i).' '.target(i), \
      for [i=1:n] csv using (unstableCost(i)):(real(unstable_y)) \
          with points lc (colour(i)) pt 2 ps 2 notitle, \

@@ -285,6 +285,30 @@ void plotRows(const Options& o, const Scene& scene, const std::string& csv,
         std::printf("wrote %s\n", f.c_str());
 }
 
+// Every target × integrator × Δt, each Δt rounded to divide `time`, measured against `ref`.
+std::vector<Row> runAll(const Options& o, const Scene& scene,
+                        const std::vector<BenchTarget>& targets, const Reference& ref, double time,
+                        double extent) {
+    const StabilityBound bound = estimateStability(scene, 40);
+    std::vector<Row> rows;
+    for (const BenchTarget& t : targets)
+        for (Method m : o.methods) {
+            if (!runsMethod(t, scene, m, o.threads)) continue;
+            for (double wanted : o.dts.empty() ? ladder(m, bound, time, o.rungs) : o.dts) {
+                const long n = std::max(1L, std::lround(time / wanted));
+                Scene s = scene;
+                s.integrator.method = m;
+                s.integrator.dt = time / double(n);
+                Row row{t, m, s.integrator.dt, bound.tightDt(m),
+                        timedRun(s, choiceFor(t, o.threads), n, o.quick ? 0.005 : 0.05)};
+                measureErrors(row, scene, ref, extent);
+                printRow(row);
+                rows.push_back(std::move(row));
+            }
+        }
+    return rows;
+}
+
 }  // namespace
 
 int benchAccuracyCommand(Args& args) {
@@ -308,23 +332,7 @@ int benchAccuracyCommand(Args& args) {
                 scene.cloth.nu, scene.cloth.nv, time, extent, referenceLine(ref).c_str(), ref.wall);
     std::printf("%-11s %-16s %-10s %-9s %-9s %-10s %-10s %-10s %-10s\n", "target", "method", "dt_s",
                 "steps", "status", "rms/ext", "max/ext", "strain_err", "wall/sim_s");
-    const StabilityBound bound = estimateStability(scene, 40);
-    std::vector<Row> rows;
-    for (const BenchTarget& t : targets)
-        for (Method m : o.methods) {
-            if (!runsMethod(t, scene, m, o.threads)) continue;
-            for (double wanted : o.dts.empty() ? ladder(m, bound, time, o.rungs) : o.dts) {
-                const long n = std::max(1L, std::lround(time / wanted));
-                Scene s = scene;
-                s.integrator.method = m;
-                s.integrator.dt = time / double(n);
-                Row row{t, m, s.integrator.dt, bound.tightDt(m),
-                        timedRun(s, choiceFor(t, o.threads), n, o.quick ? 0.005 : 0.05)};
-                measureErrors(row, scene, ref, extent);
-                printRow(row);
-                rows.push_back(std::move(row));
-            }
-        }
+    const std::vector<Row> rows = runAll(o, scene, targets, ref, time, extent);
     std::string text = "# clothsim bench accuracy " + scene.source + ", t = " + cell(time) +
                        " s, extent " + cell(extent) + " m\n# " + referenceLine(ref) + "\n" +
                        kColumns;

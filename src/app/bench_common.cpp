@@ -259,6 +259,8 @@ std::vector<std::string> plot(const std::string& script, const std::string& outS
         if (status != 0) {
             std::fprintf(stderr, "clothsim bench: gnuplot %s failed (status %d); no %s plot\n",
                          path.c_str(), status, format);
+            std::error_code ec;
+            fs::remove(file, ec);  // what a failed run left behind is no plot
             continue;
         }
         written.push_back(file);
