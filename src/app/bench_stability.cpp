@@ -219,9 +219,10 @@ std::string csvRow(const Row& r) {
                      r.bound.lambdaPower, r.bound.safeDt(r.method), tight, measured,
                      r.probe.unstableDt > 0 ? r.probe.unstableDt : NAN})
         cells.push_back(cell(x));
+    const double ratio = std::isfinite(tight) && tight > 0 ? measured / tight : NAN;
     cells.insert(cells.end(),
-                 {probeStatusName(r.probe.status), cell(measured / tight),
-                  std::to_string(r.probe.trials), std::to_string(r.probe.steps), cell(r.wall)});
+                 {probeStatusName(r.probe.status), cell(ratio), std::to_string(r.probe.trials),
+                  std::to_string(r.probe.steps), cell(r.wall)});
     return join(cells, ',') + "\n";
 }
 
