@@ -210,6 +210,19 @@ void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
     }
 }
 
+std::size_t GpuSolver::bufferBytes() const {
+    context_.makeCurrent();
+    std::size_t bytes = 0;
+    for (unsigned b : buffers_) {
+        if (b == 0) continue;
+        GLint64 size = 0;
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+        glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &size);
+        bytes += std::size_t(size);
+    }
+    return bytes;
+}
+
 gpu::Status GpuSolver::readStatus() const {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     gpu::Status s{};

@@ -48,6 +48,9 @@ public:
     double lastSecondsPerStep() const { return secondsPerStep_; }
     const char* timingSource() const { return timedByQuery_ ? "GL timer query" : "wall clock"; }
     WorkGroup workGroup() const { return workGroup_; }
+    // Bytes of GPU memory in the solver's buffers: the state, the tables and the integrator's
+    // own (RK4's stages, the CG's vectors), which only a scene with that integrator allocates.
+    std::size_t bufferBytes() const;
 
 private:
     struct PinSlot {
