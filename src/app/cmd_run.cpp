@@ -142,6 +142,7 @@ int runCommand(Args& args) {
     const double wall = std::chrono::duration<double>(Clock::now() - start).count();
     progress.finish();
 
+    reportSolveMisses(scene, *solver);
     const SimState state = solver->read();
     if (!o.csv.empty()) writeCsv(o.csv, state, precision);
     if (!o.obj.empty()) writeObj(o.obj, state, scene.name);
@@ -154,6 +155,10 @@ int runCommand(Args& args) {
             std::printf("gpu time %.4g ms/step (%s), %.3g vertex-steps/s of GPU time\n",
                         1e3 * deviceSeconds / double(total), deviceTimingSource(*solver).c_str(),
                         vertexSteps / deviceSeconds);
+        const SolveStats& cg = solver->solveStats();
+        if (cg.solves > 0)
+            std::printf("implicit solve: %ld CG solves, %.1f iterations on average, at most %d\n",
+                        cg.solves, double(cg.iterations) / double(cg.solves), cg.mostIterations);
         for (const std::string* f : {&o.csv, &o.obj})
             if (!f->empty()) std::printf("wrote %s\n", f->c_str());
         if (!o.framesDir.empty())

@@ -101,3 +101,18 @@ std::string gpuDescription() {
 }
 
 }  // namespace cloth::app
+
+namespace cloth::app {
+
+void reportSolveMisses(const Scene& scene, const Solver& solver) {
+    const SolveStats& s = solver.solveStats();
+    if (s.misses == 0) return;
+    std::fprintf(stderr,
+                 "clothsim: %s: warning: %ld of %ld implicit solves stopped at "
+                 "integrator.max_iterations = %d before |r| <= %g |b| (first at step %ld, worst "
+                 "relative residual %.3g); raise integrator.max_iterations or lower dt\n",
+                 scene.source.c_str(), s.misses, s.solves, scene.integrator.maxIterations,
+                 scene.integrator.tolerance, s.firstMissStep, s.worstResidual);
+}
+
+}  // namespace cloth::app

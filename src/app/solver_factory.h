@@ -32,6 +32,9 @@ std::string deviceTimingSource(const Solver& solver);
 
 // Says on stderr that the run became unstable (DESIGN.md §5, exit 3): the step or step range,
 // the simulated time, what went wrong, a stable Δt or damping, and `consequence`.
+// A warning on stderr when implicit Euler's CG stopped at its cap in any step (never silent).
+void reportSolveMisses(const Scene& scene, const Solver& solver);
+
 void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r,
                     const std::string& consequence);
 

@@ -77,14 +77,26 @@ void runControls(ViewerSession& session, ViewerUi& ui) {
     }
 }
 
-// Δt and substeps, with the stability bound of DESIGN.md §2 and a warning before it is crossed.
+// The integrator (docs/integrators.md), Δt and substeps, with the stability bound of
+// DESIGN.md §2 and a warning before it is crossed.
 bool timeSection(ViewerParams& p) {
     IntegratorSpec& in = p.scene.integrator;
-    bool changed = logSlider("dt [s]", in.dt, 1e-6, 1e-2, "%.3e");
+    bool changed = false;
+    if (ImGui::BeginCombo("integrator", methodName(in.method))) {
+        for (Method m : kMethods)
+            if (ImGui::Selectable(methodName(m), m == in.method) && m != in.method) {
+                in.method = m;
+                changed = true;
+            }
+        ImGui::EndCombo();
+    }
+    changed |= logSlider("dt [s]", in.dt, 1e-6, 1e-1, "%.3e");
     changed |= ImGui::SliderInt("substeps", &in.substeps, 1, 2000, "%d",
                                 ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
     const double bound = stableDt(p.effective());
-    if (bound <= 0) {
+    if (std::isinf(bound)) {
+        ImGui::Text("stable at any dt (linearised); CG tolerance %.0e", in.tolerance);
+    } else if (bound <= 0) {
         ImGui::TextColored(kWarn, "no stable dt: explicit Euler needs damping > 0");
     } else if (in.dt >= bound) {
         ImGui::TextColored(kError, "dt %.3g s is past the stability bound %.3g s", in.dt, bound);

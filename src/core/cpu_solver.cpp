@@ -17,6 +17,9 @@ Vec3<T> cast(const glm::dvec3& v) {
 
 // Vertices below this count run on one thread: a barrier costs more than their whole step.
 constexpr std::int64_t kMinVerticesPerThread = 4096;
+// reduce() sums chunks of this many vertices, each in order, then the chunks in order; bands
+// start on chunk boundaries, so a dot product has the same bits for any thread count.
+constexpr std::int64_t kChunk = 1024;
 
 int chooseThreads(int requested, std::int64_t vertices) {
     if (requested > 0) return requested;
@@ -39,9 +42,21 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
     pinned_.assign(n, 0);
     pinPosition_ = x_;
     for (const Pin& p : scene.pins) pinned_[grid_.index(p.i, p.j)] = 1;
+    method_ = scene.integrator.method;
     takeParameters(scene);
-    const int t = chooseThreads(threads, n);
-    for (int b = 0; b < t; ++b) bands_.push_back(Band{n * b / t, n * (b + 1) / t, -1, {}});
+    if (method_ == Method::Rk4)
+        for (auto* a : {&x0_, &v0_, &sumX_, &sumV_}) a->assign(n, Vec3<T>(0));
+    if (method_ == Method::ImplicitEuler)
+        for (auto* a : {&dv_, &r_, &p_, &ap_}) a->assign(n, Vec3<T>(0));
+    const std::int64_t chunks = (n + kChunk - 1) / kChunk;
+    for (auto& p : partials_) p.assign(std::size_t(chunks), 0.0);
+    const int t = int(std::min<std::int64_t>(chooseThreads(threads, n), chunks));
+    for (int b = 0; b < t; ++b)
+        bands_.push_back(Band{std::min(n, chunks * b / t * kChunk),
+                              std::min(n, chunks * (b + 1) / t * kChunk),
+                              -1,
+                              {},
+                              0});
     pool_ = std::make_unique<WorkerPool>(t);
 }
 
@@ -50,13 +65,10 @@ template <typename T>
 void CpuSolver<T>::takeParameters(const Scene& scene) {
     grid_ = scene.grid();
     Solver::dt_ = scene.integrator.dt;
-    springs_.clear();
-    for (const SpringOffset& o : kSpringOffsets) {
-        const double k = scene.springs.of(o.family);
-        if (k > 0)
-            springs_.push_back({o.di, o.dj, std::int64_t(o.dj) * grid_.nu + o.di, T(k),
-                                T(grid_.restLength(o.di, o.dj))});
-    }
+    springs_ = activeSprings<T>(scene);
+    tolerance_ = scene.integrator.tolerance;
+    maxIterations_ = scene.integrator.maxIterations;
+    forcesValid_ = false;
     inverseMass_.assign(grid_.count(), T(1.0 / scene.cloth.mass));
     dt_t_ = T(scene.integrator.dt);
     damping_ = T(scene.damping);
@@ -80,6 +92,8 @@ void CpuSolver<T>::setParameters(const Scene& scene) {
         throw std::invalid_argument("setParameters: the grid size differs; build a new solver");
     if (!(Features::of(scene) == features_))
         throw std::invalid_argument("setParameters: the features differ; build a new solver");
+    if (scene.integrator.method != method_)
+        throw std::invalid_argument("setParameters: the integrator differs; build a new solver");
     std::vector<std::uint8_t> pinned(grid_.count(), 0);
     for (const Pin& p : scene.pins) pinned[grid_.index(p.i, p.j)] = 1;
     if (pinned != pinned_)
@@ -97,6 +111,7 @@ void CpuSolver<T>::write(const SimState& state) {
         v_[k] = cast<T>(state.velocities[k]);
         if (pinned_[k]) pinPosition_[k] = x_[k];  // a pin holds the vertex where it now is
     }
+    forcesValid_ = false;
 }
 
 template <typename T>
@@ -106,6 +121,7 @@ void CpuSolver<T>::setPinned(int i, int j, bool pinned) {
     pinned_[k] = pinned ? 1 : 0;
     pinPosition_[k] = x_[k];
     if (pinned) v_[k] = Vec3<T>(0);
+    forcesValid_ = false;
 }
 
 template <typename T>
@@ -116,6 +132,7 @@ void CpuSolver<T>::setGrab(const std::optional<Grab>& grab) {
         grab_ = GrabT{grab->vertex, cast<T>(grab->target), T(grab->stiffness)};
     else
         grab_.reset();
+    forcesValid_ = false;
 }
 
 // Pass 1: each vertex gathers its springs (one loop over the active offsets) and the wind.
@@ -152,16 +169,90 @@ void CpuSolver<T>::computeForces(std::int64_t begin, std::int64_t end) {
         f_[grab_->vertex] += grabForce(x_[grab_->vertex], grab_->target, grab_->stiffness);
 }
 
-// Pass 2: the seed's explicit Euler (DESIGN.md §2, seed eq. (6)), then pins, then colliders in
-// scene order, then the instability check.
 template <typename T>
-bool CpuSolver<T>::integrate(Band& band) {
-    const T dt = dt_t_;
+Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) const {
+    return (f_[k] - damping_ * v) * inverseMass_[k] + gravity_;
+}
+
+// Pins, then colliders in scene order (DESIGN.md §2), then the instability check.
+template <typename T>
+inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
+    if (pinned_[k]) {
+        p = pinPosition_[k];
+        v = Vec3<T>(0);
+    }
+    for (const auto& c : colliders_)
+        std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
+    x_[k] = p;
+    v_[k] = v;
+    const T speed2 = glm::dot(v, v);
+    if (std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2) && !(speed2 > maxSpeed2_))
+        return true;
+    reportBad(band, k, p, speed2);
+    return false;  // the rest of the band is not advanced: the run stops at this step
+}
+
+// Out of the hot loop: the message for the first bad vertex of a band.
+template <typename T>
+void CpuSolver<T>::reportBad(Band& band, std::int64_t k, const Vec3<T>& p, T speed2) const {
+    char buf[160];
+    const int i = int(k % grid_.nu), j = int(k / grid_.nu);
+    if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2))
+        std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
+    else
+        std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
+                      double(std::sqrt(speed2)), maxSpeed_, i, j);
+    band.badVertex = k;
+    band.reason = buf;
+}
+
+template <typename T>
+bool CpuSolver<T>::advance(Band& band, const Team& team, long stepNumber, bool& haveForces) {
+    switch (method_) {
+        case Method::ExplicitEuler:
+            return stepEuler(band, team, false);
+        case Method::SymplecticEuler:
+            return stepEuler(band, team, true);
+        case Method::Verlet:
+            return stepVerlet(band, team, haveForces);
+        case Method::Rk4:
+            return stepRk4(band, team);
+        case Method::ImplicitEuler:
+            return stepImplicit(band, team, stepNumber);
+    }
+    return false;
+}
+
+// explicit_euler, the seed's scheme (DESIGN.md §2, seed eq. (6)): x moves with the old
+// velocity. symplectic_euler: with the new one.
+template <typename T>
+bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
+    computeForces(band.begin, band.end);
+    team.sync();
+    const T h = dt_t_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         Vec3<T> p = x_[k], v = v_[k];
-        const Vec3<T> a = (f_[k] - damping_ * v) * inverseMass_[k] + gravity_;
-        p += dt * v;  // the old velocity: the seed's scheme, not symplectic
-        v += dt * a;
+        const Vec3<T> a = acceleration(k, v);
+        if (!symplectic) p += h * v;
+        v += h * a;
+        if (symplectic) p += h * v;
+        if (!finishVertex(band, k, p, v)) return false;
+    }
+    return true;
+}
+
+// Velocity Verlet, kick–drift–kick, the second kick's damping taken at v_{n+1} (trapezoidal):
+// v_{n+1} = (v_half + h/2 (F_{n+1}/m + g)) / (1 + hμ/(2m)). F_{n+1} stays in f_ for the next step.
+template <typename T>
+bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
+    if (!haveForces) {
+        computeForces(band.begin, band.end);
+        team.sync();
+    }
+    const T h = dt_t_, half = T(0.5) * dt_t_;
+    for (std::int64_t k = band.begin; k < band.end; ++k) {  // kick and drift
+        Vec3<T> v = v_[k] + half * acceleration(k, v_[k]);
+        Vec3<T> p = x_[k] + h * v;
         if (pinned_[k]) {
             p = pinPosition_[k];
             v = Vec3<T>(0);
@@ -170,24 +261,158 @@ bool CpuSolver<T>::integrate(Band& band) {
             std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
         x_[k] = p;
         v_[k] = v;
+    }
+    team.sync();
+    computeForces(band.begin, band.end);  // F(x_{n+1}); the kick reads only its own vertex
+    haveForces = true;
+    bool ok = true;
+    for (std::int64_t k = band.begin; k < band.end && ok; ++k) {  // kick
+        const T w = inverseMass_[k];
+        Vec3<T> v = (v_[k] + half * (f_[k] * w + gravity_)) / (T(1) + half * damping_ * w);
+        if (pinned_[k]) v = Vec3<T>(0);
+        v_[k] = v;
         const T speed2 = glm::dot(v, v);
-        const bool finite = std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2);
-        if (!finite || speed2 > maxSpeed2_) {
-            char buf[160];
-            const int i = int(k % grid_.nu), j = int(k / grid_.nu);
-            if (!finite)
-                std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)",
-                              i, j);
-            else
-                std::snprintf(buf, sizeof buf,
-                              "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
-                              double(std::sqrt(speed2)), maxSpeed_, i, j);
-            band.badVertex = k;
-            band.reason = buf;
-            return false;  // the rest of the band is not advanced: the run stops at this step
+        const Vec3<T> p = x_[k];
+        if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2) || speed2 > maxSpeed2_)
+            ok = finishVertex(band, k, p, v);  // reports it (pins and colliders are no-ops now)
+    }
+    return ok;
+}
+
+// Classic RK4 on y = (x, v): stage s evaluates f at the stage state in x_, v_; the start
+// (x0_, v0_) and the sums k1 + 2k2 + 2k3 (sumX_, sumV_) carry across the stages.
+template <typename T>
+bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
+    const T h = dt_t_, half = T(0.5) * dt_t_, sixth = dt_t_ / T(6);
+    for (int stage = 0; stage < 4; ++stage) {
+        computeForces(band.begin, band.end);
+        team.sync();
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            const Vec3<T> v = v_[k];
+            const Vec3<T> a = acceleration(k, v);
+            if (stage == 0) {
+                x0_[k] = x_[k];
+                v0_[k] = v;
+                sumX_[k] = v;
+                sumV_[k] = a;
+            } else if (stage < 3) {
+                sumX_[k] += T(2) * v;
+                sumV_[k] += T(2) * a;
+            }
+            if (stage == 3) {
+                if (!finishVertex(band, k, x0_[k] + sixth * (sumX_[k] + v),
+                                  v0_[k] + sixth * (sumV_[k] + a)))
+                    return false;
+                continue;
+            }
+            const T c = stage == 2 ? h : half;  // the next stage's point: y_n + c k
+            if (pinned_[k]) {
+                x_[k] = pinPosition_[k];
+                v_[k] = Vec3<T>(0);
+            } else {
+                x_[k] = x0_[k] + c * v;
+                v_[k] = v0_[k] + c * a;
+            }
         }
+        if (stage < 3) team.sync();
     }
     return true;
+}
+
+template <typename T>
+template <typename PerVertex>
+double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value) {
+    std::vector<double>& partial = partials_[band.reductions++ & 1];
+    for (std::int64_t c = band.begin / kChunk; c * kChunk < band.end; ++c) {
+        double sum = 0;
+        for (std::int64_t k = c * kChunk; k < std::min(band.end, (c + 1) * kChunk); ++k)
+            sum += value(k);
+        partial[std::size_t(c)] = sum;
+    }
+    // Every thread sums the same chunks in the same order. The other slot lets a fast thread
+    // write its next partial sums while a slow one still reads these.
+    team.sync();
+    double total = 0;
+    for (double x : partial) total += x;
+    return total;
+}
+
+// out = A p = (m + hμ) p + h² H p on this band (pinned rows 0), H the clamped stiffness of the
+// state x_ the step linearises at, plus the grab spring's K I.
+template <typename T>
+void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
+                                 std::vector<Vec3<T>>& out) {
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), p.data(), pinned_.data(), out.data(),
+                     band.begin, band.end);
+    const T h2 = dt_t_ * dt_t_;
+    for (std::int64_t k = band.begin; k < band.end; ++k) {
+        if (pinned_[k]) continue;
+        out[k] = (T(1) / inverseMass_[k] + dt_t_ * damping_) * p[k] + h2 * out[k];
+    }
+    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
+        out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
+}
+
+// Backward Euler linearised once (Baraff & Witkin): ((m + hμ) I + h² H) Δv =
+// h (F − μ v + m g − h H v), by conjugate gradient with pins as constraints (their rows held 0).
+template <typename T>
+bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
+    computeForces(band.begin, band.end);
+    const T h = dt_t_;
+    // r = b: Hv first (v of the neighbours is the previous step's, already complete).
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), v_.data(), pinned_.data(), ap_.data(),
+                     band.begin, band.end);
+    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end)
+        ap_[grab_->vertex] += grab_->stiffness * v_[grab_->vertex];
+    for (std::int64_t k = band.begin; k < band.end; ++k) {
+        const Vec3<T> b =
+            pinned_[k] ? Vec3<T>(0)
+                       : h * (f_[k] - damping_ * v_[k] + gravity_ / inverseMass_[k] - h * ap_[k]);
+        dv_[k] = Vec3<T>(0);
+        r_[k] = b;
+        p_[k] = b;
+    }
+    auto dot = [](const Vec3<T>& a, const Vec3<T>& b) {
+        return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
+    };
+    const double bb = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
+    const double goal = tolerance_ * tolerance_ * bb;
+    double rr = bb;
+    int it = 0;
+    while (rr > goal && it < maxIterations_) {
+        systemProduct(band, p_, ap_);
+        const double pap = reduce(band, team, [&](std::int64_t k) { return dot(p_[k], ap_[k]); });
+        if (!(pap > 0)) break;  // A is positive definite: only a non-finite state gets here
+        const T alpha = T(rr / pap);
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            dv_[k] += alpha * p_[k];
+            r_[k] -= alpha * ap_[k];
+        }
+        const double next = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
+        const T beta = T(next / rr);
+        for (std::int64_t k = band.begin; k < band.end; ++k) p_[k] = r_[k] + beta * p_[k];
+        rr = next;
+        ++it;
+        team.sync();  // the next product reads the neighbours' p
+    }
+    if (&band == &bands_[0])
+        recordSolve(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal);
+    for (std::int64_t k = band.begin; k < band.end; ++k) {
+        const Vec3<T> v = v_[k] + dv_[k];
+        if (!finishVertex(band, k, x_[k] + h * v, v)) return false;
+    }
+    return true;
+}
+
+template <typename T>
+void CpuSolver<T>::recordSolve(long stepNumber, int iterations, double residual, bool converged) {
+    SolveStats& s = solveStats_;
+    ++s.solves;
+    s.iterations += iterations;
+    s.mostIterations = std::max(s.mostIterations, iterations);
+    if (converged) return;
+    if (s.misses++ == 0) s.firstMissStep = stepNumber;
+    s.worstResidual = std::max(s.worstResidual, residual);
 }
 
 template <typename T>
@@ -195,20 +420,22 @@ StepResult CpuSolver<T>::step(long n) {
     StepResult result;
     if (bands_.size() == 1) {
         Band& band = bands_[0];
+        bool haveForces = forcesValid_;
         for (long s = 0; s < n; ++s) {
-            computeForces(band.begin, band.end);
             ++result.stepsTaken;
-            if (!integrate(band)) break;
+            if (!advance(band, Team{}, steps_ + s + 1, haveForces)) break;
         }
     } else {
         result = stepThreaded(n);
     }
+    forcesValid_ = method_ == Method::Verlet && result.stepsTaken > 0;
     steps_ += result.stepsTaken;
     for (const Band& b : bands_) {  // bands are in vertex order: the first bad one is the lowest
         if (b.badVertex < 0) continue;
         result.unstable = true;
         result.firstBadStep = result.lastBadStep = steps_;
         result.reason = b.reason;
+        forcesValid_ = false;
         break;
     }
     return result;
@@ -216,18 +443,21 @@ StepResult CpuSolver<T>::step(long n) {
 
 template <typename T>
 StepResult CpuSolver<T>::stepThreaded(long n) {
-    // Every vertex's update reads only its own force and the previous positions, so the result
-    // is bit-identical to a serial run whatever the number of threads.
+    // Every vertex's update reads only its own force and the previous positions, and dot
+    // products sum fixed chunks in order, so the result is bit-identical to a serial run
+    // whatever the number of threads.
     std::barrier sync(std::ptrdiff_t(bands_.size()));
+    const Team team{&sync};
     std::atomic<bool> bad{false};
     long taken = 0;
+    const bool forcesValid = forcesValid_;
     pool_->run([&](int t) {
         Band& band = bands_[t];
+        bool haveForces = forcesValid;
         long s = 0;
         while (s < n) {
-            computeForces(band.begin, band.end);
-            sync.arrive_and_wait();
-            if (!integrate(band)) bad.store(true, std::memory_order_relaxed);
+            if (!advance(band, team, steps_ + s + 1, haveForces))
+                bad.store(true, std::memory_order_relaxed);
             ++s;
             sync.arrive_and_wait();
             if (bad.load(std::memory_order_relaxed)) break;

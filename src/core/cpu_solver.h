@@ -1,13 +1,16 @@
-// The CPU backend: DESIGN.md §2 in float or double, threads over bands of vertex rows.
+// The CPU backend: DESIGN.md §2 in float or double, threads over bands of vertex rows, with the
+// five integrators of docs/integrators.md.
 #pragma once
 
 #include <atomic>
+#include <barrier>
 #include <memory>
 #include <variant>
 #include <vector>
 
 #include "core/colliders.h"
 #include "core/solver.h"
+#include "core/stiffness.h"
 #include "core/worker_pool.h"
 
 namespace cloth {
@@ -28,15 +31,19 @@ public:
     void setParameters(const Scene& scene) override;
 
 private:
-    struct Spring {  // one active entry of kSpringOffsets
-        int di, dj;
-        std::int64_t indexOffset;  // dj·nu + di
-        T stiffness, restLength;
-    };
+    using Spring = StencilSpring<T>;
     struct Band {  // a thread's vertices [begin, end) and what it found wrong
         std::int64_t begin, end;
         std::int64_t badVertex = -1;
         std::string reason;
+        int reductions = 0;  // dot products taken so far: picks the partial-sum slot
+    };
+    // The threads of one step(n) call: sync() is a barrier between passes (none when serial).
+    struct Team {
+        std::barrier<>* barrier = nullptr;
+        void sync() const {
+            if (barrier) barrier->arrive_and_wait();
+        }
     };
 
     struct GrabT {
@@ -46,15 +53,37 @@ private:
     };
 
     void takeParameters(const Scene& scene);
-    void computeForces(std::int64_t begin, std::int64_t end);  // pass 1
-    bool integrate(Band& band);                                // pass 2; false if unstable
-    void runBand(Band& band, long n, long& taken);
+    void computeForces(std::int64_t begin, std::int64_t end);  // pass 1: F(x) into f_
+    // One step of the scene's integrator over this band's vertices; false if it went unstable.
+    bool advance(Band& band, const Team& team, long stepNumber, bool& haveForces);
+    bool stepEuler(Band& band, const Team& team, bool symplectic);
+    bool stepVerlet(Band& band, const Team& team, bool& haveForces);
+    bool stepRk4(Band& band, const Team& team);
+    bool stepImplicit(Band& band, const Team& team, long stepNumber);
+    // The end of every step: pins, colliders in scene order, then the instability check.
+    bool finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
+    [[gnu::cold, gnu::noinline]] void reportBad(Band& band, std::int64_t k, const Vec3<T>& p,
+                                                T speed2) const;
+    Vec3<T> acceleration(std::int64_t k, const Vec3<T>& v) const;
+    // Σ over all vertices of one value per vertex, the same bits whatever the thread count:
+    // fixed chunks summed in order.
+    template <typename PerVertex>
+    double reduce(Band& band, const Team& team, const PerVertex& value);
+    void systemProduct(const Band& band, const std::vector<Vec3<T>>& p, std::vector<Vec3<T>>& out);
+    void recordSolve(long stepNumber, int iterations, double residual, bool converged);
     StepResult stepThreaded(long n);
 
     Grid grid_;
     Features features_;
     std::vector<Spring> springs_;
+    Method method_;
     std::vector<Vec3<T>> x_, v_, f_, pinPosition_;
+    std::vector<Vec3<T>> x0_, v0_, sumX_, sumV_;  // rk4: the step's start and Σ k_i
+    std::vector<Vec3<T>> dv_, r_, p_, ap_;        // implicit_euler: CG vectors
+    std::vector<double> partials_[2];             // per chunk, for reduce()
+    double tolerance_ = 0;
+    int maxIterations_ = 0;
+    bool forcesValid_ = false;  // verlet: f_ holds F(x) of the current state
     std::vector<T> inverseMass_;
     std::vector<std::uint8_t> pinned_;
     T dt_t_, damping_, maxSpeed2_, windStrength_;

@@ -19,9 +19,9 @@ enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler }
 inline constexpr Method kMethods[] = {Method::ExplicitEuler, Method::SymplecticEuler,
                                       Method::Verlet, Method::Rk4, Method::ImplicitEuler};
 
-const char* methodName(Method m);                          // "explicit_euler", ...
+const char* methodName(Method m);  // "explicit_euler", ...
 std::optional<Method> methodFromName(const std::string& name);
-std::string methodList();                                  // "explicit_euler, symplectic_euler, ..."
+std::string methodList();               // "explicit_euler, symplectic_euler, ..."
 int forceEvaluationsPerStep(Method m);  // spring-force passes one step costs (implicit: + CG)
 
 struct ClothSpec {

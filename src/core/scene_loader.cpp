@@ -199,8 +199,8 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
                  "unknown method \"" + m.get<std::string>() + "\"; known: " + methodList());
         integrator.method = *method;
     }
-    integrator.tolerance = param(j, "tolerance", "integrator.tolerance", "integrator.tolerance",
-                                 integrator.tolerance);
+    integrator.tolerance =
+        param(j, "tolerance", "integrator.tolerance", "integrator.tolerance", integrator.tolerance);
     integrator.maxIterations = int(param(j, "max_iterations", "integrator.max_iterations",
                                          "integrator.max_iterations", integrator.maxIterations));
     required(j, "dt", "integrator");

@@ -26,8 +26,8 @@ std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
     for (const SpringOffset& o : kSpringOffsets) {
         const double k = scene.springs.of(o.family);
         if (k > 0)
-            springs.push_back({o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di, T(k),
-                               T(g.restLength(o.di, o.dj))});
+            springs.push_back(
+                {o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di, T(k), T(g.restLength(o.di, o.dj))});
     }
     return springs;
 }
@@ -37,8 +37,8 @@ std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
 // caller keeps p = 0 there, which removes the pinned columns too.
 template <typename T>
 void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
-                      const Vec3<T>* x, const Vec3<T>* p, const std::uint8_t* pinned,
-                      Vec3<T>* out, std::int64_t begin, std::int64_t end) {
+                      const Vec3<T>* x, const Vec3<T>* p, const std::uint8_t* pinned, Vec3<T>* out,
+                      std::int64_t begin, std::int64_t end) {
     int i = int(begin % nu), j = int(begin / nu);
     for (std::int64_t k = begin; k < end; ++k) {
         Vec3<T> y(0);

@@ -201,6 +201,45 @@ TEST(Instability, ValidatePrintsTheBoundButAcceptsTheScene) {
     EXPECT_EQ(r.exitCode, 0) << test::describe(r);
 }
 
+// Each explicit integrator at 1.5x its predicted bound (docs/stability.md) on the 1×2 spring,
+// whose single mode makes the prediction exact: exit 3, the method named in the advice, and a
+// suggested Δt below the failing one. At 0.8x the same run is stable (exit 0). The stable motion
+// stays near 1 m/s (amplitude mg/K = 0.1 m at ω = 10/s); max_speed = 5 m/s catches the growing
+// mode before it reaches the pin, where the spring flips and the growth saturates.
+TEST(Instability, EachExplicitIntegratorPastItsBoundExitsThree) {
+    const std::string spring = std::string(CLOTH_SOURCE_DIR) + "/scenes/spring.json";
+    const double k = 100, m = 1, mu = 0.5, omega = std::sqrt(k / m), c = mu / m;
+    const struct {
+        const char* method;
+        double bound;
+    } cases[] = {
+        {"explicit_euler", mu / k},
+        {"symplectic_euler", (-c + std::sqrt(c * c + 4 * omega * omega)) / (omega * omega)},
+        {"verlet", 2 / omega},
+        {"rk4", 0.2875},  // |R(z)| = 1 on z = h(−c/2 ± i sqrt(ω² − c²/4)), solved numerically
+    };
+    for (const auto& x : cases) {
+        for (double factor : {0.8, 1.5}) {
+            char dt[64];
+            std::snprintf(dt, sizeof dt, "integrator.dt=%.9g", factor * x.bound);
+            const ProcessResult r = runProcess(
+                {kExe, "run", spring, "--quiet", "--steps", "20000", "--set", "max_speed=5",
+                 "--set", std::string("integrator.method=\"") + x.method + "\"", "--set", dt},
+                kTimeout);
+            if (factor < 1) {
+                EXPECT_EQ(r.exitCode, 0) << x.method << "\n" << test::describe(r);
+                continue;
+            }
+            EXPECT_EQ(r.exitCode, 3) << x.method << "\n" << test::describe(r);
+            EXPECT_NE(r.err.find(std::string("for ") + x.method), std::string::npos)
+                << test::describe(r);
+            bool smaller = false;
+            for (double s : suggestedDts(r.err)) smaller |= s > 0 && s < factor * x.bound;
+            EXPECT_TRUE(smaller) << x.method << "\n" << test::describe(r);
+        }
+    }
+}
+
 // ---- a stable run: exit 0 and a CSV that round-trips ------------------------------------
 
 TEST(StableRun, CsvHasHeaderOneRowPerVertexAndRoundTrips) {

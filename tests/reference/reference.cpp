@@ -1,32 +1,13 @@
-// The reference model, DESIGN.md §2, written out as directly as possible.
+// The reference model, DESIGN.md §2, written out as directly as possible: forces, pins, colliders
+// and energies. The integrators are in reference_integrators.cpp.
 #include "reference/reference.h"
 
 #include <cmath>
 
+#include "reference/vector_ops.h"
+
 namespace ref {
 namespace {
-
-V3 add(const V3& a, const V3& b) {
-    return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
-}
-V3 sub(const V3& a, const V3& b) {
-    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-}
-V3 scale(double s, const V3& a) {
-    return {s * a[0], s * a[1], s * a[2]};
-}
-double dot(const V3& a, const V3& b) {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-double norm(const V3& a) {
-    return std::sqrt(dot(a, a));
-}
-V3 cross(const V3& a, const V3& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-V3 normalised(const V3& a) {
-    return scale(1.0 / norm(a), a);
-}
 
 // The 12 neighbour offsets of the §2 table; family 0 structural, 1 shear, 2 bend.
 struct Offset {
@@ -63,10 +44,18 @@ Simulation::Simulation(const Params& p) : prm_(p) {
         const int i = resolve(pin[0], prm_.nu), j = resolve(pin[1], prm_.nv);
         pinned_[j * prm_.nu + i] = true;
     }
-    p_.resize(n);
-    v_.assign(n, V3{0, 0, 0});
+    rest_.resize(n);
     for (int j = 0; j < prm_.nv; ++j) {
-        for (int i = 0; i < prm_.nu; ++i) p_[j * prm_.nu + i] = restPosition(i, j);
+        for (int i = 0; i < prm_.nu; ++i) rest_[j * prm_.nu + i] = restPosition(i, j);
+    }
+    p_ = rest_;
+    v_.assign(n, V3{0, 0, 0});
+}
+
+void Simulation::setState(const std::vector<V3>& p, const std::vector<V3>& v) {
+    if (p.size() == p_.size() && v.size() == v_.size()) {
+        p_ = p;
+        v_ = v;
     }
 }
 
@@ -83,15 +72,15 @@ double Simulation::restLength(int di, int dj) const {
 }
 
 // Σ over existing neighbours of K (|d| − L) d/|d|, d = p_q − p_k (seed eq. (2)).
-V3 Simulation::springForces(int i, int j) const {
+V3 Simulation::springForces(const std::vector<V3>& p, int i, int j) const {
     V3 f{0, 0, 0};
-    const V3& pk = p_[j * prm_.nu + i];
+    const V3& pk = p[j * prm_.nu + i];
     for (const Offset& o : kOffsets) {
         const double k = stiffness(o.family);
         const int qi = i + o.di, qj = j + o.dj;
         if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
         const double len = restLength(o.di, o.dj);
-        const V3 d = sub(p_[qj * prm_.nu + qi], pk);
+        const V3 d = sub(p[qj * prm_.nu + qi], pk);
         const double dist = norm(d);
         if (dist < 1e-12 * len) continue;
         f = add(f, scale(k * (dist - len) / dist, d));
@@ -99,13 +88,43 @@ V3 Simulation::springForces(int i, int j) const {
     return f;
 }
 
+// docs/integrators.md, implicit_euler: per spring J_s = K (d̂ d̂ᵀ + max(0, 1 − L/l) (I − d̂ d̂ᵀ)),
+// 0 when l < 1e-12 L; (H w)_k = Σ_springs of k J_s (w_k − w_q), pinned rows and columns removed.
+std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x,
+                                           const std::vector<V3>& w) const {
+    const V3 zero{0, 0, 0};
+    std::vector<V3> y(x.size(), zero);
+    for (int j = 0; j < prm_.nv; ++j) {
+        for (int i = 0; i < prm_.nu; ++i) {
+            const int k = j * prm_.nu + i;
+            if (pinned_[k]) continue;
+            for (const Offset& o : kOffsets) {
+                const double stiff = stiffness(o.family);
+                const int qi = i + o.di, qj = j + o.dj;
+                if (stiff == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
+                const int q = qj * prm_.nu + qi;
+                const double len = restLength(o.di, o.dj);
+                const V3 d = sub(x[q], x[k]);
+                const double dist = norm(d);
+                if (dist < 1e-12 * len) continue;
+                const V3 dhat = scale(1.0 / dist, d);
+                const double transverse = std::fmax(0.0, 1.0 - len / dist);
+                const V3 e = sub(w[k], pinned_[q] ? zero : w[q]);
+                const V3 along = scale(dot(dhat, e), dhat);  // d̂ d̂ᵀ e
+                y[k] = add(y[k], scale(stiff, add(along, scale(transverse, sub(e, along)))));
+            }
+        }
+    }
+    return y;
+}
+
 // K_w ⟨n, û_w⟩ n with the central-difference vertex normal of §2 (seed §5.3).
-V3 Simulation::windForce(int i, int j) const {
+V3 Simulation::windForce(const std::vector<V3>& p, int i, int j) const {
     const int nu = prm_.nu, nv = prm_.nv;
     const int ip = i + 1 < nu - 1 ? i + 1 : nu - 1, im = i - 1 > 0 ? i - 1 : 0;
     const int jp = j + 1 < nv - 1 ? j + 1 : nv - 1, jm = j - 1 > 0 ? j - 1 : 0;
-    const V3 a = sub(p_[j * nu + ip], p_[j * nu + im]);
-    const V3 b = sub(p_[jp * nu + i], p_[jm * nu + i]);
+    const V3 a = sub(p[j * nu + ip], p[j * nu + im]);
+    const V3 b = sub(p[jp * nu + i], p[jm * nu + i]);
     const V3 axb = cross(a, b);
     const double len = norm(axb);
     if (len < 1e-12) return {0, 0, 0};
@@ -136,32 +155,61 @@ void Simulation::applyColliders(V3& p, V3& v) const {
     }
 }
 
-// DESIGN.md §2: forces from the state at t → explicit Euler (seed eq. (6), old velocity for the
-// position) → pins reset → colliders.
-void Simulation::step() {
-    const int nu = prm_.nu, nv = prm_.nv;
-    std::vector<V3> force(p_.size());
-    for (int j = 0; j < nv; ++j) {
-        for (int i = 0; i < nu; ++i) {
-            V3 f = springForces(i, j);
-            if (prm_.wind) f = add(f, windForce(i, j));
-            force[j * nu + i] = f;
+std::vector<V3> Simulation::forces(const std::vector<V3>& p) const {
+    std::vector<V3> f(p.size());
+    for (int j = 0; j < prm_.nv; ++j) {
+        for (int i = 0; i < prm_.nu; ++i) {
+            V3 fk = springForces(p, i, j);
+            if (prm_.wind) fk = add(fk, windForce(p, i, j));
+            f[j * prm_.nu + i] = fk;
         }
     }
-    const double dt = prm_.dt, m = prm_.mass, mu = prm_.damping;
-    for (int j = 0; j < nv; ++j) {
-        for (int i = 0; i < nu; ++i) {
-            const int k = j * nu + i;
-            const V3 vOld = v_[k];
-            const V3 a = add(scale(1.0 / m, sub(force[k], scale(mu, vOld))), prm_.gravity);
-            v_[k] = add(vOld, scale(dt, a));
-            p_[k] = add(p_[k], scale(dt, vOld));
-            if (pinned_[k]) {
-                p_[k] = restPosition(i, j);
-                v_[k] = {0, 0, 0};
-            }
-            applyColliders(p_[k], v_[k]);
-        }
+    return f;
+}
+
+// docs/integrators.md: a(x, v) = (F(x) − μ v)/m + g; a pinned vertex's is not used (0 here).
+std::vector<V3> Simulation::accelerations(const std::vector<V3>& x,
+                                          const std::vector<V3>& v) const {
+    const std::vector<V3> f = forces(x);
+    std::vector<V3> a(x.size(), V3{0, 0, 0});
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        if (pinned_[k]) continue;
+        a[k] = add(scale(1.0 / prm_.mass, sub(f[k], scale(prm_.damping, v[k]))), prm_.gravity);
+    }
+    return a;
+}
+
+void Simulation::pin(std::vector<V3>& x, std::vector<V3>& v) const {
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        if (!pinned_[k]) continue;
+        x[k] = rest_[k];
+        v[k] = {0, 0, 0};
+    }
+}
+
+// DESIGN.md §2, order inside one step: pins reset, then the colliders in scene order.
+void Simulation::pinAndCollide(std::vector<V3>& x, std::vector<V3>& v) const {
+    pin(x, v);
+    for (std::size_t k = 0; k < x.size(); ++k) applyColliders(x[k], v[k]);
+}
+
+void Simulation::step() {
+    switch (prm_.method) {
+        case Method::ExplicitEuler:
+            stepExplicitEuler();
+            break;
+        case Method::SymplecticEuler:
+            stepSymplecticEuler();
+            break;
+        case Method::Verlet:
+            stepVerlet();
+            break;
+        case Method::Rk4:
+            stepRk4();
+            break;
+        case Method::ImplicitEuler:
+            stepImplicitEuler();
+            break;
     }
     ++steps_;
 }

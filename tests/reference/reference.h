@@ -1,6 +1,7 @@
-// A naive, obviously-correct double-precision implementation of the model of DESIGN.md §2,
-// written from the specification alone and sharing no code with src/. It is the oracle the CPU
-// and GPU backends are checked against (DESIGN.md §6): plain loops, plain arrays, no glm.
+// A naive, obviously-correct double-precision implementation of the model of DESIGN.md §2 and of
+// the five integrators of docs/integrators.md, written from those pages alone and sharing no code
+// with src/. It is the oracle the CPU and GPU backends are checked against (DESIGN.md §6): plain
+// loops, plain arrays, no glm.
 #pragma once
 
 #include <array>
@@ -23,6 +24,9 @@ struct Collider {
     Sphere sphere{};
 };
 
+// docs/integrators.md; ExplicitEuler is the seed's scheme of DESIGN.md §2.
+enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler };
+
 struct Params {
     int nu = 2, nv = 1;
     double sizeU = 1, sizeV = 1;                         // [m]
@@ -36,21 +40,45 @@ struct Params {
     V3 windDirection{1, 0, 0};
     double windStrength = 0;          // K_w [N]
     std::vector<Collider> colliders;  // applied in this order
-    double dt = 1e-3;                 // [s]
-    double maxSpeed = 1e4;            // [m/s]
+    Method method = Method::ExplicitEuler;
+    double dt = 1e-3;           // [s]
+    double cgTolerance = 1e-5;  // implicit Euler: stop at |r| <= tolerance·|b|
+    int cgMaxIterations = 200;  // implicit Euler: ... or after this many iterations
+    double maxSpeed = 1e4;      // [m/s]
+};
+
+// implicit_euler's conjugate-gradient solves so far (all zero for the other methods).
+struct CgStats {
+    long solves = 0;
+    long iterations = 0;       // summed over solves
+    long misses = 0;           // solves stopped by cgMaxIterations with |r| > tolerance·|b|
+    int lastIterations = 0;    // of the latest solve
+    double lastResidual = 0;   // final |r|/|b| of the latest solve (0 when b = 0)
+    double worstResidual = 0;  // largest final |r|/|b| of a miss
 };
 
 class Simulation {
 public:
     explicit Simulation(const Params& p);  // rest positions, zero velocities
-    void step();                           // one explicit Euler step in the order of §2
+    void step();  // one step of prm.method, then pins, then colliders (docs/integrators.md)
     long steps() const { return steps_; }
+    // Replaces positions and velocities (same vertex count); pins keep their rest positions.
+    void setState(const std::vector<V3>& p, const std::vector<V3>& v);
+    const CgStats& cgStats() const { return cg_; }
     const std::vector<V3>& positions() const { return p_; }  // index k = j·nu + i
     const std::vector<V3>& velocities() const { return v_; }
     double kineticEnergy() const;  // Σ ½ m |v|² [J]
     double springEnergy() const;   // Σ over springs, each once, ½ K (|d| − L)² [J]
     double gravityEnergy() const;  // −Σ m ⟨g, p⟩ [J]
     bool finiteAndBelowMaxSpeed() const;
+
+    // Spring + wind force on every vertex of an arbitrary state of this cloth [N] (F of §2).
+    std::vector<V3> forces(const std::vector<V3>& p) const;
+    bool isPinned(int k) const { return pinned_[k]; }
+    // y = H w at positions x, H = −∂F/∂x of the springs with implicit_euler's clamp (docs/
+    // integrators.md): (H w)_k = Σ_springs of k J_s (w_k − w_q), pinned rows and columns removed
+    // (w is read as 0 at pinned vertices, y is 0 there).
+    std::vector<V3> hessianProduct(const std::vector<V3>& x, const std::vector<V3>& w) const;
 
     // Energies of an arbitrary state on this cloth (e.g. a solver's), same formulas as above.
     double kineticEnergy(const std::vector<V3>& v) const;
@@ -61,16 +89,32 @@ private:
     V3 restPosition(int i, int j) const;
     double stiffness(int family) const;
     double restLength(int di, int dj) const;
-    V3 springForces(int i, int j) const;
-    V3 windForce(int i, int j) const;
+    V3 springForces(const std::vector<V3>& p, int i, int j) const;
+    V3 windForce(const std::vector<V3>& p, int i, int j) const;
     void applyColliders(V3& p, V3& v) const;
+    // a(x, v) = (F(x) − μ v)/m + g on free vertices, 0 on pinned ones.
+    std::vector<V3> accelerations(const std::vector<V3>& x, const std::vector<V3>& v) const;
+    // Pins (x ← x_pin, v ← 0), then every collider in scene order, on every vertex.
+    void pinAndCollide(std::vector<V3>& x, std::vector<V3>& v) const;
+    void pin(std::vector<V3>& x, std::vector<V3>& v) const;
+
+    // The five schemes of docs/integrators.md (reference_integrators.cpp).
+    void stepExplicitEuler();
+    void stepSymplecticEuler();
+    void stepVerlet();
+    void stepRk4();
+    void stepImplicitEuler();
+    // Conjugate gradient on ((m + hμ) I + h² H(x)) dv = b from dv = 0; records the solve in cg_.
+    std::vector<V3> solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b);
 
     Params prm_;
     double du_ = 0, dv_ = 0;
     V3 u_{}, vAxis_{}, wind_{};
     std::vector<bool> pinned_;
+    std::vector<V3> rest_;  // pinned vertices are held at their rest position
     std::vector<V3> p_, v_;
     long steps_ = 0;
+    CgStats cg_;
 };
 
 }  // namespace ref

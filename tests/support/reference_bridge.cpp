@@ -30,6 +30,22 @@ ref::Collider toReference(const Collider& c) {
     return out;
 }
 
+ref::Method toReference(Method m) {
+    switch (m) {
+        case Method::ExplicitEuler:
+            return ref::Method::ExplicitEuler;
+        case Method::SymplecticEuler:
+            return ref::Method::SymplecticEuler;
+        case Method::Verlet:
+            return ref::Method::Verlet;
+        case Method::Rk4:
+            return ref::Method::Rk4;
+        case Method::ImplicitEuler:
+            return ref::Method::ImplicitEuler;
+    }
+    return ref::Method::ExplicitEuler;
+}
+
 }  // namespace
 
 ref::Params toReference(const Scene& scene) {
@@ -54,7 +70,10 @@ ref::Params toReference(const Scene& scene) {
         p.windStrength = scene.wind->strength;
     }
     for (const Collider& c : scene.colliders) p.colliders.push_back(toReference(c));
+    p.method = toReference(scene.integrator.method);
     p.dt = scene.integrator.dt;
+    p.cgTolerance = scene.integrator.tolerance;
+    p.cgMaxIterations = scene.integrator.maxIterations;
     p.maxSpeed = scene.maxSpeed;
     return p;
 }

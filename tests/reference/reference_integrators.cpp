@@ -1,0 +1,154 @@
+// The five integrators of docs/integrators.md, each written out as the page writes it, on whole
+// arrays: every stage finishes for all vertices before the next one starts.
+#include <cmath>
+
+#include "reference/reference.h"
+#include "reference/vector_ops.h"
+
+namespace ref {
+
+// explicit_euler (DESIGN.md §2, seed eq. (6)): v += h a(x, v); x += h v_old.
+void Simulation::stepExplicitEuler() {
+    const double h = prm_.dt;
+    const std::vector<V3> a = accelerations(p_, v_);
+    for (std::size_t k = 0; k < p_.size(); ++k) {
+        const V3 vOld = v_[k];
+        v_[k] = add(vOld, scale(h, a[k]));
+        p_[k] = add(p_[k], scale(h, vOld));
+    }
+    pinAndCollide(p_, v_);
+}
+
+// symplectic_euler: v += h a(x, v); x += h v_new.
+void Simulation::stepSymplecticEuler() {
+    const double h = prm_.dt;
+    const std::vector<V3> a = accelerations(p_, v_);
+    for (std::size_t k = 0; k < p_.size(); ++k) {
+        v_[k] = add(v_[k], scale(h, a[k]));
+        p_[k] = add(p_[k], scale(h, v_[k]));
+    }
+    pinAndCollide(p_, v_);
+}
+
+// verlet: kick (damping at v_n), drift, pins and colliders on (x_{n+1}, v_half), forces at the
+// projected x_{n+1}, kick with the damping taken at v_{n+1} (solved per vertex), pins. F(x_n) is
+// recomputed here rather than kept from the previous step: the same numbers, since nothing moves
+// x between the two.
+void Simulation::stepVerlet() {
+    const double h = prm_.dt, m = prm_.mass, mu = prm_.damping;
+    const std::vector<V3> a = accelerations(p_, v_);
+    std::vector<V3> vHalf(v_.size());
+    for (std::size_t k = 0; k < p_.size(); ++k) {
+        vHalf[k] = add(v_[k], scale(h / 2, a[k]));
+        p_[k] = add(p_[k], scale(h, vHalf[k]));
+    }
+    pinAndCollide(p_, vHalf);
+    const std::vector<V3> f = forces(p_);
+    for (std::size_t k = 0; k < p_.size(); ++k) {
+        const V3 kick = scale(h / 2, add(scale(1.0 / m, f[k]), prm_.gravity));
+        v_[k] = scale(1.0 / (1 + h * mu / (2 * m)), add(vHalf[k], kick));
+    }
+    pin(p_, v_);
+}
+
+// rk4 on y = (x, v), y' = (v, a(x, v)); pinned vertices keep x_pin and v = 0 in every stage;
+// pins and colliders act on y_{n+1} only.
+void Simulation::stepRk4() {
+    const double h = prm_.dt;
+    const std::size_t n = p_.size();
+    const std::vector<V3> x0 = p_, v0 = v_;
+    const double offset[4] = {0, h / 2, h / 2, h};  // stage s is evaluated at y_n + offset·k_{s−1}
+    std::vector<V3> kx[4], kv[4];
+    std::vector<V3> xs = x0, vs = v0;
+    for (int s = 0; s < 4; ++s) {
+        if (s > 0) {
+            for (std::size_t k = 0; k < n; ++k) {
+                xs[k] = add(x0[k], scale(offset[s], kx[s - 1][k]));
+                vs[k] = add(v0[k], scale(offset[s], kv[s - 1][k]));
+            }
+            pin(xs, vs);
+        }
+        kx[s] = vs;
+        kv[s] = accelerations(xs, vs);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+        const V3 dx = add(add(kx[0][k], scale(2, kx[1][k])), add(scale(2, kx[2][k]), kx[3][k]));
+        const V3 dv = add(add(kv[0][k], scale(2, kv[1][k])), add(scale(2, kv[2][k]), kv[3][k]));
+        p_[k] = add(x0[k], scale(h / 6, dx));
+        v_[k] = add(v0[k], scale(h / 6, dv));
+    }
+    pinAndCollide(p_, v_);
+}
+
+// implicit_euler (Baraff & Witkin 1998), linearised once at x_n:
+// ((m + hμ) I + h² H) Δv = h (F(x_n) − μ v_n + m g − h H v_n); v += Δv; x += h v_new.
+void Simulation::stepImplicitEuler() {
+    const double h = prm_.dt, m = prm_.mass, mu = prm_.damping;
+    const std::vector<V3> f = forces(p_);
+    const std::vector<V3> hv = hessianProduct(p_, v_);
+    std::vector<V3> b(p_.size(), V3{0, 0, 0});
+    for (std::size_t k = 0; k < p_.size(); ++k) {
+        if (pinned_[k]) continue;  // the pinned rows are removed: Δv = 0 there
+        const V3 rhs = add(sub(f[k], scale(mu, v_[k])), scale(m, prm_.gravity));
+        b[k] = scale(h, sub(rhs, scale(h, hv[k])));
+    }
+    const std::vector<V3> dv = solveImplicitSystem(p_, b);
+    for (std::size_t k = 0; k < p_.size(); ++k) {
+        v_[k] = add(v_[k], dv[k]);
+        p_[k] = add(p_[k], scale(h, v_[k]));
+    }
+    pinAndCollide(p_, v_);
+}
+
+// Conjugate gradient from Δv = 0 (r = b, p = r): α = r·r / p·Ap, Δv += α p, r −= α Ap, stop when
+// |r| ≤ tolerance·|b| or after max_iterations, β = r_new·r_new / r·r, p = r + β p. Dot products
+// run over the free vertices only; pinned entries of p and r stay 0.
+std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x,
+                                                const std::vector<V3>& b) {
+    const double h = prm_.dt, diagonal = prm_.mass + h * prm_.damping;
+    const std::size_t n = x.size();
+    auto dotFree = [&](const std::vector<V3>& a, const std::vector<V3>& c) {
+        double s = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+            if (!pinned_[k]) s += dot(a[k], c[k]);
+        }
+        return s;
+    };
+    auto apply = [&](const std::vector<V3>& w) {  // A w = (m + hμ) w + h² H w
+        std::vector<V3> y = hessianProduct(x, w);
+        for (std::size_t k = 0; k < n; ++k) {
+            y[k] = pinned_[k] ? V3{0, 0, 0} : add(scale(diagonal, w[k]), scale(h * h, y[k]));
+        }
+        return y;
+    };
+    std::vector<V3> dv(n, V3{0, 0, 0}), r = b, p = r;
+    const double bNorm = std::sqrt(dotFree(b, b));
+    const double stop = prm_.cgTolerance * bNorm;
+    double rr = dotFree(r, r);
+    int iterations = 0;
+    while (std::sqrt(rr) > stop && iterations < prm_.cgMaxIterations) {
+        const std::vector<V3> ap = apply(p);
+        const double alpha = rr / dotFree(p, ap);
+        for (std::size_t k = 0; k < n; ++k) {
+            dv[k] = add(dv[k], scale(alpha, p[k]));
+            r[k] = sub(r[k], scale(alpha, ap[k]));
+        }
+        ++iterations;
+        const double rrNew = dotFree(r, r);
+        const double beta = rrNew / rr;
+        for (std::size_t k = 0; k < n; ++k) p[k] = add(r[k], scale(beta, p[k]));
+        rr = rrNew;
+    }
+    const double residual = bNorm > 0 ? std::sqrt(rr) / bNorm : 0;
+    ++cg_.solves;
+    cg_.iterations += iterations;
+    cg_.lastIterations = iterations;
+    cg_.lastResidual = residual;
+    if (!(std::sqrt(rr) <= stop)) {  // stopped by the cap (or by a non-finite residual)
+        ++cg_.misses;
+        cg_.worstResidual = std::fmax(cg_.worstResidual, residual);
+    }
+    return dv;
+}
+
+}  // namespace ref
