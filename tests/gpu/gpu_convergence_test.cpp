@@ -1,66 +1,30 @@
 // Convergence order of every integrator on the GPU (docs/integrators.md) against the closed form
-// of the seed's damped spring (scenes/spring.json's shape: a 1×2 grid, the top vertex pinned,
-// K = 100 N/m, μ = 0.5 N·s/m, m = 1 kg), released from an initial stretch under gravity.
+// of the seed's damped spring (tests/support/damped_spring.h; scenes/spring.json's shape: a 1×2
+// grid, the top vertex pinned, K = 100 N/m, μ = 0.5 N·s/m, m = 1 kg), released from an initial
+// stretch under gravity.
 #include <cmath>
 #include <cstdio>
 
 #include "gpu/gpu_test_support.h"
+#include "support/integrator_scenes.h"
 
 namespace cloth::test {
 namespace {
 
-constexpr double kK = 100, kMu = 0.5, kM = 1, kG = 9.81;
-constexpr double kStretch0 = 0.3;  // initial stretch beyond the rest length L = 1 m [m]
+// Underdamped: γ = 0.25 /s, ω0 = 10 rad/s; released 0.3 m stretched (x_e = 0.0981 m).
+const DampedSpring kSpring{100, 0.5, 1, 9.81, 0.3};
 
-// m x'' = −K x − μ x' + m g for the stretch x, from x(0) = x0, x'(0) = 0. About the
-// equilibrium x_e = m g / K, y = x − x_e obeys y'' + 2γ y' + ω0² y = 0, γ = μ/2m, ω0² = K/m;
-// underdamped (γ = 0.25 /s < ω0 = 10 rad/s): y = e^{−γt} (y0 cos ω_d t + (γ y0/ω_d) sin ω_d t),
-// ω_d = √(ω0² − γ²), y0 = x0 − x_e; and y' = −(ω0²/ω_d) y0 e^{−γt} sin ω_d t.
-struct DampedSpring {
-    double gamma = kMu / (2 * kM), w0 = std::sqrt(kK / kM);
-    double wd = std::sqrt(w0 * w0 - gamma * gamma);
-    double xe = kM * kG / kK, y0 = kStretch0 - xe;
-    double stretch(double t) const {
-        return xe +
-               std::exp(-gamma * t) * (y0 * std::cos(wd * t) + gamma * y0 / wd * std::sin(wd * t));
-    }
-    double rate(double t) const {
-        return -w0 * w0 / wd * y0 * std::exp(-gamma * t) * std::sin(wd * t);
-    }
-};
-
-Scene springScene(Method method, double dt) {
-    char text[640];
-    std::snprintf(text, sizeof text, R"({
-      "name": "spring",
-      "cloth": { "resolution": [1, 2], "size": [1.0, 1.0], "origin": [0, 0, 0],
-                 "u_axis": [1, 0, 0], "v_axis": [0, -1, 0], "mass": %.17g },
-      "springs": { "structural": %.17g },
-      "damping": %.17g,
-      "gravity": [0, -9.81, 0],
-      "pins": [[0, 0]],
-      "integrator": { "method": "%s", "dt": %.17g, "tolerance": 1e-7 }
-    })",
-                  kM, kK, kMu, methodName(method), dt);
-    return parseScene(text, "spring (test)");
-}
-
-// Error of the state at time T: stretch, and velocity over ω0 so both are lengths [m]. One
-// number, not the position alone, which an oscillating error can cross 0 with.
+// Error of the state at time T (DampedSpring::error: stretch, and rate over ω0) [m]. One
+// number, not the position alone, which an oscillating error can cross 0 with. The CG runs to
+// 1e-6: float's limit, far below the truncation errors measured.
 double errorAt(Method method, double dt, double T) {
-    const Scene scene = springScene(method, dt);
-    std::unique_ptr<Solver> solver = makeGpuSolver(scene);
-    SimState s = solver->read();
-    s.positions[1].y = -(1 + kStretch0);
-    solver->write(s);
+    std::unique_ptr<Solver> solver = makeGpuSolver(springScene(kSpring, method, dt, 1e-6));
+    solver->write(springState(kSpring.stretch0, 0));
     const long steps = std::lround(T / dt);
     const StepResult r = solver->step(steps);
     EXPECT_FALSE(r.unstable) << methodName(method) << " dt " << dt << ": " << r.reason;
-    s = solver->read();
-    const DampedSpring exact;
-    const double ex = (-s.positions[1].y - 1) - exact.stretch(T);
-    const double ev = (-s.velocities[1].y - exact.rate(T)) / exact.w0;
-    return std::sqrt(ex * ex + ev * ev);
+    const SimState s = solver->read();
+    return kSpring.error(T, -s.positions[1].y - 1, -s.velocities[1].y);
 }
 
 // In float, the state's rounding error after the ~10³ steps here is about 1e-6 m (seen: RK4's

@@ -77,6 +77,34 @@ INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorStability, ::testing::ValuesIn(kM
                              return std::string(methodName(p.param));
                          });
 
+// Past the bound (1.5× the tight one) each explicit scheme blows up, and the GPU reports it at
+// the step the CPU float backend does: the same check after the same update, whatever the
+// scheme's passes.
+class GpuIntegratorInstability : public GpuIntegratorStability {};
+
+TEST_P(GpuIntegratorInstability, ReportsInstabilityWhereTheCpuDoes) {
+    const Method method = GetParam();
+    Scene scene = parseScene(smallCloth(method).dump(), "gpu instability (test)");
+    scene.integrator.dt = 1.5 * estimateStability(scene, 40).tightDt(method);
+    std::unique_ptr<Solver> gpu = makeGpuSolver(scene);
+    std::unique_ptr<Solver> cpu = makeCpuSolver(scene, {Precision::Float, 1});
+    const StepResult g = gpu->step(kSteps), c = cpu->step(kSteps);
+    std::printf("%-16s dt %.4g s: unstable at step %ld (gpu), %ld (cpu float): %s\n",
+                methodName(method), scene.integrator.dt, g.firstBadStep, c.firstBadStep,
+                g.reason.c_str());
+    ASSERT_TRUE(g.unstable);
+    ASSERT_TRUE(c.unstable);
+    EXPECT_NEAR(double(g.firstBadStep), double(c.firstBadStep), 2);
+    EXPECT_EQ(gpu->stepsDone(), g.firstBadStep);
+}
+
+INSTANTIATE_TEST_SUITE_P(ExplicitMethods, GpuIntegratorInstability,
+                         ::testing::Values(Method::ExplicitEuler, Method::SymplecticEuler,
+                                           Method::Verlet, Method::Rk4),
+                         [](const ::testing::TestParamInfo<Method>& p) {
+                             return std::string(methodName(p.param));
+                         });
+
 // A 64×64 cloth with every family at K = 1e6 N/m stepped at 1/60 s: ω_max Δt is in the
 // hundreds, where every explicit scheme explodes in a few steps; backward Euler stays finite.
 TEST_F(GpuIntegratorStability, ImplicitEulerKeepsAStiffClothFiniteAtASixtiethOfASecond) {
