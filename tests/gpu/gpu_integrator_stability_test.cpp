@@ -138,3 +138,37 @@ TEST_F(GpuIntegratorStability, ImplicitEulerKeepsAStiffClothFiniteAtASixtiethOfA
 
 }  // namespace
 }  // namespace cloth::test
+
+namespace cloth::test {
+namespace {
+
+// The agreement rule: at the same (K, Δt), CPU float and GPU reach the same verdict,
+// stable or unstable, except within ±10% of the boundary. Stiffness over six decades, each
+// explicit scheme at 0.85× and 1.15× its tight bound (0.5×/2× are further from the edge, where
+// agreement is easier), 1500 steps.
+TEST_F(GpuIntegratorStability, CpuAndGpuAgreeOnStabilityAcrossSixDecadesOfStiffness) {
+    int unstableVerdicts = 0;
+    for (double k : {1e1, 1e3, 1e5, 1e7}) {
+        for (Method method :
+             {Method::ExplicitEuler, Method::SymplecticEuler, Method::Verlet, Method::Rk4}) {
+            Json j = smallCloth(method);
+            j["springs"] = {{"structural", k}, {"shear", 0.4 * k}, {"bend", 0.1 * k}};
+            Scene scene = parseScene(j.dump(), "gpu agreement (test)");
+            const double bound = estimateStability(scene, 40).tightDt(method);
+            for (double factor : {0.85, 1.15}) {
+                scene.integrator.dt = factor * bound;
+                const StepResult g = makeGpuSolver(scene)->step(1500);
+                const StepResult c = makeCpuSolver(scene, {Precision::Float, 1})->step(1500);
+                EXPECT_EQ(g.unstable, c.unstable)
+                    << methodName(method) << " K = " << k << ", dt = " << factor << " x bound: gpu "
+                    << g.reason << " / cpu " << c.reason;
+                unstableVerdicts += c.unstable;
+            }
+        }
+    }
+    // Not a vacuous agreement: past the bound most runs do blow up.
+    EXPECT_GE(unstableVerdicts, 8);
+}
+
+}  // namespace
+}  // namespace cloth::test
