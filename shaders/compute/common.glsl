@@ -31,14 +31,59 @@ vec3 windForce(vec3 normal, vec3 direction, float strength) {
 }
 #endif
 
+// a(x, v) = (F(x) − μ v)/m + g of a free vertex (docs/integrators.md), m = 1/inverseMass.
+vec3 acceleration(vec3 f, vec3 v, float inverseMass, float damping, vec3 g) {
+    return (f - damping * v) * inverseMass + g;
+}
+
 #ifdef INTEGRATOR_EXPLICIT_EULER
 // The seed's explicit Euler (DESIGN.md §2, seed eq. (6)): the position moves with the OLD
-// velocity; a = (F − μ v)/m + g.
+// velocity.
 void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float damping,
                vec3 g) {
-    vec3 a = (f - damping * v) * inverseMass + g;
+    vec3 a = acceleration(f, v, inverseMass, damping, g);
     p += dt * v;
     v += dt * a;
+}
+#endif
+
+#ifdef INTEGRATOR_SYMPLECTIC_EULER
+// Symplectic (semi-implicit) Euler: the position moves with the NEW velocity.
+void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float damping,
+               vec3 g) {
+    v += dt * acceleration(f, v, inverseMass, damping, g);
+    p += dt * v;
+}
+#endif
+
+#ifdef INTEGRATOR_VERLET
+// Velocity Verlet's first kick, damping at v_n, and drift: v_half = v_n + (h/2) a(x_n, v_n),
+// x_{n+1} = x_n + h v_half.
+void kickAndDrift(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float damping,
+                  vec3 g) {
+    v += (0.5 * dt) * acceleration(f, v, inverseMass, damping, g);
+    p += dt * v;
+}
+
+// The second kick with its damping at v_{n+1} (the trapezoidal rule), solved per vertex:
+// v_{n+1} = (v_half + (h/2)(F_{n+1}/m + g)) / (1 + hμ/(2m)).
+vec3 kick(vec3 vHalf, vec3 f, float inverseMass, float dt, float damping, vec3 g) {
+    float halfStep = 0.5 * dt;
+    return (vHalf + halfStep * (f * inverseMass + g)) / (1.0 + halfStep * damping * inverseMass);
+}
+#endif
+
+#ifdef INTEGRATOR_IMPLICIT_EULER
+// J_s w for the spring from k to q, J_s = ∂F_k/∂x_q with the compressive part clamped
+// (docs/integrators.md): J_s = K (d̂d̂ᵀ + max(0, 1 − L/l)(I − d̂d̂ᵀ)). Positive semi-definite;
+// 0 where the spring force is (a spring squeezed to a point).
+vec3 springJacobianTimes(vec3 pk, vec3 pq, float stiffness, float restLength, vec3 w) {
+    vec3 d = pq - pk;
+    float len = length(d);
+    if (!(len >= 1e-12 * restLength)) return vec3(0.0);
+    vec3 n = d / len;
+    float transverse = stiffness * max(0.0, 1.0 - restLength / len);
+    return transverse * w + ((stiffness - transverse) * dot(n, w)) * n;
 }
 #endif
 

@@ -20,7 +20,7 @@ layout(std430, binding = 4) readonly buffer Params {
     vec4 restLength[3];   // L of spring-table slot o at [o / 4][o % 4] [m]
     vec4 gravity;         // xyz g [m/s²], w damping μ [N·s/m]
     vec4 wind;            // xyz unit direction, w strength K_w [N]
-    vec4 integration;     // x Δt [s], y max_speed² [m²/s²]
+    vec4 integration;     // x Δt [s], y max_speed² [m²/s²], z CG tolerance (implicit_euler)
 } params;
 
 #ifdef HAS_COLLIDERS
@@ -35,6 +35,54 @@ layout(std430, binding = 5) readonly buffer Colliders {
 layout(std430, binding = 6) readonly buffer Pins {
     vec4 pins[];  // xyz pinned position [m]
 };
+
+#ifdef INTEGRATOR_RK4
+// RK4's stage state (docs/integrators.md): the start (x_n, v_n) of the step, w as in
+// positions/velocities, and the running sums Σ = k1 + 2 k2 + 2 k3 of dx/dt and dv/dt.
+layout(std430, binding = 8) buffer Rk4StartPositions {
+    vec4 rk4StartPositions[];
+};
+layout(std430, binding = 9) buffer Rk4StartVelocities {
+    vec4 rk4StartVelocities[];
+};
+layout(std430, binding = 10) buffer Rk4SumPositions {
+    vec4 rk4SumPositions[];  // [m/s]
+};
+layout(std430, binding = 11) buffer Rk4SumVelocities {
+    vec4 rk4SumVelocities[];  // [m/s²]
+};
+#endif
+
+#ifdef INTEGRATOR_IMPLICIT_EULER
+// implicit_euler's conjugate gradient on A Δv = b (docs/integrators.md), one vec4 per vertex;
+// rows of pinned vertices stay 0.
+layout(std430, binding = 8) buffer CgVelocityChange {
+    vec4 cgVelocityChange[];  // the iterate Δv [m/s]
+};
+layout(std430, binding = 9) buffer CgResidual {
+    vec4 cgResidual[];  // r = b − A Δv [N·s]
+};
+layout(std430, binding = 10) buffer CgDirection {
+    vec4 cgDirection[];  // the search direction p [m/s]
+};
+layout(std430, binding = 11) buffer CgProduct {
+    vec4 cgProduct[];  // A p [N·s]
+};
+// One partial sum per work group of the grid dispatch (gl_WorkGroupID.y · groupsX + .x).
+layout(std430, binding = 12) buffer CgPartials {
+    float cgPartials[];
+};
+// The solve's scalars, written by cg_reduce.comp alone; the host reads them every few
+// iterations. Mirrors gpu::CgState (src/gpu/gpu_layout.h).
+layout(std430, binding = 13) buffer CgState {
+    float rr;         // r·r of the current residual
+    float bb;         // b·b
+    float alpha;      // α = r·r / p·A p of the current iteration
+    float beta;       // β = r_new·r_new / r·r
+    uint iterations;  // completed in this solve
+    uint done;        // 0 running, 1 converged, 2 stopped (p·A p not positive: a non-finite state)
+} cg;
+#endif
 
 int gridU() { return params.grid.x; }
 int gridV() { return params.grid.y; }

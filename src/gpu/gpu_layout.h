@@ -18,13 +18,31 @@ enum Binding : unsigned {
     kColliders = 5,   // planes (point, normal) then spheres (centre, radius), see layout.glsl
     kPins = 6,        // vec4 per pin: pinned position [m]
     kStatus = 7,      // one Status
-    kBindingCount = 8
+    // The integrator's own buffers from 8 on: only its scene compiles and allocates them.
+    // rk4: the step's start and the sums k1 + 2 k2 + 2 k3 (vec4 per vertex).
+    kRk4StartPositions = 8,
+    kRk4StartVelocities = 9,
+    kRk4SumPositions = 10,
+    kRk4SumVelocities = 11,
+    // implicit_euler's conjugate gradient: Δv, r, p, A p (vec4 per vertex), one float partial
+    // sum per work group of the grid dispatch, one CgState.
+    kCgVelocityChange = 8,
+    kCgResidual = 9,
+    kCgDirection = 10,
+    kCgProduct = 11,
+    kCgPartials = 12,
+    kCgState = 13,
+    kBindingCount = 14
 };
 
-// Uniform locations. integrate.comp: the 1-based global step number. forces.comp: the grab
+// Uniform locations. The kernels that end a step (step_end.glsl): the 1-based global step
+// number; rk4_stage.comp also the stage 0..3. The kernels that include grab.glsl: the grab
 // (Solver::setGrab), int vertex (-1: none) and vec4 (target [m], stiffness [N/m]).
-inline constexpr int kStepLocation = 0;
+// cg_reduce.comp: which sum it reduces (CgReduction).
+inline constexpr int kStepLocation = 0, kStageLocation = 1;
 inline constexpr int kGrabVertexLocation = 0, kGrabLocation = 1;
+inline constexpr int kReductionLocation = 0;
+enum CgReduction : int { kReduceStart = 0, kReduceAlpha = 1, kReduceBeta = 2 };
 
 struct Params {
     glm::ivec4 grid;          // nu, nv, 0, 0
@@ -32,7 +50,7 @@ struct Params {
     glm::vec4 restLength[3];  // L of kSpringOffsets[o] at [o / 4][o % 4] [m]
     glm::vec4 gravity;        // xyz g [m/s²], w damping μ [N·s/m]
     glm::vec4 wind;           // xyz unit direction, w strength K_w [N]
-    glm::vec4 integration;    // x Δt [s], y max_speed² [m²/s²], zw 0
+    glm::vec4 integration;    // x Δt [s], y max_speed² [m²/s²], z CG tolerance, w 0
 };
 static_assert(sizeof(Params) == 128);
 static_assert(offsetof(Params, grid) == 0);
@@ -56,6 +74,23 @@ static_assert(offsetof(Status, badKind) == 8);
 static_assert(offsetof(Status, badSpeed) == 12);
 inline constexpr std::uint32_t kNoBadStep = 0xffffffffu;
 inline constexpr std::uint32_t kBadNonFinite = 1, kBadSpeed = 2;
+
+// implicit_euler's solve scalars, written by cg_reduce.comp (layout.glsl's CgState).
+struct CgState {
+    float rr;                  // r·r of the current residual
+    float bb;                  // b·b
+    float alpha, beta;         // of the current iteration
+    std::uint32_t iterations;  // completed in this solve
+    std::uint32_t done;        // kCgRunning, kCgConverged or kCgStopped
+};
+static_assert(sizeof(CgState) == 24);
+static_assert(offsetof(CgState, rr) == 0);
+static_assert(offsetof(CgState, bb) == 4);
+static_assert(offsetof(CgState, alpha) == 8);
+static_assert(offsetof(CgState, beta) == 12);
+static_assert(offsetof(CgState, iterations) == 16);
+static_assert(offsetof(CgState, done) == 20);
+inline constexpr std::uint32_t kCgRunning = 0, kCgConverged = 1, kCgStopped = 2;
 
 static_assert(sizeof(glm::vec4) == 16 && sizeof(glm::ivec4) == 16);
 

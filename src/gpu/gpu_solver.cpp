@@ -25,8 +25,8 @@ using Clock = std::chrono::steady_clock;
 // Room for this many pins before setPinned has to grow the table.
 constexpr std::size_t kMinPinCapacity = 16;
 
-// Both kernels of the scene's variant; neither leaks if the other fails to build.
-std::pair<unsigned, unsigned> buildPrograms(const Scene& scene, WorkGroup wg) {
+// The scene's kernels (kernelsOf its integrator); none leaks if a later one fails to build.
+std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup wg) {
     const ShaderDirectory dir = findShaderDirectory();
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -34,14 +34,29 @@ std::pair<unsigned, unsigned> buildPrograms(const Scene& scene, WorkGroup wg) {
         throw std::runtime_error("no compute shaders in " + dir.path +
                                  "/compute (shader directory " + dir.how +
                                  "); set CLOTH_SHADER_DIR to the project's shaders/");
-    const unsigned forces =
-        compileComputeProgram(assembleKernel(dir.path, "compute/forces.comp", scene, wg));
+    std::array<unsigned, kKernelCount> programs{};
     try {
-        return {forces, compileComputeProgram(
-                            assembleKernel(dir.path, "compute/integrate.comp", scene, wg))};
+        for (Kernel k : kernelsOf(scene.integrator.method))
+            programs[int(k)] =
+                compileComputeProgram(assembleKernel(dir.path, kernelFile(k), scene, wg));
     } catch (...) {
-        glDeleteProgram(forces);
+        for (unsigned p : programs) glDeleteProgram(p);  // 0 is silently ignored
         throw;
+    }
+    return programs;
+}
+
+// The buffers of docs/integrators.md's stage or solver state, beyond the core eight.
+std::vector<gpu::Binding> integratorBindings(Method m) {
+    switch (m) {
+        case Method::Rk4:
+            return {gpu::kRk4StartPositions, gpu::kRk4StartVelocities, gpu::kRk4SumPositions,
+                    gpu::kRk4SumVelocities};
+        case Method::ImplicitEuler:
+            return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection,
+                    gpu::kCgProduct,        gpu::kCgPartials, gpu::kCgState};
+        default:
+            return {};
     }
 }
 
@@ -50,6 +65,8 @@ std::pair<unsigned, unsigned> buildPrograms(const Scene& scene, WorkGroup wg) {
 GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     : context_(GlContext::instance()),
       features_(Features::of(scene)),
+      method_(scene.integrator.method),
+      maxIterations_(scene.integrator.maxIterations),
       nu_(scene.cloth.nu),
       nv_(scene.cloth.nv),
       checkEvery_(options.checkEvery),
@@ -65,10 +82,11 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
     dt_ = scene.integrator.dt;
     defines_ = gpuDefines(scene, workGroup_);
-    std::tie(forcesProgram_, integrateProgram_) = buildPrograms(scene, workGroup_);
-    glGenBuffers(GLsizei(buffers_.size()), buffers_.data());
+    programs_ = buildPrograms(scene, workGroup_);
+    glGenBuffers(gpu::kStatus + 1, buffers_.data());
+    for (gpu::Binding b : integratorBindings(method_)) glGenBuffers(1, &buffers_[b]);
     upload(scene);
-    glProgramUniform1i(forcesProgram_, gpu::kGrabVertexLocation, -1);  // nothing grabbed
+    setGrabUniforms(std::nullopt);
     // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
     // the wall clock.
     if (info.timerQueries && !info.software) glGenQueries(1, &timer_);
@@ -83,9 +101,8 @@ GpuSolver::~GpuSolver() {
     } catch (...) {
         return;  // the context is gone; so are its objects
     }
-    glDeleteBuffers(GLsizei(buffers_.size()), buffers_.data());
-    glDeleteProgram(forcesProgram_);
-    glDeleteProgram(integrateProgram_);
+    glDeleteBuffers(GLsizei(buffers_.size()), buffers_.data());  // 0 is silently ignored
+    for (unsigned p : programs_) glDeleteProgram(p);
     if (timer_ != 0) glDeleteQueries(1, &timer_);
 }
 
@@ -120,7 +137,25 @@ void GpuSolver::upload(const Scene& scene) {
     bufferData(buffers_[gpu::kParams], nullptr, sizeof(gpu::Params));
     bufferData(buffers_[gpu::kColliders], nullptr,
                std::size_t(2 * features_.planes + features_.spheres) * kVec4);
+    allocateIntegratorBuffers();
     uploadParams(scene);
+}
+
+// Stage or solver state, as zeros: written by the step before it is read.
+void GpuSolver::allocateIntegratorBuffers() {
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    for (gpu::Binding b : integratorBindings(method_)) {
+        if (b == gpu::kCgPartials) {
+            // One float per work group, rounded up to whole vec4s (the clear's element).
+            const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
+            bufferData(buffers_[b], nullptr, (groups + 3) / 4 * kVec4);
+        } else if (b == gpu::kCgState) {
+            const gpu::CgState zero{};
+            bufferData(buffers_[b], &zero, sizeof zero);
+        } else {
+            bufferData(buffers_[b], nullptr, n * kVec4);
+        }
+    }
 }
 
 void GpuSolver::uploadParams(const Scene& scene) {
@@ -134,8 +169,8 @@ void GpuSolver::uploadParams(const Scene& scene) {
             float(g.restLength(kSpringOffsets[o].di, kSpringOffsets[o].dj));
     p.gravity = vec4(scene.gravity, scene.damping);
     if (scene.wind) p.wind = vec4(scene.wind->direction, scene.wind->strength);
-    p.integration =
-        glm::vec4(float(scene.integrator.dt), float(scene.maxSpeed * scene.maxSpeed), 0, 0);
+    p.integration = glm::vec4(float(scene.integrator.dt), float(scene.maxSpeed * scene.maxSpeed),
+                              float(scene.integrator.tolerance), 0);
     subData(buffers_[gpu::kParams], 0, &p, sizeof p);
     // Planes first (point, normal), then spheres (centre, radius): layout.glsl's Colliders.
     std::vector<glm::vec4> planes, spheres;
@@ -154,25 +189,38 @@ void GpuSolver::uploadParams(const Scene& scene) {
 // Pass 1 alone: fresh normals for the renderer (its forces are recomputed by the next step).
 void GpuSolver::computeNormals() const {
     bindBuffers();
-    glUseProgram(forcesProgram_);
-    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    runPass(Kernel::Forces);
 }
 
 void GpuSolver::bindBuffers() const {
     for (unsigned b = 0; b < buffers_.size(); ++b)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
+        if (buffers_[b] != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
 }
 
-// One step of DESIGN.md §2: pass 1 reads positions, pass 2 reads the forces pass 1 wrote.
-void GpuSolver::dispatchStep(long stepNumber) const {
-    glUseProgram(forcesProgram_);
-    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glUseProgram(integrateProgram_);
-    glUniform1ui(gpu::kStepLocation, GLuint(stepNumber));
-    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+// The grab's two uniforms in every kernel that includes grab.glsl: the forces pass and, for
+// implicit_euler, the two stiffness products.
+void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
+    for (Kernel k : {Kernel::Forces, Kernel::CgRightHandSide, Kernel::CgProduct}) {
+        const unsigned program = programs_[int(k)];
+        if (program == 0) continue;
+        glProgramUniform1i(program, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);
+        if (!grab) continue;
+        const glm::vec4 g = vec4(grab->target, grab->stiffness);  // as the CPU float converts
+        glProgramUniform4f(program, gpu::kGrabLocation, g.x, g.y, g.z, g.w);
+    }
+}
+
+std::size_t GpuSolver::bufferBytes() const {
+    context_.makeCurrent();
+    std::size_t bytes = 0;
+    for (unsigned b : buffers_) {
+        if (b == 0) continue;
+        GLint64 size = 0;
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);
+        glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &size);
+        bytes += std::size_t(size);
+    }
+    return bytes;
 }
 
 gpu::Status GpuSolver::readStatus() const {
@@ -194,8 +242,11 @@ StepResult GpuSolver::step(long n) {
     const long before = steps_;
     long done = 0;
     gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
+    // implicit_euler reads back every step anyway (the solve's state): its status too, so no
+    // solve after an unstable step is counted in solveStats_.
+    const long every = method_ == Method::ImplicitEuler ? 1 : checkEvery_;
     while (done < n && status.firstBadStep == gpu::kNoBadStep) {
-        const long chunk = std::min<long>(n - done, checkEvery_);
+        const long chunk = std::min<long>(n - done, every);
         for (long s = 1; s <= chunk; ++s) dispatchStep(before + done + s);
         done += chunk;
         status = readStatus();  // the only round trip: 16 bytes every checkEvery steps
@@ -218,6 +269,7 @@ StepResult GpuSolver::step(long n) {
 StepResult GpuSolver::reportUnstable(const gpu::Status& status, long stepsBefore) {
     StepResult r;
     r.unstable = true;
+    forcesKept_ = false;
     r.firstBadStep = r.lastBadStep = long(status.firstBadStep);
     steps_ = long(status.firstBadStep);
     r.stepsTaken = std::max(0L, steps_ - stepsBefore);

@@ -1,5 +1,7 @@
-// The GPU backend (DESIGN.md §3): float state in std430 SSBOs, two compute passes per step,
-// no CPU round trip except a 16-byte status read every few steps.
+// The GPU backend (DESIGN.md §3): float state in std430 SSBOs, a forces pass and an update pass
+// per force evaluation of the scene's integrator (docs/integrators.md), no CPU round trip except
+// a 16-byte status read every few steps, and for implicit_euler the solve's state every few
+// conjugate-gradient iterations.
 #pragma once
 
 #include <array>
@@ -46,6 +48,9 @@ public:
     double lastSecondsPerStep() const { return secondsPerStep_; }
     const char* timingSource() const { return timedByQuery_ ? "GL timer query" : "wall clock"; }
     WorkGroup workGroup() const { return workGroup_; }
+    // Bytes of GPU memory in the solver's buffers: the state, the tables and the integrator's
+    // own (RK4's stages, the CG's vectors), which only a scene with that integrator allocates.
+    std::size_t bufferBytes() const;
 
 private:
     struct PinSlot {
@@ -58,13 +63,32 @@ private:
     void updateInverseMass(float inverseMass);
     void storePin(int slot);
     void computeNormals() const;
+    void allocateIntegratorBuffers();
     void bindBuffers() const;
-    void dispatchStep(long stepNumber) const;
+    void setGrabUniforms(const std::optional<Grab>& grab) const;
     gpu::Status readStatus() const;
+
+    // One step of the scene's integrator (gpu_solver_steps.cpp).
+    void dispatchStep(long stepNumber);
+    void runPass(Kernel k) const;
+    void runStepPass(Kernel k, long stepNumber) const;
+    void stepVerlet(long stepNumber);
+    void stepRk4(long stepNumber) const;
+    void stepImplicit(long stepNumber);
+    gpu::CgState solve() const;
+    void iterate() const;
+    void runReduction(gpu::CgReduction which) const;
+    gpu::CgState readCgState() const;
+    void recordSolve(long stepNumber, const gpu::CgState& cg);
     StepResult reportUnstable(const gpu::Status& status, long stepsBefore);
 
     const GlContext& context_;
     Features features_;
+    Method method_;
+    int maxIterations_;  // implicit_euler's cap on CG iterations per step
+    // verlet: the forces buffer holds F(x_n) of the coming step (F(x_{n+1}) of the last one).
+    // Anything that changes the state or the forces from outside discards it.
+    bool forcesKept_ = false;
     Defines defines_;  // the compiled variant: setParameters must not need another
     WorkGroup workGroup_;
     int nu_, nv_;
@@ -76,8 +100,8 @@ private:
     std::vector<glm::vec4> pins_;               // host copy of the Pins table, by slot
     std::size_t pinCapacity_ = 0;               // rows allocated in the Pins buffer
     std::string name_;
-    std::array<unsigned, gpu::kBindingCount> buffers_{};
-    unsigned forcesProgram_ = 0, integrateProgram_ = 0;
+    std::array<unsigned, gpu::kBindingCount> buffers_{};  // 0: not used by this integrator
+    std::array<unsigned, kKernelCount> programs_{};       // 0: not compiled for this scene
     unsigned timer_ = 0;
     double secondsPerStep_ = 0;
     bool timedByQuery_ = false;

@@ -1,5 +1,6 @@
 // GpuSolver's interactive control (the viewer, Solver's second half): small buffer updates and
-// two uniforms, never a recompilation. Each takes effect from the next step.
+// two uniforms, never a recompilation. Each takes effect from the next step, and each discards
+// the forces verlet kept from the last step (docs/integrators.md).
 #include <GL/glew.h>
 
 #include <set>
@@ -40,6 +41,7 @@ void GpuSolver::write(const SimState& state) {
     // A written state starts afresh: an earlier instability no longer freezes the kernels.
     const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
     subData(buffers_[gpu::kStatus], 0, &status, sizeof status);
+    forcesKept_ = false;
     computeNormals();
 }
 
@@ -51,6 +53,7 @@ void GpuSolver::setPinned(int i, int j, bool pinned) {
     const std::int64_t k = std::int64_t(j) * nu_ + i;
     auto it = pinSlots_.find(k);
     if (!pinned && (it == pinSlots_.end() || !it->second.pinned)) return;
+    forcesKept_ = false;
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::size_t at = std::size_t(k) * kVec4;
@@ -85,16 +88,13 @@ void GpuSolver::storePin(int slot) {
     bufferData(buffers_[gpu::kPins], table);
 }
 
-// Two uniforms of the forces kernel: no buffer traffic, no recompilation.
+// Two uniforms of the kernels that see the grab: no buffer traffic, no recompilation.
 void GpuSolver::setGrab(const std::optional<Grab>& grab) {
     if (grab && (grab->vertex < 0 || grab->vertex >= std::int64_t(nu_) * nv_))
         throw std::invalid_argument("setGrab: vertex outside the grid");
     context_.makeCurrent();
-    glProgramUniform1i(forcesProgram_, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);
-    if (grab) {
-        const glm::vec4 g = vec4(grab->target, grab->stiffness);  // as the CPU float converts
-        glProgramUniform4f(forcesProgram_, gpu::kGrabLocation, g.x, g.y, g.z, g.w);
-    }
+    setGrabUniforms(grab);
+    forcesKept_ = false;
 }
 
 // Everything but the compiled variant is data: the Params block and the Colliders table are
@@ -120,6 +120,8 @@ void GpuSolver::setParameters(const Scene& scene) {
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     dt_ = scene.integrator.dt;
     maxSpeed_ = scene.maxSpeed;
+    maxIterations_ = scene.integrator.maxIterations;
+    forcesKept_ = false;
     uploadParams(scene);
     updateInverseMass(float(1.0 / scene.cloth.mass));
 }

@@ -19,9 +19,17 @@ std::string integratorDefine(Method m) {
     switch (m) {
         case Method::ExplicitEuler:
             return "INTEGRATOR_EXPLICIT_EULER";
+        case Method::SymplecticEuler:
+            return "INTEGRATOR_SYMPLECTIC_EULER";
+        case Method::Verlet:
+            return "INTEGRATOR_VERLET";
+        case Method::Rk4:
+            return "INTEGRATOR_RK4";
+        case Method::ImplicitEuler:
+            return "INTEGRATOR_IMPLICIT_EULER";
     }
     throw InputError("", "integrator.method",
-                     std::string("'") + methodName(m) + "' has no GPU kernel yet");
+                     std::string("'") + methodName(m) + "' has no GPU kernel");
 }
 
 // The rows of kSpringOffsets whose family the scene declares, as GLSL ivec4(di, dj, family,
@@ -134,6 +142,34 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg) {
     d.push_back({"NUM_SPRING_OFFSETS", std::to_string(count)});
     if (count > 0) d.push_back({"SPRING_OFFSETS", rows});
     return d;
+}
+
+const char* kernelFile(Kernel k) {
+    static constexpr const char* kFiles[kKernelCount] = {
+        "compute/forces.comp",         "compute/integrate.comp",
+        "compute/verlet_drift.comp",   "compute/verlet_kick.comp",
+        "compute/rk4_stage.comp",      "compute/cg_right_hand_side.comp",
+        "compute/cg_product.comp",     "compute/cg_reduce.comp",
+        "compute/cg_update.comp",      "compute/cg_direction.comp",
+        "compute/implicit_finish.comp"};
+    return kFiles[int(k)];
+}
+
+std::vector<Kernel> kernelsOf(Method m) {
+    switch (m) {
+        case Method::ExplicitEuler:
+        case Method::SymplecticEuler:
+            return {Kernel::Forces, Kernel::Integrate};
+        case Method::Verlet:
+            return {Kernel::Forces, Kernel::VerletDrift, Kernel::VerletKick};
+        case Method::Rk4:
+            return {Kernel::Forces, Kernel::Rk4Stage};
+        case Method::ImplicitEuler:
+            return {Kernel::Forces,        Kernel::CgRightHandSide, Kernel::CgProduct,
+                    Kernel::CgReduce,      Kernel::CgUpdate,        Kernel::CgDirection,
+                    Kernel::ImplicitFinish};
+    }
+    return {};
 }
 
 ShaderSource assembleKernel(const std::string& dir, const std::string& file, const Scene& scene,

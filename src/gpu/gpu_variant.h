@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/scene.h"
 #include "gpu/shader_loader.h"
@@ -31,7 +32,27 @@ void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info);
 // features: the viewer changes them at run time, so their (one-compare) code is always there.
 Defines gpuDefines(const Scene& scene, WorkGroup wg);
 
-// The assembled source of compute/forces.comp or compute/integrate.comp for `scene`.
+// The compute kernels of the backend. A scene compiles the forces pass and its integrator's
+// kernels only (kernelsOf); docs/integrators.md gives each scheme's passes.
+enum class Kernel {
+    Forces,           // pass 1 of every scheme: F and normals
+    Integrate,        // explicit_euler, symplectic_euler
+    VerletDrift,      // verlet: kick and drift, pins, colliders
+    VerletKick,       // verlet: kick with F(x_{n+1}), pins, check
+    Rk4Stage,         // rk4: one per stage, after its forces pass
+    CgRightHandSide,  // implicit_euler: b and the CG's start
+    CgProduct,        // implicit_euler: A p
+    CgReduce,         // implicit_euler: the partial sums to α, β, the residual
+    CgUpdate,         // implicit_euler: Δv, r
+    CgDirection,      // implicit_euler: p
+    ImplicitFinish,   // implicit_euler: v, x, pins, colliders, check
+};
+inline constexpr int kKernelCount = int(Kernel::ImplicitFinish) + 1;
+
+const char* kernelFile(Kernel k);  // "compute/forces.comp", ...
+std::vector<Kernel> kernelsOf(Method m);
+
+// The assembled source of a kernel file (kernelFile) for `scene`.
 ShaderSource assembleKernel(const std::string& dir, const std::string& file, const Scene& scene,
                             WorkGroup wg);
 

@@ -3,6 +3,7 @@
 // only the declared rows of kSpringOffsets. No GL needed for the text; compiling needs a context.
 #include <regex>
 
+#include "gpu/gpu_solver.h"
 #include "gpu/gpu_test_support.h"
 #include "gpu/gpu_variant.h"
 #include "gpu/shader_loader.h"
@@ -91,6 +92,42 @@ TEST(GpuSpecialisation, SpringTableHoldsOnlyTheDeclaredFamilies) {
     EXPECT_EQ(std::distance(std::sregex_iterator(full.begin(), full.end(), loop), {}), 1);
 }
 
+// Code that only one integrator has (docs/integrators.md), as it appears in the kernel text.
+struct IntegratorCode {
+    Method method;
+    std::vector<const char*> markers;
+};
+const IntegratorCode kIntegratorCode[] = {
+    {Method::ExplicitEuler, {"INTEGRATOR_EXPLICIT_EULER", "p += dt * v;\n    v += dt * a;"}},
+    {Method::SymplecticEuler, {"INTEGRATOR_SYMPLECTIC_EULER", "v += dt * acceleration("}},
+    {Method::Verlet, {"INTEGRATOR_VERLET", "kickAndDrift(", "vec3 kick("}},
+    {Method::Rk4, {"INTEGRATOR_RK4", "rk4StartPositions", "rk4SumVelocities"}},
+    {Method::ImplicitEuler,
+     {"INTEGRATOR_IMPLICIT_EULER", "springJacobianTimes(", "stiffnessProduct(", "cgResidual",
+      "groupSums"}},
+};
+
+std::string kernelsOfScene(Method method) {
+    Scene scene = fullScene();
+    scene.integrator.method = method;
+    std::string text;
+    for (Kernel k : kernelsOf(method))
+        text += assembleKernel(kShaderDir, kernelFile(k), scene, {}).text;
+    return std::regex_replace(text, std::regex("//[^\n]*"), "");
+}
+
+// The scene's integrator decides which kernels exist and what is in them: its own code, none of
+// another integrator's.
+TEST(GpuSpecialisation, OnlyTheScenesIntegratorIsInItsKernels) {
+    for (const IntegratorCode& own : kIntegratorCode) {
+        const std::string text = kernelsOfScene(own.method);
+        for (const IntegratorCode& other : kIntegratorCode)
+            for (const char* marker : other.markers)
+                EXPECT_EQ(text.find(marker) != std::string::npos, other.method == own.method)
+                    << methodName(own.method) << "'s kernels and '" << marker << "'";
+    }
+}
+
 TEST(GpuSpecialisation, VariantLineNamesTheDefines) {
     EXPECT_EQ(describeGpuVariant(plainScene()),
               "HAS_STRUCTURAL NUM_PLANES=0 NUM_SPHERES=0 INTEGRATOR_EXPLICIT_EULER WX=16 WY=16 "
@@ -125,6 +162,34 @@ TEST_F(GpuCompiles, EveryFamilySubsetCompiles) {
         std::unique_ptr<Solver> solver = makeGpuSolver(scene);
         EXPECT_FALSE(solver->step(1).unstable) << mask;
     }
+}
+
+// Every integrator with every feature (wind, both colliders, pins) compiles and takes steps.
+TEST_F(GpuCompiles, EveryIntegratorCompilesWithEveryFeature) {
+    for (Method m : kMethods) {
+        Scene scene = fullScene();
+        scene.integrator.method = m;
+        std::unique_ptr<Solver> solver = makeGpuSolver(scene);
+        EXPECT_FALSE(solver->step(3).unstable) << methodName(m);
+    }
+}
+
+// A scene allocates its integrator's buffers only: RK4 adds four vec4 per vertex (start and
+// sums), implicit Euler four (Δv, r, p, A p) and one float per work group plus the solve's
+// scalars; the Euler schemes and Verlet nothing beyond the state.
+TEST_F(GpuCompiles, OnlyTheScenesIntegratorAllocatesBuffers) {
+    Scene scene = fullScene();  // 8×5: one 16×16 work group
+    const std::size_t vertexBuffer = 8 * 5 * sizeof(glm::vec4);
+    auto bytes = [&](Method m) {
+        scene.integrator.method = m;
+        return GpuSolver(scene, {}).bufferBytes();
+    };
+    const std::size_t base = bytes(Method::ExplicitEuler);
+    EXPECT_EQ(bytes(Method::SymplecticEuler), base);
+    EXPECT_EQ(bytes(Method::Verlet), base);
+    EXPECT_EQ(bytes(Method::Rk4), base + 4 * vertexBuffer);
+    EXPECT_EQ(bytes(Method::ImplicitEuler),
+              base + 4 * vertexBuffer + sizeof(glm::vec4) + sizeof(gpu::CgState));
 }
 
 }  // namespace

@@ -1,0 +1,32 @@
+// implicit_euler's conjugate gradient, one iteration's matrix-vector product (docs/integrators.md):
+// A p = (m + hμ) p + h² H p, a gather over the stencil at x_n (no atomics), plus the grab's
+// h² K p, and the work groups' partial sums of p·A p. Pinned rows are 0.
+#include "layout.glsl"
+#include "common.glsl"
+#include "grab.glsl"
+#define STIFFNESS_VECTOR cgDirection
+#include "stiffness.glsl"
+
+layout(local_size_x = WX, local_size_y = WY) in;
+
+#include "reduction.glsl"
+
+void main() {
+    if (cg.done != 0u) return;  // the same for the whole dispatch: converged or stopped
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    float pAp = 0.0;
+    if (ij.x < gridU() && ij.y < gridV()) {
+        uint k = vertexIndex(ij);
+        float inverseMass = positions[k].w;
+        vec3 p = cgDirection[k].xyz;
+        vec3 ap = vec3(0.0);
+        if (inverseMass != 0.0) {
+            float h = params.integration.x, h2 = h * h;
+            ap = (1.0 / inverseMass + h * params.gravity.w) * p + h2 * stiffnessProduct(ij, k);
+            if (grabbed(k)) ap += h2 * uGrab.w * p;
+        }
+        cgProduct[k] = vec4(ap, 0.0);
+        pAp = dot(p, ap);
+    }
+    storeGroupSum(pAp);
+}

@@ -1,0 +1,23 @@
+// implicit_euler's conjugate gradient: Δv += α p, r −= α A p, and the work groups' partial sums
+// of the new r·r (docs/integrators.md).
+#include "layout.glsl"
+#include "common.glsl"
+
+layout(local_size_x = WX, local_size_y = WY) in;
+
+#include "reduction.glsl"
+
+void main() {
+    if (cg.done != 0u) return;
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    float rr = 0.0;
+    if (ij.x < gridU() && ij.y < gridV()) {
+        uint k = vertexIndex(ij);
+        float alpha = cg.alpha;
+        cgVelocityChange[k].xyz += alpha * cgDirection[k].xyz;
+        vec3 r = cgResidual[k].xyz - alpha * cgProduct[k].xyz;
+        cgResidual[k] = vec4(r, 0.0);
+        rr = dot(r, r);
+    }
+    storeGroupSum(rr);
+}

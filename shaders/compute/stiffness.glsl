@@ -1,0 +1,26 @@
+// The stiffness operator H = −∂F/∂x of the spring forces, applied without storing it: one gather
+// over the 12-neighbour stencil, like the force pass (docs/integrators.md, implicit_euler).
+// Mirrors src/core/stiffness.h. The including kernel #defines STIFFNESS_VECTOR as the array H
+// multiplies: velocities for the right-hand side, cgDirection for A p.
+#include "springs.glsl"
+
+// (H w)_k = Σ_s J_s(x) (w_k − w_q) over the springs of vertex k, J_s clamped
+// (springJacobianTimes) at the positions x. The row of a pinned vertex is 0: a pin is a
+// constraint, not a degree of freedom; the solve keeps w = 0 there, which removes its column.
+vec3 stiffnessProduct(ivec2 ij, uint k) {
+    vec3 y = vec3(0.0);
+#if NUM_SPRING_OFFSETS > 0
+    if (positions[k].w == 0.0) return y;
+    vec3 xk = positions[k].xyz;
+    vec3 wk = STIFFNESS_VECTOR[k].xyz;
+    for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
+        ivec4 s = kSpringOffsets[o];
+        ivec2 q = ij + s.xy;
+        if (!insideGrid(q)) continue;
+        uint kq = vertexIndex(q);
+        y += springJacobianTimes(xk, positions[kq].xyz, springStiffness(s), springRestLength(s),
+                                 wk - STIFFNESS_VECTOR[kq].xyz);
+    }
+#endif
+    return y;
+}

@@ -1,0 +1,134 @@
+// GpuSolver's steps, one function per integrator of docs/integrators.md: which passes run, in
+// what order. The physics is in the kernels (shaders/compute/); between two passes a
+// GL_SHADER_STORAGE_BARRIER_BIT makes the first one's writes visible to the second.
+#include <GL/glew.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gpu/gpu_solver.h"
+
+namespace cloth {
+namespace {
+
+// implicit_euler: conjugate-gradient iterations between two reads of the solve's state. The
+// kernels skip their work once the solve has converged, so the cost of reading less often is
+// at most this many empty iterations; reading more often costs a round trip each.
+constexpr int kIterationsPerRead = 8;
+
+}  // namespace
+
+// One dispatch over the grid (2-D, DESIGN.md §3).
+void GpuSolver::runPass(Kernel k) const {
+    glUseProgram(programs_[int(k)]);
+    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+// A pass that writes the state (step_end.glsl): it needs the step's number.
+void GpuSolver::runStepPass(Kernel k, long stepNumber) const {
+    glProgramUniform1ui(programs_[int(k)], gpu::kStepLocation, GLuint(stepNumber));
+    runPass(k);
+}
+
+void GpuSolver::dispatchStep(long stepNumber) {
+    switch (method_) {
+        case Method::ExplicitEuler:
+        case Method::SymplecticEuler:
+            runPass(Kernel::Forces);
+            runStepPass(Kernel::Integrate, stepNumber);
+            return;
+        case Method::Verlet:
+            return stepVerlet(stepNumber);
+        case Method::Rk4:
+            return stepRk4(stepNumber);
+        case Method::ImplicitEuler:
+            return stepImplicit(stepNumber);
+    }
+}
+
+// Kick–drift–kick with one force evaluation per step: F(x_{n+1}) of this step stays in the
+// forces buffer as F(x_n) of the next.
+void GpuSolver::stepVerlet(long stepNumber) {
+    if (!forcesKept_) runPass(Kernel::Forces);
+    runStepPass(Kernel::VerletDrift, stepNumber);
+    runPass(Kernel::Forces);
+    runStepPass(Kernel::VerletKick, stepNumber);
+    forcesKept_ = true;
+}
+
+// Four stages, each a forces pass at the stage state and a stage pass (rk4_stage.comp).
+void GpuSolver::stepRk4(long stepNumber) const {
+    for (int stage = 0; stage < 4; ++stage) {
+        runPass(Kernel::Forces);
+        glProgramUniform1i(programs_[int(Kernel::Rk4Stage)], gpu::kStageLocation, stage);
+        runStepPass(Kernel::Rk4Stage, stepNumber);
+    }
+}
+
+// Backward Euler linearised at x_n: forces, the right-hand side and the CG's start, the solve,
+// then the update of v and x.
+void GpuSolver::stepImplicit(long stepNumber) {
+    runPass(Kernel::Forces);
+    runPass(Kernel::CgRightHandSide);
+    runReduction(gpu::kReduceStart);
+    recordSolve(stepNumber, solve());
+    runStepPass(Kernel::ImplicitFinish, stepNumber);
+}
+
+// Iterations in chunks of kIterationsPerRead until the GPU says the solve is done (converged,
+// or stopped by a non-finite state) or max_iterations were dispatched. Returns the last state
+// read.
+gpu::CgState GpuSolver::solve() const {
+    int dispatched = 0;
+    gpu::CgState cg{};
+    do {
+        const int chunk = std::min(kIterationsPerRead, maxIterations_ - dispatched);
+        for (int i = 0; i < chunk; ++i) iterate();
+        dispatched += chunk;
+        cg = readCgState();
+    } while (cg.done == gpu::kCgRunning && dispatched < maxIterations_);
+    return cg;
+}
+
+// One CG iteration (docs/integrators.md): α = r·r / p·A p; Δv += α p; r −= α A p;
+// β = r_new·r_new / r·r; p = r + β p. The dot products never leave the GPU.
+void GpuSolver::iterate() const {
+    runPass(Kernel::CgProduct);
+    runReduction(gpu::kReduceAlpha);
+    runPass(Kernel::CgUpdate);
+    runReduction(gpu::kReduceBeta);
+    runPass(Kernel::CgDirection);
+}
+
+// The second level of a dot product: one work group over the partial sums.
+void GpuSolver::runReduction(gpu::CgReduction which) const {
+    glUseProgram(programs_[int(Kernel::CgReduce)]);
+    glUniform1i(gpu::kReductionLocation, which);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+gpu::CgState GpuSolver::readCgState() const {
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    gpu::CgState cg{};
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[gpu::kCgState]);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof cg, &cg);
+    return cg;
+}
+
+// A solve that did not converge (max_iterations reached, or stopped) is a miss: the step went on
+// with the last iterate, and callers report it (docs/integrators.md: never silent).
+void GpuSolver::recordSolve(long stepNumber, const gpu::CgState& cg) {
+    SolveStats& s = solveStats_;
+    const int iterations = int(cg.iterations);
+    ++s.solves;
+    s.iterations += iterations;
+    s.mostIterations = std::max(s.mostIterations, iterations);
+    if (cg.done == gpu::kCgConverged) return;
+    if (s.misses++ == 0) s.firstMissStep = stepNumber;
+    const double residual = cg.bb > 0 ? std::sqrt(double(cg.rr) / double(cg.bb)) : 0.0;
+    s.worstResidual = std::max(s.worstResidual, residual);
+}
+
+}  // namespace cloth

@@ -1,0 +1,89 @@
+// Every integrator on the GPU against the CPU float backend (docs/integrators.md: the same
+// update on both): the small cloth with every feature of DESIGN.md §2 (tests/support's
+// everythingScene: three families, wind, a floor and a sphere it falls onto, three pins).
+// Float against float differ only in rounding order (FMA contraction, sqrt, the CG's
+// reductions: double on the CPU, a float tree on the GPU).
+#include <cstdio>
+
+#include "gpu/gpu_test_support.h"
+#include "support/integrator_scenes.h"
+
+namespace cloth::test {
+namespace {
+
+constexpr long kSteps = 1000;
+// max |p_gpu − p_cpu| / extent, before the first contact and after 1000 steps of sliding and
+// resting on the colliders, where last-bit differences could decide "inside or not"
+// (docs/gpu.md, "Contacts"); seen: at most 8.4e-7.
+constexpr double kTolerance = 1e-5;
+
+Scene sceneFor(Method method, double dt = 1e-3) {
+    Scene s = everythingScene(method, dt);
+    s.integrator.tolerance = 1e-6;  // both CGs well below the differences measured
+    s.integrator.maxIterations = 500;
+    return s;
+}
+
+struct Runs {
+    SimState gpu, cpu;
+    SolveStats gpuSolves, cpuSolves;
+};
+Runs runBoth(const Scene& scene, long steps) {
+    std::unique_ptr<Solver> gpu = makeGpuSolver(scene);
+    std::unique_ptr<Solver> cpu = makeCpuSolver(scene, {Precision::Float, 1});
+    for (Solver* s : {gpu.get(), cpu.get()}) {
+        const StepResult r = s->step(steps);
+        EXPECT_FALSE(r.unstable) << s->name() << ": " << r.reason;
+        EXPECT_EQ(r.stepsTaken, steps) << s->name();
+        EXPECT_EQ(s->solveStats().misses, 0) << s->name();
+    }
+    return {gpu->read(), cpu->read(), gpu->solveStats(), cpu->solveStats()};
+}
+
+class GpuIntegratorParity : public GpuTest, public ::testing::WithParamInterface<Method> {};
+
+TEST_P(GpuIntegratorParity, MatchesTheCpuFloatBackend) {
+    const Method method = GetParam();
+    const Scene scene = sceneFor(method);
+    const double extent = scene.grid().extent();
+    const long beforeContact = firstContactStep(scene, kSteps) - 1;
+    ASSERT_GT(beforeContact, 100);
+    const Runs free = runBoth(scene, beforeContact);
+    const Runs all = runBoth(scene, kSteps);
+    const double freeDiff = maxDifferenceOverExtent(free.gpu, free.cpu, extent);
+    const double allDiff = maxDifferenceOverExtent(all.gpu, all.cpu, extent);
+    std::printf("%-16s gpu vs cpu float: %ld steps before contact %.3g, %ld steps %.3g (/ extent)",
+                methodName(method), beforeContact, freeDiff, kSteps, allDiff);
+    if (method == Method::ImplicitEuler)
+        std::printf("; CG iterations gpu %ld, cpu %ld", all.gpuSolves.iterations,
+                    all.cpuSolves.iterations);
+    std::printf("\n");
+    EXPECT_LT(freeDiff, kTolerance);
+    EXPECT_LT(allDiff, kTolerance);
+    EXPECT_EQ(all.gpuSolves.solves, all.cpuSolves.solves);
+}
+
+// The viewer's Δt = 1/60 s with springs 100× stiffer (h² λ_max/m ≈ 130, far beyond every
+// explicit scheme's bound): the CG works for its result over many iterations, and the GPU's
+// float reductions still land where the CPU's double ones do.
+TEST_F(GpuIntegratorParity, ImplicitEulerAtALargeStepMatchesTheCpu) {
+    Scene scene = sceneFor(Method::ImplicitEuler, 1.0 / 60);
+    scene.springs = {2e4, 8e3, 2e3};
+    const Runs runs = runBoth(scene, 100);
+    const double diff = maxDifferenceOverExtent(runs.gpu, runs.cpu, scene.grid().extent());
+    std::printf(
+        "implicit_euler dt 1/60 s, 100 steps: gpu vs cpu float %.3g (/ extent); CG "
+        "iterations gpu %ld (most %d), cpu %ld (most %d)\n",
+        diff, runs.gpuSolves.iterations, runs.gpuSolves.mostIterations, runs.cpuSolves.iterations,
+        runs.cpuSolves.mostIterations);
+    EXPECT_LT(diff, kTolerance);
+    EXPECT_GT(runs.gpuSolves.mostIterations, 8);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorParity, ::testing::ValuesIn(kMethods),
+                         [](const ::testing::TestParamInfo<Method>& p) {
+                             return std::string(methodName(p.param));
+                         });
+
+}  // namespace
+}  // namespace cloth::test
