@@ -112,6 +112,10 @@ void CpuSolver<T>::write(const SimState& state) {
         if (pinned_[k]) pinPosition_[k] = x_[k];  // a pin holds the vertex where it now is
     }
     forcesValid_ = false;
+    for (Band& b : bands_) {  // a written state starts afresh, as on the GPU
+        b.badVertex = -1;
+        b.reason.clear();
+    }
 }
 
 template <typename T>

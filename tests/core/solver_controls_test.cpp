@@ -90,5 +90,24 @@ TEST(Controls, SetParametersRefusesAnotherGridOrOtherFeatures) {
     EXPECT_THROW(solver->setParameters(wind), std::invalid_argument);
 }
 
+// An unstable step stops the run; writing a finite state starts it afresh, as on the GPU, so a
+// later step is judged on the new state, not on the old report.
+TEST(Controls, WritingAStateClearsAnEarlierInstability) {
+    Scene s = loadScene(std::string(CLOTH_SOURCE_DIR) + "/scenes/spring.json");
+    auto solver = makeCpuSolver(s, {Precision::Double, 1});
+    const SimState start = solver->read();
+    s.integrator.dt = 0.3;  // past every explicit bound of the spring: blows up
+    solver->setParameters(s);
+    StepResult r;
+    for (int i = 0; i < 100 && !r.unstable; ++i) r = solver->step(10);
+    ASSERT_TRUE(r.unstable);
+    s.integrator.dt = 1e-3;
+    solver->setParameters(s);
+    solver->write(start);
+    r = solver->step(100);
+    EXPECT_FALSE(r.unstable) << r.reason;
+    EXPECT_EQ(r.stepsTaken, 100);
+}
+
 }  // namespace
 }  // namespace cloth
