@@ -178,9 +178,9 @@ Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) const {
     return (f_[k] - damping_ * v) * inverseMass_[k] + gravity_;
 }
 
-// Pins, then colliders in scene order (DESIGN.md §2), then the instability check.
+// Pins, then colliders in scene order (DESIGN.md §2); stores the vertex.
 template <typename T>
-inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
+inline void CpuSolver<T>::constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v) {
     if (pinned_[k]) {
         p = pinPosition_[k];
         v = Vec3<T>(0);
@@ -189,6 +189,12 @@ inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Ve
         std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
     x_[k] = p;
     v_[k] = v;
+}
+
+// The end of a step: the constraints, then the instability check.
+template <typename T>
+inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
+    constrainVertex(k, p, v);
     const T speed2 = glm::dot(v, v);
     if (std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2) && !(speed2 > maxSpeed2_))
         return true;
@@ -257,14 +263,7 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     for (std::int64_t k = band.begin; k < band.end; ++k) {  // kick and drift
         Vec3<T> v = v_[k] + half * acceleration(k, v_[k]);
         Vec3<T> p = x_[k] + h * v;
-        if (pinned_[k]) {
-            p = pinPosition_[k];
-            v = Vec3<T>(0);
-        }
-        for (const auto& c : colliders_)
-            std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
-        x_[k] = p;
-        v_[k] = v;
+        constrainVertex(k, p, v);
     }
     team.sync();
     computeForces(band.begin, band.end);  // F(x_{n+1}); the kick reads only its own vertex

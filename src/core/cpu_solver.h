@@ -62,6 +62,7 @@ private:
     bool stepImplicit(Band& band, const Team& team, long stepNumber);
     // The end of every step: pins, colliders in scene order, then the instability check.
     bool finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
+    void constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v);  // pins, then colliders
     [[gnu::cold, gnu::noinline]] void reportBad(Band& band, std::int64_t k, const Vec3<T>& p,
                                                 T speed2) const;
     Vec3<T> acceleration(std::int64_t k, const Vec3<T>& v) const;
