@@ -157,12 +157,22 @@ std::vector<std::int64_t> ViewerSession::pinnedVertices() const {
 }
 
 double ViewerSession::grabStiffness() const {
-    // Explicit Euler stays stable while Δt < μ/λ_max (DESIGN.md §2): the grab spring adds its K
-    // to λ_max, so take half of the margin the scene leaves, within [0.1, 2]·K_structural.
+    // The scene's integrator stays stable while λ_max is below the stiffness its Δt allows
+    // (docs/stability.md): the grab spring adds its K to λ_max, so take half of the margin the
+    // scene leaves, within [0.1, 2]·K_structural.
     const Scene s = params_.effective();
     const double k = std::max(s.springs.structural, 1.0);
-    if (s.damping <= 0) return 0.1 * k;
-    const double margin = s.damping / s.integrator.dt - estimateStability(s).lambdaMax;
+    const Method method = s.integrator.method;
+    const double m = s.cloth.mass, mu = s.damping, dt = s.integrator.dt;
+    if (std::isinf(methodDt(method, 1e30, m, mu))) return 2 * k;  // unconditionally stable
+    if (!(methodDt(method, 0, m, mu) > dt)) return 0.1 * k;       // no margin at all
+    double lo = 0, hi = 1;  // bisection for the largest λ with a stable Δt above dt
+    while (methodDt(method, hi, m, mu) > dt && hi < 1e30) hi *= 4;
+    for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (methodDt(method, mid, m, mu) > dt ? lo : hi) = mid;
+    }
+    const double margin = lo - estimateStability(s).lambdaMax;
     return std::clamp(0.5 * margin, 0.1 * k, 2.0 * k);
 }
 
