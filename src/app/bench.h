@@ -16,6 +16,7 @@ namespace cloth::app {
 int benchCommand(Args& args);           // cmd_bench.cpp: bench accuracy|stability|speed
 int benchAccuracyCommand(Args& args);   // bench_accuracy.cpp
 int benchStabilityCommand(Args& args);  // bench_stability.cpp
+int benchSpeedCommand(Args& args);      // bench_speed.cpp
 
 // One backend and arithmetic a benchmark runs on.
 struct BenchTarget {

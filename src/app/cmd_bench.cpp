@@ -16,9 +16,11 @@ constexpr const char* kHelp = R"(usage: clothsim bench accuracy|stability|speed 
   stability SCENE   the largest stable time step of every integrator found by bisection,
                     beside the predicted bounds, over stiffness (and mass and damping for
                     explicit Euler): the CSV and log-log plots
-  speed             not built yet
+  speed [SCENE]     steps per second of every backend over grid sizes (default scene
+                    hanging), beside the one-thread baseline loop (1x) and the measured CPU
+                    triad and GPU copy bandwidths: CSV, JSON, a table and a log-log plot
 
-'clothsim bench accuracy --help' and 'clothsim bench stability --help' list the options.
+'clothsim bench accuracy|stability|speed --help' list the options.
 Results go to --out DIR (default bench/results) as CSV (header with units), PNG and SVG plots
 (drawn by gnuplot from bench/*.gp; without gnuplot only the CSV is written).
 
@@ -40,7 +42,7 @@ int benchCommand(Args& args) {
     }());
     if (which == "accuracy") return benchAccuracyCommand(sub);
     if (which == "stability") return benchStabilityCommand(sub);
-    if (which == "speed") return notBuiltCommand(sub);
+    if (which == "speed") return benchSpeedCommand(sub);
     throw InputError("command line", which.empty() ? "bench" : which,
                      "expected bench accuracy|stability|speed; see clothsim bench --help");
 }

@@ -6,7 +6,9 @@
 #include "core/stability.h"
 
 #if defined(CLOTH_HAVE_GPU) && __has_include("gpu/gpu_backend.h")
+#include "gpu/egl_context.h"
 #include "gpu/gpu_backend.h"
+#include "gpu/gpu_bandwidth.h"
 #include "gpu/gpu_solver.h"
 #define CLOTH_GPU_BUILT 1
 #endif
@@ -59,6 +61,29 @@ std::string deviceTimingSource([[maybe_unused]] const Solver& solver) {
     if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->timingSource();
 #endif
     return "";
+}
+
+std::size_t gpuBufferBytes([[maybe_unused]] const Solver& solver) {
+#ifdef CLOTH_GPU_BUILT
+    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->bufferBytes();
+#endif
+    return 0;
+}
+
+double gpuCopyBandwidth([[maybe_unused]] std::size_t bytes, [[maybe_unused]] int repeats) {
+#ifdef CLOTH_GPU_BUILT
+    return measureGpuCopyBandwidth(bytes, repeats);
+#else
+    throw GpuUnavailable("this clothsim was built without the GPU backend");
+#endif
+}
+
+std::string gpuRenderer() {
+#ifdef CLOTH_GPU_BUILT
+    return GlContext::instance().info().renderer;
+#else
+    throw GpuUnavailable("this clothsim was built without the GPU backend");
+#endif
 }
 
 void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r,

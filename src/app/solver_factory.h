@@ -1,6 +1,7 @@
 // Picks a backend for the app: the one place that knows both the CPU and the GPU solver.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -29,6 +30,14 @@ std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choi
 // (GL timer query or glFinish + clock); 0 and "" for the CPU backend.
 double deviceSecondsPerStep(const Solver& solver);
 std::string deviceTimingSource(const Solver& solver);
+// Bytes of GPU memory the solver's buffers hold; 0 for the CPU backend.
+std::size_t gpuBufferBytes(const Solver& solver);
+// The GPU copy kernel's read+write bandwidth over `bytes` [bytes/s] (gpu/gpu_bandwidth.h).
+// Throws GpuUnavailable.
+double gpuCopyBandwidth(std::size_t bytes, int repeats);
+// GL_RENDERER of the headless context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)". Throws
+// GpuUnavailable.
+std::string gpuRenderer();
 
 // Says on stderr that the run became unstable (DESIGN.md §5, exit 3): the step or step range,
 // the simulated time, what went wrong, a stable Δt or damping, and `consequence`.

@@ -177,14 +177,14 @@ TEST(BenchPlots, WithoutGnuplotTheCsvIsStillWrittenAndTheReasonSaid) {
 TEST(BenchHelp, BenchAndBothBenchmarksHaveHelp) {
     for (std::vector<std::string> argv : {std::vector<std::string>{kExe, "bench", "--help"},
                                           {kExe, "bench", "accuracy", "--help"},
-                                          {kExe, "bench", "stability", "--help"}}) {
+                                          {kExe, "bench", "stability", "--help"},
+                                          {kExe, "bench", "speed", "--help"}}) {
         const auto r = runProcess(argv, 60);
         EXPECT_EQ(r.exitCode, 0) << argv.back();
         EXPECT_TRUE(contains(r.out, "usage: clothsim bench")) << r.out;
     }
-    const auto speed = runProcess({kExe, "bench", "speed"}, 60);
-    EXPECT_EQ(speed.exitCode, 1);
-    EXPECT_TRUE(contains(speed.err, "not built yet"));
+    const auto bench = runProcess({kExe, "bench", "--help"}, 60);
+    EXPECT_FALSE(contains(bench.out, "not built yet")) << bench.out;
 }
 
 TEST(BenchArgs, BadInputExitsTwoNamingTheFlag) {

@@ -1,0 +1,41 @@
+// `clothsim bench speed`'s rows and their output (bench_speed.cpp measures, bench_speed_report.cpp
+// writes the CSV, the JSON, the table and the plot).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace cloth::app {
+
+// One measured run: a backend (or the baseline) at one size.
+struct SpeedRow {
+    int side = 0;  // the grid is side × side
+    long vertices = 0;
+    std::string target;  // "baseline", "cpu_float", "cpu_double", "gpu_float"
+    std::string method;
+    int threads = 0;
+    long stepsPerBatch = 0;
+    int batches = 0;
+    double msPerStep = 0;        // wall clock, median batch
+    double deviceMsPerStep = 0;  // the GPU's own timing (NaN for the CPU)
+    std::string timingSource;    // "GL timer query", "wall clock", "" for the CPU
+    double stepsPerSecond = 0;
+    double vertexStepsPerSecond = 0;
+    double minBytesPerStep = 0;  // the traffic model (bench_speed_model.h)
+    double achievedGBps = 0;
+    double bandwidthFraction = 0;  // of the triad (CPU) or the copy kernel (GPU)
+    double speedup = 0;            // vertex-steps/s over the baseline's at this size
+    double bytesPerVertex = 0;     // allocated by the backend
+};
+
+struct SpeedMeta {
+    std::string scene, label, buildType, cpuModel, gpuRenderer;
+    double triadGBps = 0, copyGBps = 0;  // NaN when not measured
+    bool quick = false;
+};
+
+// Writes DIR/speed_LABEL.csv and .json, the plot (when gnuplot is there) and the table on stdout.
+void reportSpeed(const std::string& outDir, const SpeedMeta& meta,
+                 const std::vector<SpeedRow>& rows);
+
+}  // namespace cloth::app

@@ -1,0 +1,144 @@
+// bench speed's output: the CSV (header comments with the machine, the build and the traffic
+// model), the same rows as JSON, a short table on stdout and the log-log plot (bench/speed.gp).
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "app/bench.h"
+#include "app/bench_speed.h"
+#include "app/bench_speed_model.h"
+
+namespace cloth::app {
+namespace {
+
+const std::vector<std::string> kColumns = {"size",
+                                           "vertices",
+                                           "target",
+                                           "method",
+                                           "threads",
+                                           "steps_per_batch",
+                                           "batches",
+                                           "ms_per_step",
+                                           "device_ms_per_step",
+                                           "timing_source",
+                                           "steps_per_s",
+                                           "vertex_steps_per_s",
+                                           "min_bytes_per_step",
+                                           "achieved_GB_per_s",
+                                           "bandwidth_fraction",
+                                           "speedup",
+                                           "bytes_per_vertex"};
+
+std::vector<std::string> cells(const SpeedRow& r) {
+    return {std::to_string(r.side),
+            std::to_string(r.vertices),
+            r.target,
+            r.method,
+            std::to_string(r.threads),
+            std::to_string(r.stepsPerBatch),
+            std::to_string(r.batches),
+            cell(r.msPerStep),
+            cell(r.deviceMsPerStep),
+            r.timingSource,
+            cell(r.stepsPerSecond),
+            cell(r.vertexStepsPerSecond),
+            cell(r.minBytesPerStep),
+            cell(r.achievedGBps),
+            cell(r.bandwidthFraction),
+            cell(r.speedup),
+            cell(r.bytesPerVertex)};
+}
+
+nlohmann::json number(double x) {
+    return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json();
+}
+
+std::string csvText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
+    std::string s = "# clothsim bench speed: " + m.scene + (m.quick ? " (quick)" : "") + "\n";
+    s += "# build " + m.buildType + "; cpu " + m.cpuModel + "; gpu " +
+         (m.gpuRenderer.empty() ? "none" : m.gpuRenderer) + "\n";
+    s += "# bandwidth: cpu triad " + cell(m.triadGBps) + " GB/s, gpu copy " + cell(m.copyGBps) +
+         " GB/s (read + write bytes / best time)\n";
+    s += std::string("# traffic model: ") + kTrafficModel + "\n";
+    s += "# units: ms_per_step wall clock median batch [ms]; device_ms_per_step the GPU's own "
+         "timing [ms]; vertex_steps_per_s [1/s]; min_bytes_per_step [B]; achieved_GB_per_s "
+         "[1e9 B/s]; bandwidth_fraction of the triad (cpu, baseline) or copy (gpu); speedup over "
+         "the baseline's vertex_steps_per_s at the same size; bytes_per_vertex allocated [B]\n";
+    s += join(kColumns, ',') + "\n";
+    for (const SpeedRow& r : rows) s += join(cells(r), ',') + "\n";
+    return s;
+}
+
+std::string jsonText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
+    nlohmann::json j;
+    j["scene"] = m.scene;
+    j["build_type"] = m.buildType;
+    j["cpu_model"] = m.cpuModel;
+    j["gpu_renderer"] = m.gpuRenderer;
+    j["cpu_triad_GB_per_s"] = number(m.triadGBps);
+    j["gpu_copy_GB_per_s"] = number(m.copyGBps);
+    j["traffic_model"] = kTrafficModel;
+    j["quick"] = m.quick;
+    j["rows"] = nlohmann::json::array();
+    for (const SpeedRow& r : rows) {
+        nlohmann::json row;
+        const auto c = cells(r);
+        for (std::size_t i = 0; i < kColumns.size(); ++i) row[kColumns[i]] = c[i];
+        for (const auto& [key, value] : {std::pair<const char*, double>{"ms_per_step", r.msPerStep},
+                                         {"device_ms_per_step", r.deviceMsPerStep},
+                                         {"steps_per_s", r.stepsPerSecond},
+                                         {"vertex_steps_per_s", r.vertexStepsPerSecond},
+                                         {"min_bytes_per_step", r.minBytesPerStep},
+                                         {"achieved_GB_per_s", r.achievedGBps},
+                                         {"bandwidth_fraction", r.bandwidthFraction},
+                                         {"speedup", r.speedup},
+                                         {"bytes_per_vertex", r.bytesPerVertex}})
+            row[key] = number(value);
+        for (const auto& [key, value] : {std::pair<const char*, long>{"size", r.side},
+                                         {"vertices", r.vertices},
+                                         {"threads", r.threads},
+                                         {"steps_per_batch", r.stepsPerBatch},
+                                         {"batches", r.batches}})
+            row[key] = value;
+        j["rows"].push_back(row);
+    }
+    return j.dump(2) + "\n";
+}
+
+void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
+    std::printf("build %s | cpu %s | gpu %s\n", m.buildType.c_str(), m.cpuModel.c_str(),
+                m.gpuRenderer.empty() ? "none" : m.gpuRenderer.c_str());
+    std::printf("bandwidth: cpu triad %.3g GB/s, gpu copy %.3g GB/s\n", m.triadGBps, m.copyGBps);
+    std::printf("%6s %-10s %-15s %10s %10s %12s %8s %6s %8s %7s\n", "size", "target", "method",
+                "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw", "speedup", "B/vtx");
+    for (const SpeedRow& r : rows)
+        std::printf("%6d %-10s %-15s %10.4g %10.4g %12.4g %8.3g %5.1f%% %7.2fx %7.1f\n", r.side,
+                    r.target.c_str(), r.method.c_str(), r.msPerStep, r.deviceMsPerStep,
+                    r.vertexStepsPerSecond, r.achievedGBps, 100 * r.bandwidthFraction, r.speedup,
+                    r.bytesPerVertex);
+}
+
+}  // namespace
+
+void reportSpeed(const std::string& outDir, const SpeedMeta& meta,
+                 const std::vector<SpeedRow>& rows) {
+    const std::string stem = outputPath(outDir, "speed_" + meta.label);
+    writeTextFile(stem + ".csv", csvText(meta, rows));
+    writeTextFile(stem + ".json", jsonText(meta, rows));
+    printTable(meta, rows);
+    std::vector<std::string> series;
+    for (const SpeedRow& r : rows) {
+        const std::string id = r.target + ":" + r.method;
+        if (std::find(series.begin(), series.end(), id) == series.end()) series.push_back(id);
+    }
+    const auto plots = plot("speed.gp", stem,
+                            {{"csv", stem + ".csv"},
+                             {"series", join(series, ' ')},
+                             {"title", "clothsim bench speed: " + meta.scene + " (" +
+                                           meta.buildType + ", " + meta.cpuModel + ")"}});
+    std::printf("wrote %s.csv, %s.json", stem.c_str(), stem.c_str());
+    for (const std::string& p : plots) std::printf(", %s", p.c_str());
+    std::printf("\n");
+}
+
+}  // namespace cloth::app
