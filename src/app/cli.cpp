@@ -59,9 +59,4 @@ void Args::unknown(const std::string& f) const {
                      "unknown option for '" + command_ + "'; see clothsim " + command_ + " --help");
 }
 
-int notBuiltCommand(Args& args) {
-    std::fprintf(stderr, "clothsim %s: not built yet\n", args.command().c_str());
-    return kInternal;
-}
-
 }  // namespace cloth::app

@@ -39,6 +39,5 @@ int validateCommand(Args& args);
 int infoCommand(Args& args);
 int renderCommand(Args& args);  // cmd_render.cpp
 int viewCommand(Args& args);    // cmd_view.cpp
-int notBuiltCommand(Args& args);
 
 }  // namespace cloth::app
