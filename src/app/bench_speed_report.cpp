@@ -111,11 +111,15 @@ void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
     std::printf("bandwidth: cpu triad %.3g GB/s, gpu copy %.3g GB/s\n", m.triadGBps, m.copyGBps);
     std::printf("%6s %-10s %-15s %10s %10s %12s %8s %6s %8s %7s\n", "size", "target", "method",
                 "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw", "speedup", "B/vtx");
-    for (const SpeedRow& r : rows)
-        std::printf("%6d %-10s %-15s %10.4g %10.4g %12.4g %8.3g %5.1f%% %7.2fx %7.1f\n", r.side,
-                    r.target.c_str(), r.method.c_str(), r.msPerStep, r.deviceMsPerStep,
+    for (const SpeedRow& r : rows) {
+        char device[16] = "-";  // CPU rows have no separate device time
+        if (std::isfinite(r.deviceMsPerStep))
+            std::snprintf(device, sizeof device, "%.4g", r.deviceMsPerStep);
+        std::printf("%6d %-10s %-15s %10.4g %10s %12.4g %8.3g %5.1f%% %7.2fx %7.1f\n", r.side,
+                    r.target.c_str(), r.method.c_str(), r.msPerStep, device,
                     r.vertexStepsPerSecond, r.achievedGBps, 100 * r.bandwidthFraction, r.speedup,
                     r.bytesPerVertex);
+    }
 }
 
 }  // namespace
