@@ -25,6 +25,19 @@ struct BenchTarget {
     std::string id() const;  // "cpu_double", "gpu_float": the CSV's and the plot's name
 };
 
+// The options every bench subcommand takes (see `clothsim bench --help`).
+struct BenchCommonOptions {
+    std::string scenePath, out = "bench/results", label, backend = "both";
+    std::vector<std::string> sets;  // --set KEY.PATH=JSON
+    std::vector<Method> methods;
+    int threads = 0;  // 0: automatic
+    bool quick = false;
+};
+
+// Takes flag `f` if it is one of the common ones (--backend, --methods, --set, --out, --label,
+// --threads, --quick) and returns true; false leaves it to the subcommand.
+bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o);
+
 // "all" or a comma-separated list of integrator names; InputError naming `flag` otherwise.
 std::vector<Method> parseMethods(const std::string& flag, const std::string& value);
 

@@ -47,37 +47,21 @@ options:
 constexpr double kConverged = 1e-9;         // reference: change on halving / extent
 constexpr long kReferenceSteps = 1L << 21;  // most steps the reference may take
 
-struct Options {
-    std::string scenePath, out = "bench/results", label, backend = "both";
-    std::vector<std::string> sets;
-    std::vector<Method> methods{std::begin(kMethods), std::end(kMethods)};
+struct Options : BenchCommonOptions {
+    Options() { methods.assign(std::begin(kMethods), std::end(kMethods)); }
     std::vector<double> dts;  // empty: the ladder
     double time = 0;          // 0: the default
-    int rungs = 6, threads = 0;
-    bool quick = false;
+    int rungs = 6;
 };
 
 bool parseFlag(const std::string& f, Args& args, Options& o) {
-    if (f == "--backend")
-        o.backend = args.value(f);
-    else if (f == "--methods")
-        o.methods = parseMethods(f, args.value(f));
-    else if (f == "--dt")
+    if (parseCommonFlag(f, args, o)) return true;
+    if (f == "--dt")
         o.dts = parsePositiveList(f, args.value(f));
     else if (f == "--rungs")
         o.rungs = int(args.positiveInt(f));
     else if (f == "--time")
         o.time = parsePositive(f, args.value(f));
-    else if (f == "--set")
-        o.sets.push_back(args.value(f));
-    else if (f == "--out")
-        o.out = args.value(f);
-    else if (f == "--label")
-        o.label = args.value(f);
-    else if (f == "--threads")
-        o.threads = int(args.positiveInt(f));
-    else if (f == "--quick")
-        o.quick = true;
     else
         return false;
     return true;

@@ -268,4 +268,24 @@ std::vector<std::string> plot(const std::string& script, const std::string& outS
     return written;
 }
 
+bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o) {
+    if (f == "--backend")
+        o.backend = args.value(f);
+    else if (f == "--methods")
+        o.methods = parseMethods(f, args.value(f));
+    else if (f == "--set")
+        o.sets.push_back(args.value(f));
+    else if (f == "--out")
+        o.out = args.value(f);
+    else if (f == "--label")
+        o.label = args.value(f);
+    else if (f == "--threads")
+        o.threads = int(args.positiveInt(f));
+    else if (f == "--quick")
+        o.quick = true;
+    else
+        return false;
+    return true;
+}
+
 }  // namespace cloth::app

@@ -46,13 +46,9 @@ options:
   --help              this text
 )";
 
-struct Options {
-    std::string scenePath, out = "bench/results", label, backend = "both";
+struct Options : BenchCommonOptions {  // methods empty: the scene's
     std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
-    std::vector<std::string> sets;
-    std::vector<Method> methods;  // empty: the scene's
-    int threads = 0;
-    bool quick = false, allowDebug = false;
+    bool allowDebug = false;
 };
 
 std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
@@ -72,22 +68,9 @@ bool parse(Args& args, Options& o) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help" || f == "-h") return false;
+        if (parseCommonFlag(f, args, o)) continue;
         if (f == "--sizes")
             o.sizes = parseSizes(f, args.value(f));
-        else if (f == "--backend")
-            o.backend = args.value(f);
-        else if (f == "--methods")
-            o.methods = parseMethods(f, args.value(f));
-        else if (f == "--set")
-            o.sets.push_back(args.value(f));
-        else if (f == "--out")
-            o.out = args.value(f);
-        else if (f == "--label")
-            o.label = args.value(f);
-        else if (f == "--threads")
-            o.threads = int(args.positiveInt(f));
-        else if (f == "--quick")
-            o.quick = true;
         else if (f == "--allow-debug")
             o.allowDebug = true;
         else

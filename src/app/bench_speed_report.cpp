@@ -116,9 +116,8 @@ void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
         if (std::isfinite(r.deviceMsPerStep))
             std::snprintf(device, sizeof device, "%.4g", r.deviceMsPerStep);
         std::printf("%6d %-10s %-15s %10.4g %10s %12.4g %8.3g %5.1f%% %7.2fx %7.1f\n", r.side,
-                    r.target.c_str(), r.method.c_str(), r.msPerStep, device,
-                    r.vertexStepsPerSecond, r.achievedGBps, 100 * r.bandwidthFraction, r.speedup,
-                    r.bytesPerVertex);
+                    r.target.c_str(), r.method.c_str(), r.msPerStep, device, r.vertexStepsPerSecond,
+                    r.achievedGBps, 100 * r.bandwidthFraction, r.speedup, r.bytesPerVertex);
     }
 }
 

@@ -53,15 +53,11 @@ writes DIR/stability_NAME.csv (one row per sweep value, backend and integrator) 
 DIR/stability_NAME.png/.svg (stiffness), stability_mass_NAME, stability_damping_NAME.
 )";
 
-struct Options {
-    std::string scenePath, out = "bench/results", label, backend = "both";
-    std::vector<std::string> sets;
-    std::vector<Method> methods{std::begin(kMethods), std::end(kMethods)};
+struct Options : BenchCommonOptions {
+    Options() { methods.assign(std::begin(kMethods), std::end(kMethods)); }
     std::vector<std::string> sweeps{"stiffness", "mass", "damping"};
     std::vector<double> stiffness, mass, damping;  // empty: the defaults
     ProbeOptions probe;
-    int threads = 0;
-    bool quick = false;
 };
 
 std::vector<std::string> parseSweeps(const std::string& flag, const std::string& value) {
@@ -78,11 +74,8 @@ std::vector<std::string> parseSweeps(const std::string& flag, const std::string&
 }
 
 bool parseFlag(const std::string& f, Args& args, Options& o) {
-    if (f == "--backend")
-        o.backend = args.value(f);
-    else if (f == "--methods")
-        o.methods = parseMethods(f, args.value(f));
-    else if (f == "--sweeps")
+    if (parseCommonFlag(f, args, o)) return true;
+    if (f == "--sweeps")
         o.sweeps = parseSweeps(f, args.value(f));
     else if (f == "--stiffness")
         o.stiffness = parsePositiveList(f, args.value(f));
@@ -98,16 +91,6 @@ bool parseFlag(const std::string& f, Args& args, Options& o) {
         o.probe.tolerance = parsePositive(f, args.value(f));
     else if (f == "--cap")
         o.probe.cap = parsePositive(f, args.value(f));
-    else if (f == "--set")
-        o.sets.push_back(args.value(f));
-    else if (f == "--out")
-        o.out = args.value(f);
-    else if (f == "--label")
-        o.label = args.value(f);
-    else if (f == "--threads")
-        o.threads = int(args.positiveInt(f));
-    else if (f == "--quick")
-        o.quick = true;
     else
         return false;
     return true;
