@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/cpu_solver_vertex.h"
 #include "core/forces.h"
 
 namespace cloth {
@@ -17,9 +18,6 @@ Vec3<T> cast(const glm::dvec3& v) {
 
 // Vertices below this count run on one thread: a barrier costs more than their whole step.
 constexpr std::int64_t kMinVerticesPerThread = 4096;
-// reduce() sums chunks of this many vertices, each in order, then the chunks in order; bands
-// start on chunk boundaries, so a dot product has the same bits for any thread count.
-constexpr std::int64_t kChunk = 1024;
 
 int chooseThreads(int requested, std::int64_t vertices) {
     if (requested > 0) return requested;
@@ -173,35 +171,6 @@ void CpuSolver<T>::computeForces(std::int64_t begin, std::int64_t end) {
         f_[grab_->vertex] += grabForce(x_[grab_->vertex], grab_->target, grab_->stiffness);
 }
 
-template <typename T>
-Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) const {
-    return (f_[k] - damping_ * v) * inverseMass_[k] + gravity_;
-}
-
-// Pins, then colliders in scene order (DESIGN.md §2); stores the vertex.
-template <typename T>
-inline void CpuSolver<T>::constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v) {
-    if (pinned_[k]) {
-        p = pinPosition_[k];
-        v = Vec3<T>(0);
-    }
-    for (const auto& c : colliders_)
-        std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
-    x_[k] = p;
-    v_[k] = v;
-}
-
-// The end of a step: the constraints, then the instability check.
-template <typename T>
-inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
-    constrainVertex(k, p, v);
-    const T speed2 = glm::dot(v, v);
-    if (std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2) && !(speed2 > maxSpeed2_))
-        return true;
-    reportBad(band, k, p, speed2);
-    return false;  // the rest of the band is not advanced: the run stops at this step
-}
-
 // Out of the hot loop: the message for the first bad vertex of a band.
 template <typename T>
 void CpuSolver<T>::reportBad(Band& band, std::int64_t k, const Vec3<T>& p, T speed2) const {
@@ -320,102 +289,6 @@ bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
         if (stage < 3) team.sync();
     }
     return true;
-}
-
-template <typename T>
-template <typename PerVertex>
-double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value) {
-    std::vector<double>& partial = partials_[band.reductions++ & 1];
-    for (std::int64_t c = band.begin / kChunk; c * kChunk < band.end; ++c) {
-        double sum = 0;
-        for (std::int64_t k = c * kChunk; k < std::min(band.end, (c + 1) * kChunk); ++k)
-            sum += value(k);
-        partial[std::size_t(c)] = sum;
-    }
-    // Every thread sums the same chunks in the same order. The other slot lets a fast thread
-    // write its next partial sums while a slow one still reads these.
-    team.sync();
-    double total = 0;
-    for (double x : partial) total += x;
-    return total;
-}
-
-// out = A p = (m + hμ) p + h² H p on this band (pinned rows 0), H the clamped stiffness of the
-// state x_ the step linearises at, plus the grab spring's K I.
-template <typename T>
-void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
-                                 std::vector<Vec3<T>>& out) {
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), p.data(), pinned_.data(), out.data(),
-                     band.begin, band.end);
-    const T h2 = dt_t_ * dt_t_;
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        if (pinned_[k]) continue;
-        out[k] = (T(1) / inverseMass_[k] + dt_t_ * damping_) * p[k] + h2 * out[k];
-    }
-    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
-        out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
-}
-
-// Backward Euler linearised once (Baraff & Witkin): ((m + hμ) I + h² H) Δv =
-// h (F − μ v + m g − h H v), by conjugate gradient with pins as constraints (their rows held 0).
-template <typename T>
-bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
-    computeForces(band.begin, band.end);
-    const T h = dt_t_;
-    // r = b: Hv first (v of the neighbours is the previous step's, already complete).
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), v_.data(), pinned_.data(), ap_.data(),
-                     band.begin, band.end);
-    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end)
-        ap_[grab_->vertex] += grab_->stiffness * v_[grab_->vertex];
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> b =
-            pinned_[k] ? Vec3<T>(0)
-                       : h * (f_[k] - damping_ * v_[k] + gravity_ / inverseMass_[k] - h * ap_[k]);
-        dv_[k] = Vec3<T>(0);
-        r_[k] = b;
-        p_[k] = b;
-    }
-    auto dot = [](const Vec3<T>& a, const Vec3<T>& b) {
-        return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
-    };
-    const double bb = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
-    const double goal = tolerance_ * tolerance_ * bb;
-    double rr = bb;
-    int it = 0;
-    while (rr > goal && it < maxIterations_) {
-        systemProduct(band, p_, ap_);
-        const double pap = reduce(band, team, [&](std::int64_t k) { return dot(p_[k], ap_[k]); });
-        if (!(pap > 0)) break;  // A is positive definite: only a non-finite state gets here
-        const T alpha = T(rr / pap);
-        for (std::int64_t k = band.begin; k < band.end; ++k) {
-            dv_[k] += alpha * p_[k];
-            r_[k] -= alpha * ap_[k];
-        }
-        const double next = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
-        const T beta = T(next / rr);
-        for (std::int64_t k = band.begin; k < band.end; ++k) p_[k] = r_[k] + beta * p_[k];
-        rr = next;
-        ++it;
-        team.sync();  // the next product reads the neighbours' p
-    }
-    if (&band == &bands_[0])
-        recordSolve(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal);
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> v = v_[k] + dv_[k];
-        if (!finishVertex(band, k, x_[k] + h * v, v)) return false;
-    }
-    return true;
-}
-
-template <typename T>
-void CpuSolver<T>::recordSolve(long stepNumber, int iterations, double residual, bool converged) {
-    SolveStats& s = solveStats_;
-    ++s.solves;
-    s.iterations += iterations;
-    s.mostIterations = std::max(s.mostIterations, iterations);
-    if (converged) return;
-    if (s.misses++ == 0) s.firstMissStep = stepNumber;
-    s.worstResidual = std::max(s.worstResidual, residual);
 }
 
 template <typename T>

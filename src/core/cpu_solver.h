@@ -32,6 +32,9 @@ public:
 
 private:
     using Spring = StencilSpring<T>;
+    // reduce() sums chunks of this many vertices, each in order, then the chunks in order; bands
+    // start on chunk boundaries, so a dot product has the same bits for any thread count.
+    static constexpr std::int64_t kChunk = 1024;
     struct Band {  // a thread's vertices [begin, end) and what it found wrong
         std::int64_t begin, end;
         std::int64_t badVertex = -1;
