@@ -21,11 +21,7 @@ using test::runProcess;
 const std::string kExe = CLOTH_EXE;
 
 fs::path tempDir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() /
-                       ("clothsim_speed_test_" + name + "_" + std::to_string(getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
+    return test::freshTempDir("speed_test", name);
 }
 
 std::vector<std::string> split(const std::string& line) {

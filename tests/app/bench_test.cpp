@@ -20,13 +20,8 @@ using test::runProcess;
 const std::string kExe = CLOTH_EXE;
 const std::string kScenes = CLOTH_SOURCE_DIR "/scenes/";
 
-// A fresh folder per process and test: ctest runs tests side by side.
 fs::path tempDir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() /
-                       ("clothsim_bench_test_" + name + "_" + std::to_string(getpid()));
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
+    return test::freshTempDir("bench_test", name);
 }
 
 struct Csv {

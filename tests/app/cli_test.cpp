@@ -18,10 +18,7 @@ const std::string kExe = CLOTH_EXE;
 const std::string kScenes = CLOTH_SOURCE_DIR "/scenes/";
 
 fs::path tempDir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("clothsim_cli_test_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
+    return test::freshTempDir("cli_test", name);
 }
 
 TEST(CliRun, PrintsOneSummaryLineWithVertexStepsPerSecond) {
@@ -97,11 +94,11 @@ TEST(CliRun, ThreadCountDoesNotChangeTheResult) {
 TEST(CliValidate, ReportsWhatTheSceneModelsAndItsStableStep) {
     const auto r = runProcess({kExe, "validate", kScenes + "drape.json"}, 60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
-    for (const char* s : {"structural K = 400", "shear      K = 100", "bend       K = 10",
-                          "wind not modelled", "plane through", "sphere at", "explicit_euler",
-                          "largest stable dt", "symplectic_euler", "verlet", "rk4",
-                          "implicit_euler      any (unconditional)", "power iterations",
-                          "inside the bound", "valid"})
+    for (const char* s :
+         {"structural K = 400", "shear      K = 100", "bend       K = 10", "wind not modelled",
+          "plane through", "sphere at", "explicit_euler", "largest stable dt", "symplectic_euler",
+          "verlet", "rk4", "implicit_euler      any (unconditional)", "power iterations",
+          "inside the bound", "valid"})
         EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }
 

@@ -17,10 +17,7 @@ const std::string kExe = CLOTH_EXE;
 const std::string kScenes = CLOTH_SOURCE_DIR "/scenes/";
 
 fs::path tempDir(const std::string& name) {
-    const fs::path d = fs::temp_directory_path() / ("clothsim_render_test_" + name);
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
+    return test::freshTempDir("render_test", name);
 }
 
 test::ProcessResult render(const std::vector<std::string>& extra) {

@@ -40,4 +40,33 @@ struct DampedSpring {
     }
 };
 
+// Convergence order at a fixed time T: for each scheme (by its scene name), a step h with ω0 h
+// small enough to be asymptotic and the errors far above rounding on kOrderSprings (ω0 ≈ 7.07
+// rad/s: ω0 h = 0.007 for the Euler schemes, 0.07 for Verlet, 0.14 for RK4), and its order.
+struct OrderCase {
+    const char* method;
+    double h;      // [s]
+    double order;  // the scheme's order of accuracy
+};
+inline constexpr OrderCase kOrderCases[] = {
+    {"explicit_euler", 1e-3, 1}, {"symplectic_euler", 1e-3, 1},
+    {"verlet", 1e-2, 2},         {"rk4", 2e-2, 4},
+    {"implicit_euler", 1e-3, 1},
+};
+// Hanging under gravity from rest, and released from a stretch without gravity.
+inline const DampedSpring kOrderSprings[] = {{100, 0.5, 2, 9.81, 0}, {100, 0.5, 2, 0, 0.2}};
+inline constexpr double kOrderTime = 1.3;  // T [s]
+
+// The errors e(h), e(h/2), e(h/4) and the observed orders log2(e(h)/e(h/2)), log2(e(h/2)/e(h/4)).
+struct ObservedOrders {
+    double e1, e2, e4, o1, o2;
+};
+template <typename Error>
+ObservedOrders observedOrders(double h, const Error& error) {
+    ObservedOrders r{error(h), error(h / 2), error(h / 4), 0, 0};
+    r.o1 = std::log2(r.e1 / r.e2);
+    r.o2 = std::log2(r.e2 / r.e4);
+    return r;
+}
+
 }  // namespace cloth

@@ -117,4 +117,13 @@ std::string describe(const ProcessResult& r) {
            r.out.substr(0, 2000);
 }
 
+std::filesystem::path freshTempDir(const std::string& suite, const std::string& name) {
+    namespace fs = std::filesystem;
+    const fs::path d = fs::temp_directory_path() /
+                       ("clothsim_" + suite + "_" + name + "_" + std::to_string(getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
 }  // namespace cloth::test

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -29,5 +30,9 @@ ProcessResult runProcess(const std::vector<std::string>& argv, double timeoutSec
 
 // "exit 2" / "signal 11 (crashed)" / "timed out": for assertion messages, with stderr appended.
 std::string describe(const ProcessResult& r);
+
+// An empty folder temp/clothsim_<suite>_<name>_<pid>, made afresh: one per process and test,
+// so tests that ctest runs side by side never share one.
+std::filesystem::path freshTempDir(const std::string& suite, const std::string& name);
 
 }  // namespace cloth::test
