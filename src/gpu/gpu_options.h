@@ -1,0 +1,31 @@
+// How the GPU backend runs a scene: the tuning knobs of issue 6 item 4, none of which changes
+// the physics. No GL here: the app's option parsing and the tests include it freely.
+#pragma once
+
+namespace cloth {
+
+// Where pass 1 reads the neighbours' positions: straight from the SSBO, or from a work group's
+// tile and 2-vertex halo loaded into shared memory once (docs/performance.md measures both).
+enum class ForcesKernel { Global, Tiled };
+
+// Dispatches per step: one per pass (PerStep), or many steps in one dispatch of one work group
+// holding the whole grid (ManySteps, explicit and symplectic Euler only); Auto picks ManySteps
+// at or below kManyStepsMaxVertices for those integrators.
+enum class StepDispatch { Auto, PerStep, ManySteps };
+
+// Below this many vertices one work group stepping many times beats two dispatches per step on
+// llvmpipe (docs/performance.md, "GPU: work groups, shared-memory tiles, many steps per
+// dispatch": the crossover measured between 64² and 96²).
+inline constexpr long kManyStepsMaxVertices = 64 * 64;
+
+struct GpuOptions {
+    int workGroupX = 16, workGroupY = 16;  // CLOTH_WORKGROUP=WXxWY overrides
+    int checkEvery = 64;                   // steps between reads of the instability flag
+    ForcesKernel forces = ForcesKernel::Global;
+    StepDispatch dispatch = StepDispatch::Auto;
+};
+
+const char* forcesKernelName(ForcesKernel k);  // "global", "tiled"
+const char* stepDispatchName(StepDispatch d);  // "auto", "per-step", "many-steps"
+
+}  // namespace cloth
