@@ -41,6 +41,17 @@ options:
   --out DIR           output folder (default bench/results)
   --label NAME        file names speed_NAME.csv/.json/.png/.svg (default the scene's name)
   --threads N         CPU threads (default automatic)
+  --workgroups LIST   GPU work-group shapes WXxWY, comma-separated (default 16x16); every GPU
+                      row is labelled with its variant (shape/forces/dispatch)
+  --gpu-forces LIST   global, tiled or both: where the GPU's forces pass reads the neighbours'
+                      positions, straight from the buffer or from a shared-memory tile (default
+                      global)
+  --gpu-dispatch LIST auto, per-step, many-steps, comma-separated: two dispatches per step, or
+                      many steps in one work-group dispatch (explicit/symplectic Euler); auto
+                      picks many-steps up to 64x64 (default auto)
+  --check-every N     GPU steps between reads of the instability flag (default 64)
+  --pass-times        GPU rows also time one forces pass, one integrate pass and the copy
+                      kernel over as many vec4 as the grid has vertices, each alone
   --quick             short timing (5 ms batches, 30 ms per run, small bandwidth arrays)
   --allow-debug       run in a Debug build (refused otherwise: its timings mean nothing)
   --help              this text
@@ -49,7 +60,62 @@ options:
 struct Options : BenchCommonOptions {  // methods empty: the scene's
     std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
     bool allowDebug = false;
+    std::vector<std::pair<int, int>> workGroups{{16, 16}};
+    std::vector<ForcesKernel> forces{ForcesKernel::Global};
+    std::vector<StepDispatch> dispatches{StepDispatch::Auto};
+    int checkEvery = GpuOptions{}.checkEvery;
+    bool passTimes = false;
+
+    // Every combination of the GPU flags, in the order given.
+    std::vector<GpuOptions> gpuVariants() const {
+        std::vector<GpuOptions> all;
+        for (const auto& [x, y] : workGroups)
+            for (ForcesKernel f : forces)
+                for (StepDispatch d : dispatches) all.push_back({x, y, checkEvery, f, d});
+        return all;
+    }
 };
+
+// Comma-separated items, each one of `names` (InputError naming `flag` otherwise).
+template <typename T>
+std::vector<T> parseChoices(const std::string& flag, const std::string& value,
+                            const std::vector<std::pair<std::string, std::vector<T>>>& names) {
+    std::vector<T> out;
+    std::stringstream in(value);
+    for (std::string item; std::getline(in, item, ',');) {
+        const auto it = std::find_if(names.begin(), names.end(),
+                                     [&](const auto& n) { return n.first == item; });
+        if (it == names.end()) {
+            std::string list;
+            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n.first;
+            throw InputError(
+                "command line", flag,
+                "expected a comma-separated list of " + list + ", got '" + value + "'");
+        }
+        out.insert(out.end(), it->second.begin(), it->second.end());
+    }
+    if (out.empty()) throw InputError("command line", flag, "expected a value");
+    return out;
+}
+
+std::vector<std::pair<int, int>> parseWorkGroups(const std::string& flag,
+                                                 const std::string& value) {
+    std::vector<std::pair<int, int>> shapes;
+    std::stringstream in(value);
+    for (std::string item; std::getline(in, item, ',');) {
+        int x = 0, y = 0;
+        char sep = 0, rest = 0;
+        if (std::sscanf(item.c_str(), "%d%c%d%c", &x, &sep, &y, &rest) != 3 ||
+            (sep != 'x' && sep != 'X') || x < 1 || y < 1 || x > 4096 || y > 4096)
+            throw InputError("command line", flag,
+                             "expected shapes WXxWY separated by commas, e.g. 8x8,16x16,32x8, "
+                             "got '" +
+                                 value + "'");
+        shapes.push_back({x, y});
+    }
+    if (shapes.empty()) throw InputError("command line", flag, "expected a value");
+    return shapes;
+}
 
 std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
     std::vector<int> sizes;
@@ -73,6 +139,23 @@ bool parse(Args& args, Options& o) {
             o.sizes = parseSizes(f, args.value(f));
         else if (f == "--allow-debug")
             o.allowDebug = true;
+        else if (f == "--workgroups")
+            o.workGroups = parseWorkGroups(f, args.value(f));
+        else if (f == "--gpu-forces")
+            o.forces =
+                parseChoices<ForcesKernel>(f, args.value(f),
+                                           {{"global", {ForcesKernel::Global}},
+                                            {"tiled", {ForcesKernel::Tiled}},
+                                            {"both", {ForcesKernel::Global, ForcesKernel::Tiled}}});
+        else if (f == "--gpu-dispatch")
+            o.dispatches = parseChoices<StepDispatch>(f, args.value(f),
+                                                      {{"auto", {StepDispatch::Auto}},
+                                                       {"per-step", {StepDispatch::PerStep}},
+                                                       {"many-steps", {StepDispatch::ManySteps}}});
+        else if (f == "--check-every")
+            o.checkEvery = int(args.positiveInt(f));
+        else if (f == "--pass-times")
+            o.passTimes = true;
         else
             args.unknown(f);
     }
@@ -99,6 +182,11 @@ std::uint64_t availableMemory() {
         in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
     }
     return std::numeric_limits<std::uint64_t>::max();
+}
+
+std::vector<std::string> withResolution(std::vector<std::string> sets, int side) {
+    sets.push_back("cloth.resolution=[" + std::to_string(side) + "," + std::to_string(side) + "]");
+    return sets;
 }
 
 struct Timing {
@@ -162,6 +250,46 @@ SpeedRow makeRow(int side, const std::string& target, Method method, int threads
     return r;
 }
 
+// One row: `target` with `choice` on `sized`, its speed-up over `base`.
+SpeedRow timeTarget(const Scene& sized, const BenchTarget& target, const BackendChoice& choice,
+                    const Options& o, const SpeedMeta& meta, const SpeedRow& base) {
+    const Method m = sized.integrator.method;
+    auto solver = makeSolver(sized, choice);
+    const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
+                                [&] { return deviceSecondsPerStep(*solver); }, o.quick);
+    const bool onGpu = target.backend == Backend::Gpu;
+    const int cpuThreads =
+        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    SpeedRow r = makeRow(base.side, target.id(), m, onGpu ? 0 : cpuThreads, st,
+                         minStepBytesPerVertex(target.backend, target.precision),
+                         onGpu ? meta.copyGBps : meta.triadGBps);
+    r.timingSource = deviceTimingSource(*solver);
+    r.speedup = r.vertexStepsPerSecond / base.vertexStepsPerSecond;
+    // The GPU's own allocation (every buffer it made, bufferBytes()); the CPU's by its model.
+    r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
+                             : double(cpuBytesPerVertex(target.precision, m));
+    if (!onGpu) return r;
+    r.variant = gpuVariantWord(*solver);
+    if (o.passTimes) {
+        const GpuPassTimes p = gpuPassTimes(*solver, o.quick ? 3 : 5);
+        r.forcesPassMs = 1e3 * p.forces;
+        r.integratePassMs = 1e3 * p.integrate;
+        r.copyMs = 1e3 * p.copy;
+    }
+    return r;
+}
+
+// A GPU size beyond the device's limits is refused before anything runs, naming the limit.
+void refuseGpuSizes(const Options& o) {
+    for (int side : o.sizes) {
+        const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
+        for (const GpuOptions& g : o.gpuVariants())
+            if (const auto why = gpuSizeRefusal(sized, g))
+                throw InputError("command line", "--sizes",
+                                 "the GPU cannot hold size " + std::to_string(side) + ": " + *why);
+    }
+}
+
 }  // namespace
 
 int benchSpeedCommand(Args& args) {
@@ -186,6 +314,8 @@ int benchSpeedCommand(Args& args) {
     const bool gpu = std::any_of(targets.begin(), targets.end(),
                                  [](const BenchTarget& t) { return t.backend == Backend::Gpu; });
 
+    if (gpu) refuseGpuSizes(o);
+
     SpeedMeta meta;
     meta.scene = o.scenePath;
     meta.label = o.label.empty() ? scene.name : o.label;
@@ -196,16 +326,10 @@ int benchSpeedCommand(Args& args) {
     meta.triadGBps = measureTriadBandwidth(bandwidthBytes, o.quick ? 3 : 5) / 1e9;
     meta.copyGBps = gpu ? gpuCopyBandwidth(bandwidthBytes, o.quick ? 3 : 5) / 1e9 : NAN;
     meta.gpuRenderer = gpu ? gpuRenderer() : "";
-    const int cpuThreads =
-        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-
     std::vector<SpeedRow> rows;
     MethodSupport support;
     for (int side : o.sizes) {
-        std::vector<std::string> sets = o.sets;
-        sets.push_back("cloth.resolution=[" + std::to_string(side) + "," + std::to_string(side) +
-                       "]");
-        Scene sized = loadScene(o.scenePath, sets);
+        Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
         BaselineCloth baseline(sized);
         const Timing bt = timeSteps(
             [&](long n) {
@@ -223,18 +347,20 @@ int benchSpeedCommand(Args& args) {
             sized.integrator.method = m;
             for (const BenchTarget& t : targets) {
                 if (!support.runs(t, sized, m, o.threads)) continue;
-                auto solver = makeSolver(sized, choiceFor(t, o.threads));
-                const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
-                                            [&] { return deviceSecondsPerStep(*solver); }, o.quick);
-                const bool onGpu = t.backend == Backend::Gpu;
-                SpeedRow r = makeRow(side, t.id(), m, onGpu ? 0 : cpuThreads, st,
-                                     minStepBytesPerVertex(t.backend, t.precision),
-                                     onGpu ? meta.copyGBps : meta.triadGBps);
-                r.timingSource = deviceTimingSource(*solver);
-                r.speedup = r.vertexStepsPerSecond / base.vertexStepsPerSecond;
-                r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
-                                         : double(cpuBytesPerVertex(t.precision, m));
-                rows.push_back(r);
+                if (t.backend != Backend::Gpu) {
+                    rows.push_back(timeTarget(sized, t, choiceFor(t, o.threads), o, meta, base));
+                    continue;
+                }
+                for (const GpuOptions& g : o.gpuVariants()) {
+                    BackendChoice choice = choiceFor(t, o.threads);
+                    choice.gpu = g;
+                    try {
+                        rows.push_back(timeTarget(sized, t, choice, o, meta, base));
+                    } catch (const InputError& e) {  // e.g. many-steps for rk4: said, skipped
+                        std::fprintf(stderr, "clothsim bench speed: %dx%d %s %s skipped: %s\n",
+                                     side, side, t.id().c_str(), methodName(m), e.what());
+                    }
+                }
             }
         }
         std::fprintf(stderr, "clothsim bench speed: %dx%d done\n", side, side);

@@ -2,6 +2,7 @@
 // writes the CSV, the JSON, the table and the plot).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ struct SpeedRow {
     double bandwidthFraction = 0;  // of the triad (CPU) or the copy kernel (GPU)
     double speedup = 0;            // vertex-steps/s over the baseline's at this size
     double bytesPerVertex = 0;     // allocated by the backend
+    std::string variant;           // GPU: "16x16/global/per-step"; "" for the CPU
+    // GPU with --pass-times: one forces pass, one integrate pass, the copy kernel over as many
+    // vec4 as vertices, each alone [ms]; NaN otherwise.
+    double forcesPassMs = NAN, integratePassMs = NAN, copyMs = NAN;
 };
 
 struct SpeedMeta {

@@ -27,7 +27,11 @@ const std::vector<std::string> kColumns = {"size",
                                            "achieved_GB_per_s",
                                            "bandwidth_fraction",
                                            "speedup",
-                                           "bytes_per_vertex"};
+                                           "bytes_per_vertex",
+                                           "gpu_variant",
+                                           "forces_pass_ms",
+                                           "integrate_pass_ms",
+                                           "copy_ms"};
 
 std::vector<std::string> cells(const SpeedRow& r) {
     return {std::to_string(r.side),
@@ -46,7 +50,11 @@ std::vector<std::string> cells(const SpeedRow& r) {
             cell(r.achievedGBps),
             cell(r.bandwidthFraction),
             cell(r.speedup),
-            cell(r.bytesPerVertex)};
+            cell(r.bytesPerVertex),
+            r.variant,
+            cell(r.forcesPassMs),
+            cell(r.integratePassMs),
+            cell(r.copyMs)};
 }
 
 nlohmann::json number(double x) {
@@ -63,7 +71,9 @@ std::string csvText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
     s += "# units: ms_per_step wall clock median batch [ms]; device_ms_per_step the GPU's own "
          "timing [ms]; vertex_steps_per_s [1/s]; min_bytes_per_step [B]; achieved_GB_per_s "
          "[1e9 B/s]; bandwidth_fraction of the triad (cpu, baseline) or copy (gpu); speedup over "
-         "the baseline's vertex_steps_per_s at the same size; bytes_per_vertex allocated [B]\n";
+         "the baseline's vertex_steps_per_s at the same size; bytes_per_vertex allocated [B]; "
+         "gpu_variant work groups/forces kernel/dispatch; forces_pass_ms, integrate_pass_ms, "
+         "copy_ms one pass alone, copy over as many vec4 as vertices [ms]\n";
     s += join(kColumns, ',') + "\n";
     for (const SpeedRow& r : rows) s += join(cells(r), ',') + "\n";
     return s;
@@ -92,7 +102,10 @@ std::string jsonText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
                                          {"achieved_GB_per_s", r.achievedGBps},
                                          {"bandwidth_fraction", r.bandwidthFraction},
                                          {"speedup", r.speedup},
-                                         {"bytes_per_vertex", r.bytesPerVertex}})
+                                         {"bytes_per_vertex", r.bytesPerVertex},
+                                         {"forces_pass_ms", r.forcesPassMs},
+                                         {"integrate_pass_ms", r.integratePassMs},
+                                         {"copy_ms", r.copyMs}})
             row[key] = number(value);
         for (const auto& [key, value] : {std::pair<const char*, long>{"size", r.side},
                                          {"vertices", r.vertices},
@@ -109,15 +122,20 @@ void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
     std::printf("build %s | cpu %s | gpu %s\n", m.buildType.c_str(), m.cpuModel.c_str(),
                 m.gpuRenderer.empty() ? "none" : m.gpuRenderer.c_str());
     std::printf("bandwidth: cpu triad %.3g GB/s, gpu copy %.3g GB/s\n", m.triadGBps, m.copyGBps);
-    std::printf("%6s %-10s %-15s %10s %10s %12s %8s %6s %8s %7s\n", "size", "target", "method",
-                "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw", "speedup", "B/vtx");
+    std::printf("%6s %-10s %-15s %10s %10s %12s %8s %6s %8s %7s %s\n", "size", "target", "method",
+                "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw", "speedup", "B/vtx", "variant");
     for (const SpeedRow& r : rows) {
         char device[16] = "-";  // CPU rows have no separate device time
         if (std::isfinite(r.deviceMsPerStep))
             std::snprintf(device, sizeof device, "%.4g", r.deviceMsPerStep);
-        std::printf("%6d %-10s %-15s %10.4g %10s %12.4g %8.3g %5.1f%% %7.2fx %7.1f\n", r.side,
+        std::printf("%6d %-10s %-15s %10.4g %10s %12.4g %8.3g %5.1f%% %7.2fx %7.1f %s", r.side,
                     r.target.c_str(), r.method.c_str(), r.msPerStep, device, r.vertexStepsPerSecond,
-                    r.achievedGBps, 100 * r.bandwidthFraction, r.speedup, r.bytesPerVertex);
+                    r.achievedGBps, 100 * r.bandwidthFraction, r.speedup, r.bytesPerVertex,
+                    r.variant.c_str());
+        if (std::isfinite(r.forcesPassMs))
+            std::printf(" | forces %.4g ms, integrate %.4g ms, copy %.4g ms", r.forcesPassMs,
+                        r.integratePassMs, r.copyMs);
+        std::printf("\n");
     }
 }
 
@@ -131,7 +149,7 @@ void reportSpeed(const std::string& outDir, const SpeedMeta& meta,
     printTable(meta, rows);
     std::vector<std::string> series;
     for (const SpeedRow& r : rows) {
-        const std::string id = r.target + ":" + r.method;
+        const std::string id = r.target + ":" + r.method + ":" + r.variant;
         if (std::find(series.begin(), series.end(), id) == series.end()) series.push_back(id);
     }
     const auto plots = plot("speed.gp", stem,

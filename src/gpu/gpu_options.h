@@ -25,7 +25,14 @@ struct GpuOptions {
     StepDispatch dispatch = StepDispatch::Auto;
 };
 
-const char* forcesKernelName(ForcesKernel k);  // "global", "tiled"
-const char* stepDispatchName(StepDispatch d);  // "auto", "per-step", "many-steps"
+inline const char* forcesKernelName(ForcesKernel k) {
+    return k == ForcesKernel::Tiled ? "tiled" : "global";
+}
+
+inline const char* stepDispatchName(StepDispatch d) {
+    return d == StepDispatch::PerStep     ? "per-step"
+           : d == StepDispatch::ManySteps ? "many-steps"
+                                          : "auto";
+}
 
 }  // namespace cloth

@@ -53,7 +53,8 @@ public:
     int checkEvery() const { return checkEvery_; }
     // Seconds per dispatch of one pass over the grid alone, best of `repeats` (glFinish and a
     // steady clock): what bench speed --pass-times reports to say what limits a step. The state
-    // changes as a step's would (Integrate) or not at all (Forces).
+    // changes as a step's would (Integrate) or not at all (Forces). NaN for a kernel the scene's
+    // integrator does not compile.
     double timePass(Kernel k, int repeats);
     // Bytes of GPU memory in the solver's buffers: the state, the tables and the integrator's
     // own (RK4's stages, the CG's vectors), which only a scene with that integrator allocates.

@@ -45,6 +45,7 @@ void GpuSolver::runManySteps(long firstStep, long count) const {
 }
 
 double GpuSolver::timePass(Kernel k, int repeats) {
+    if (programs_[int(k)] == 0) return std::nan("");  // not a kernel of this scene
     context_.makeCurrent();
     bindBuffers();
     forcesKept_ = false;

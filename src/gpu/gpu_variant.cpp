@@ -15,10 +15,11 @@ namespace {
 constexpr long long kMaxGroupsPerDimension = 65535;
 constexpr long long kBytesPerVertexBuffer = 16;  // one vec4 per vertex
 constexpr int kTileHalo = 2;                     // forces_tile.glsl: the bend springs' reach
-// many_steps.comp's invocations: on llvmpipe a work group runs on one thread whatever its size,
-// and each barrier switches between its 8-wide slices, so fewer invocations doing more vertices
-// each cost less; a hardware GPU wants the most it allows (docs/performance.md).
-constexpr int kManyStepsGroup = 256;
+// many_steps.comp's invocations on a software rasteriser: llvmpipe runs a work group on one
+// thread whatever its size and each barrier switches between its 8-wide slices, so few
+// invocations doing many vertices each cost least (measured: 32 to 64 best, 1024 3x slower at
+// 16², docs/performance.md). A hardware GPU gets the most it allows per work group.
+constexpr long long kManyStepsGroupSoftware = 32;
 
 std::string integratorDefine(Method m) {
     switch (m) {
@@ -177,22 +178,6 @@ std::vector<Kernel> kernelsOf(Method m) {
     return {};
 }
 
-const char* forcesKernelName(ForcesKernel k) {
-    return k == ForcesKernel::Tiled ? "tiled" : "global";
-}
-
-const char* stepDispatchName(StepDispatch d) {
-    switch (d) {
-        case StepDispatch::PerStep:
-            return "per-step";
-        case StepDispatch::ManySteps:
-            return "many-steps";
-        case StepDispatch::Auto:
-            break;
-    }
-    return "auto";
-}
-
 bool usesManySteps(StepDispatch dispatch, Method method, long long vertices) {
     const bool euler = method == Method::ExplicitEuler || method == Method::SymplecticEuler;
     if (dispatch == StepDispatch::ManySteps && !euler)
@@ -219,7 +204,8 @@ void checkTileFits(WorkGroup wg, const GpuInfo& info) {
 }
 
 int manyStepsGroupSize(long long vertices, const GpuInfo& info) {
-    const long long wanted = std::min<long long>(kManyStepsGroup, (vertices + 31) / 32 * 32);
+    const long long most = info.software ? kManyStepsGroupSoftware : info.maxInvocations;
+    const long long wanted = std::min<long long>(most, (vertices + 31) / 32 * 32);
     return int(std::min<long long>({wanted, info.maxInvocations, info.maxWorkGroupSize[0]}));
 }
 

@@ -65,9 +65,9 @@ bool usesManySteps(StepDispatch dispatch, Method method, long long vertices);
 void checkTileFits(WorkGroup wg, const GpuInfo& info);
 std::size_t tileBytes(WorkGroup wg);
 
-// Invocations of many_steps.comp's one work group for a grid of `vertices`: kManyStepsGroup,
-// fewer for a grid that has fewer vertices (in whole SIMD-friendly multiples of 32), never more
-// than the device allows per work group.
+// Invocations of many_steps.comp's one work group for a grid of `vertices`: 32 on a software
+// rasteriser, the device's most per work group on hardware, fewer for a grid that has fewer
+// vertices (in whole multiples of 32).
 int manyStepsGroupSize(long long vertices, const GpuInfo& info);
 
 // The assembled source of a kernel file (kernelFile) for `scene`, with `extra` defines after the

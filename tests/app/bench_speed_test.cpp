@@ -110,6 +110,11 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         {{"--sizes", "1000000"}, "--sizes"},
         {{"--backend", "tpu"}, "--backend"},
         {{"--methods", "euler"}, "--methods"},
+        {{"--workgroups", "16by16"}, "--workgroups"},
+        {{"--workgroups", "0x8"}, "--workgroups"},
+        {{"--gpu-forces", "shared"}, "--gpu-forces"},
+        {{"--gpu-dispatch", "fused"}, "--gpu-dispatch"},
+        {{"--check-every", "0"}, "--check-every"},
         {{"--bogus"}, "--bogus"}};
     for (const auto& [flags, name] : cases) {
         std::vector<std::string> argv{kExe, "bench", "speed"};
