@@ -48,7 +48,8 @@ options:
                       global)
   --gpu-dispatch LIST auto, per-step, many-steps, comma-separated: two dispatches per step, or
                       many steps in one work-group dispatch (explicit/symplectic Euler); auto
-                      picks many-steps up to 64x64 (default auto)
+                      picks many-steps up to 24x24 on llvmpipe, 64x64 on hardware (default
+                      auto)
   --check-every N     GPU steps between reads of the instability flag (default 64)
   --pass-times        GPU rows also time one forces pass, one integrate pass and the copy
                       kernel over as many vec4 as the grid has vertices, each alone

@@ -10,13 +10,18 @@ enum class ForcesKernel { Global, Tiled };
 
 // Dispatches per step: one per pass (PerStep), or many steps in one dispatch of one work group
 // holding the whole grid (ManySteps, explicit and symplectic Euler only); Auto picks ManySteps
-// at or below kManyStepsMaxVertices for those integrators.
+// for those integrators up to manyStepsMaxVertices.
 enum class StepDispatch { Auto, PerStep, ManySteps };
 
-// Below this many vertices one work group stepping many times beats two dispatches per step on
-// llvmpipe (docs/performance.md, "GPU: work groups, shared-memory tiles, many steps per
-// dispatch": the crossover measured between 64² and 96²).
-inline constexpr long kManyStepsMaxVertices = 64 * 64;
+// Up to this many vertices one work group stepping many times beats two dispatches per step.
+// Software (llvmpipe, measured in docs/performance.md, "GPU: work groups, shared-memory tiles,
+// many steps per dispatch"): faster up to 16², even at 24², slower from 32² on, because the one
+// group runs on one of the CPU's cores while the per-pass dispatches use all of them. Hardware:
+// not measured (no GPU was lent); 64² is the estimate there, where one multiprocessor does the
+// 4096 vertices of a step in a few µs against ~5 µs per dispatch.
+inline constexpr long long manyStepsMaxVertices(bool software) {
+    return software ? 24 * 24 : 64 * 64;
+}
 
 struct GpuOptions {
     int workGroupX = 16, workGroupY = 16;  // CLOTH_WORKGROUP=WXxWY overrides

@@ -90,7 +90,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     checkGridFits(scene, workGroup_, info);
     if (forces_ == ForcesKernel::Tiled) checkTileFits(workGroup_, info);
     const long long vertices = static_cast<long long>(nu_) * nv_;
-    if (usesManySteps(options.dispatch, method_, vertices))
+    if (usesManySteps(options.dispatch, method_, vertices, info.software))
         manyStepsGroup_ = manyStepsGroupSize(vertices, info);
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;

@@ -178,14 +178,14 @@ std::vector<Kernel> kernelsOf(Method m) {
     return {};
 }
 
-bool usesManySteps(StepDispatch dispatch, Method method, long long vertices) {
+bool usesManySteps(StepDispatch dispatch, Method method, long long vertices, bool software) {
     const bool euler = method == Method::ExplicitEuler || method == Method::SymplecticEuler;
     if (dispatch == StepDispatch::ManySteps && !euler)
         throw InputError("", "dispatch",
                          std::string("many steps per dispatch exist for explicit_euler and "
                                      "symplectic_euler only, not ") +
                              methodName(method));
-    if (dispatch == StepDispatch::Auto) return euler && vertices <= kManyStepsMaxVertices;
+    if (dispatch == StepDispatch::Auto) return euler && vertices <= manyStepsMaxVertices(software);
     return dispatch == StepDispatch::ManySteps;
 }
 

@@ -56,9 +56,9 @@ const char* kernelFile(Kernel k);  // "compute/forces.comp", ...
 std::vector<Kernel> kernelsOf(Method m);
 
 // Whether a scene runs many steps per dispatch (many_steps.comp): as asked, or with Auto for
-// explicit and symplectic Euler at or below kManyStepsMaxVertices. Throws InputError (key
+// explicit and symplectic Euler up to manyStepsMaxVertices(software). Throws InputError (key
 // `dispatch`) when ManySteps is asked for another integrator.
-bool usesManySteps(StepDispatch dispatch, Method method, long long vertices);
+bool usesManySteps(StepDispatch dispatch, Method method, long long vertices, bool software);
 
 // Throws InputError (key `forces`) when forces.comp's tile of WX × WY vertices and its 2-vertex
 // halo, one vec4 each, exceeds the device's shared memory per work group.
