@@ -51,6 +51,8 @@ options:
   --peer bullet       also time Bullet's btSoftBody on the same cloth (same links, masses,
                       pins, gravity, dt; stiffness and damping mapped, see docs/performance.md)
                       at sizes up to 512 (default sizes 64,128,256), checked not to explode
+  --peer-dt SECONDS   the peer's step, with its stiffness and damping mapped at that step
+                      (default the scene's dt); compare simulated_s_per_s then
   --quick             short timing (5 ms batches, 30 ms per run, small bandwidth arrays)
   --allow-debug       run in a Debug build (refused otherwise: its timings mean nothing)
   --help              this text
@@ -60,7 +62,8 @@ struct Options : BenchCommonOptions {  // methods empty: the scene's
     std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
     bool sizesGiven = false, allowDebug = false;
     FeatureSet features = FeatureSet::Declared;
-    std::string peer;  // "" or "bullet"
+    std::string peer;   // "" or "bullet"
+    double peerDt = 0;  // [s]; 0: the scene's
 };
 
 std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
@@ -89,6 +92,8 @@ bool parse(Args& args, Options& o) {
         } else if (f == "--peer") {
             o.peer = args.value(f);
             if (const auto why = peerUnavailable(o.peer)) throw InputError("command line", f, *why);
+        } else if (f == "--peer-dt") {
+            o.peerDt = parsePositive(f, args.value(f));
         } else if (f == "--allow-debug") {
             o.allowDebug = true;
         } else {
@@ -236,7 +241,8 @@ void timeBackends(Scene scene, int side, const std::string& features, Sweep& w,
 // The peer on the declared scene, timed like ours, then checked: a run that left its cloth
 // (a node not finite, or 5 extents away) is reported as exploded, one in which nothing moved
 // as frozen, either without a time.
-SpeedRow timePeer(const Scene& sized, int side, const Sweep& w, std::string& description) {
+SpeedRow timePeer(Scene sized, int side, const Sweep& w, std::string& description) {
+    if (w.o.peerDt > 0) sized.integrator.dt = w.o.peerDt;
     auto peer = makePeerCloth(w.o.peer, sized);
     description = peer->describe();
     const std::vector<glm::dvec3> start = peer->positions();

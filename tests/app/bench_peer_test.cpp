@@ -72,6 +72,20 @@ TEST(BenchPeer, BulletPatchStaysFiniteAndSags) {
         EXPECT_NEAR(drop, ourDrop, 0.02 * ourDrop) << i;  // 0.028 m both (0.04% apart)
     }
     EXPECT_NE(peer->describe().find("iterations"), std::string::npos);
+
+    // At 50 times our step (past our explicit Euler's bound of about 3e-5 s) Bullet's projection
+    // still holds, and with kLST and kDP mapped at that step it still falls as ours (0.0282 m).
+    Scene coarse = s;
+    coarse.integrator.dt *= 50;
+    auto big = app::makePeerCloth("bullet", coarse);
+    big->step(steps / 50);
+    const auto bigEnd = big->positions();
+    EXPECT_FALSE(app::peerExplosion(start, bigEnd, s.grid().extent()).has_value());
+    for (int i : {0, 15}) {
+        const std::size_t k = g.index(i, 15);
+        const double ourDrop = start[k].y - o.positions[k].y;
+        EXPECT_NEAR(start[k].y - bigEnd[k].y, ourDrop, 0.05 * ourDrop) << i;
+    }
 }
 
 TEST(BenchPeer, BenchSpeedWritesPeerRows) {
