@@ -17,11 +17,6 @@ namespace {
 
 using test::runProcess;
 
-Scene hanging(int n) {
-    return loadScene(CLOTH_SOURCE_DIR "/scenes/hanging.json",
-                     {"cloth.resolution=[" + std::to_string(n) + "," + std::to_string(n) + "]"});
-}
-
 TEST(BenchPeer, ExplosionCheck) {
     const std::vector<glm::dvec3> start{{0, 0, 0}, {1, 0, 0}};
     EXPECT_FALSE(app::peerExplosion(start, {{0, -2, 0}, {1, -3, 0}}, 1.0).has_value());
@@ -49,6 +44,11 @@ TEST(BenchPeer, UnknownPeerIsRefusedNamingTheFlag) {
 }
 
 #ifdef CLOTH_HAVE_BULLET
+
+Scene hanging(int n) {
+    return loadScene(CLOTH_SOURCE_DIR "/scenes/hanging.json",
+                     {"cloth.resolution=[" + std::to_string(n) + "," + std::to_string(n) + "]"});
+}
 
 // 0.1 s at the scene's dt: finite, the pinned corners where they were, the free corners fallen,
 // and by as much as ours: the stiffness and damping mapping gives the same motion.
