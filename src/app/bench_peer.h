@@ -28,7 +28,8 @@ public:
     virtual std::vector<glm::dvec3> positions() const = 0;  // k = j·nu + i [m]
     // The model as run: version, solver iterations, the stiffness and damping mapping.
     virtual std::string describe() const = 0;
-    virtual std::string method() const = 0;  // the CSV's method column, e.g. "pbd_1_iteration"
+    virtual std::string method() const = 0;     // the CSV's method column, e.g. "pbd_1_iteration"
+    virtual double bytesPerVertex() const = 0;  // what the library holds per node [B]
 };
 
 // Why `name` cannot run in this build (an unknown name, or Bullet not compiled in), or nothing.

@@ -8,6 +8,7 @@
 #include <BulletSoftBody/btSoftRigidDynamicsWorld.h>
 #include <btBulletDynamicsCommon.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 
@@ -28,6 +29,7 @@ public:
     std::vector<glm::dvec3> positions() const override;
     std::string describe() const override { return description_; }
     std::string method() const override;
+    double bytesPerVertex() const override;
 
 private:
     void addLinks(const Scene& scene);
@@ -125,6 +127,15 @@ std::vector<glm::dvec3> BulletCloth::positions() const {
 std::string BulletCloth::method() const {
     return "pbd_" + std::to_string(body_->m_cfg.piterations) + "_iteration" +
            (body_->m_cfg.piterations == 1 ? "" : "s");
+}
+
+// Nodes, links and the nodes' AABB tree (a leaf per node, one inner node per pair): the arrays
+// a step walks; materials and the world's fixed overhead left out.
+double BulletCloth::bytesPerVertex() const {
+    const double nodes = body_->m_nodes.size(), leaves = body_->m_ndbvt.m_leaves;
+    return (nodes * sizeof(btSoftBody::Node) + body_->m_links.size() * sizeof(btSoftBody::Link) +
+            std::max(0.0, 2 * leaves - 1) * sizeof(btDbvtNode)) /
+           nodes;
 }
 
 }  // namespace

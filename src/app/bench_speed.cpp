@@ -253,7 +253,7 @@ SpeedRow timePeer(Scene sized, int side, const Sweep& w, std::string& descriptio
         },
         [] { return 0.0; }, w.o.quick);
     SpeedRow r = makeRow(side, "peer_" + w.o.peer, peer->method(), 1, t, NAN, NAN);
-    r.bytesPerVertex = NAN;
+    r.bytesPerVertex = peer->bytesPerVertex();
     r.dt = sized.integrator.dt;
     const std::vector<glm::dvec3> end = peer->positions();
     std::optional<std::string> why = peerExplosion(start, end, sized.grid().extent());

@@ -103,6 +103,7 @@ TEST(BenchPeer, BenchSpeedWritesPeerRows) {
             ++peers;
             EXPECT_EQ(row["status"], "ok");
             EXPECT_GT(row["vertex_steps_per_s"].get<double>(), 0);
+            EXPECT_GT(row["bytes_per_vertex"].get<double>(), 100);  // a node alone is more
         } else if (row["target"] == "cpu_double") {
             ++ours;
             EXPECT_GT(row["peer_ratio"].get<double>(), 0);
