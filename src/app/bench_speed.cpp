@@ -100,6 +100,8 @@ bool parse(Args& args, Options& o) {
             args.unknown(f);
         }
     }
+    if (o.peerDt > 0 && o.peer.empty())
+        throw InputError("command line", "--peer-dt", "sets the peer's step: give --peer too");
     if (!o.peer.empty() && !o.sizesGiven) o.sizes = {64, 128, 256};
     if (o.scenePath.empty())
         o.scenePath =

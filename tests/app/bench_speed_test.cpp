@@ -112,6 +112,8 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         {{"--methods", "euler"}, "--methods"},
         {{"--features", "some"}, "--features"},
         {{"--peer", "havok"}, "--peer"},
+        {{"--peer-dt", "1e-3"}, "--peer-dt"},
+        {{"--peer-dt", "-1"}, "--peer-dt"},
         {{"--bogus"}, "--bogus"}};
     for (const auto& [flags, name] : cases) {
         std::vector<std::string> argv{kExe, "bench", "speed"};
