@@ -15,6 +15,8 @@
 
 #include "app/bench.h"
 #include "app/bench_baseline.h"
+#include "app/bench_features.h"
+#include "app/bench_peer.h"
 #include "app/bench_speed_model.h"
 #include "core/errors.h"
 #include "core/scene_loader.h"
@@ -41,6 +43,16 @@ options:
   --out DIR           output folder (default bench/results)
   --label NAME        file names speed_NAME.csv/.json/.png/.svg (default the scene's name)
   --threads N         CPU threads (default automatic)
+  --features declared|all|both
+                      time the scene as declared (default), with every feature it does not
+                      declare added inert (wind of strength 1e-30, spring families of stiffness
+                      1e-30, a plane and a sphere 1000 extents away: the same motion, every code
+                      path compiled in and run), or both; rows say which in 'features'
+  --peer bullet       also time Bullet's btSoftBody on the same cloth (same links, masses,
+                      pins, gravity, dt; stiffness and damping mapped, see docs/performance.md)
+                      at sizes up to 512 (default sizes 64,128,256), checked not to explode
+  --peer-dt SECONDS   the peer's step, with its stiffness and damping mapped at that step
+                      (default the scene's dt); compare simulated_s_per_s then
   --quick             short timing (5 ms batches, 30 ms per run, small bandwidth arrays)
   --allow-debug       run in a Debug build (refused otherwise: its timings mean nothing)
   --help              this text
@@ -48,7 +60,10 @@ options:
 
 struct Options : BenchCommonOptions {  // methods empty: the scene's
     std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
-    bool allowDebug = false;
+    bool sizesGiven = false, allowDebug = false;
+    FeatureSet features = FeatureSet::Declared;
+    std::string peer;   // "" or "bullet"
+    double peerDt = 0;  // [s]; 0: the scene's
 };
 
 std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
@@ -69,13 +84,25 @@ bool parse(Args& args, Options& o) {
         const std::string f = args.flag();
         if (f == "--help" || f == "-h") return false;
         if (parseCommonFlag(f, args, o)) continue;
-        if (f == "--sizes")
+        if (f == "--sizes") {
             o.sizes = parseSizes(f, args.value(f));
-        else if (f == "--allow-debug")
+            o.sizesGiven = true;
+        } else if (f == "--features") {
+            o.features = parseFeatureSet(f, args.value(f));
+        } else if (f == "--peer") {
+            o.peer = args.value(f);
+            if (const auto why = peerUnavailable(o.peer)) throw InputError("command line", f, *why);
+        } else if (f == "--peer-dt") {
+            o.peerDt = parsePositive(f, args.value(f));
+        } else if (f == "--allow-debug") {
             o.allowDebug = true;
-        else
+        } else {
             args.unknown(f);
+        }
     }
+    if (o.peerDt > 0 && o.peer.empty())
+        throw InputError("command line", "--peer-dt", "sets the peer's step: give --peer too");
+    if (!o.peer.empty() && !o.sizesGiven) o.sizes = {64, 128, 256};
     if (o.scenePath.empty())
         o.scenePath =
             (std::filesystem::path(benchScriptDir()).parent_path() / "scenes/hanging.json")
@@ -142,13 +169,13 @@ Timing timeSteps(const std::function<bool(long)>& step, const std::function<doub
     return t;
 }
 
-SpeedRow makeRow(int side, const std::string& target, Method method, int threads, const Timing& t,
-                 std::size_t minBytesPerVertex, double bandwidth) {
+SpeedRow makeRow(int side, const std::string& target, const std::string& method, int threads,
+                 const Timing& t, double minBytesPerVertex, double bandwidth) {
     SpeedRow r;
     r.side = side;
     r.vertices = long(side) * side;
     r.target = target;
-    r.method = methodName(method);
+    r.method = method;
     r.threads = threads;
     r.stepsPerBatch = t.stepsPerBatch;
     r.batches = t.batches;
@@ -156,10 +183,104 @@ SpeedRow makeRow(int side, const std::string& target, Method method, int threads
     r.deviceMsPerStep = t.deviceSecondsPerStep > 0 ? 1e3 * t.deviceSecondsPerStep : NAN;
     r.stepsPerSecond = 1 / t.secondsPerStep;
     r.vertexStepsPerSecond = double(r.vertices) * r.stepsPerSecond;
-    r.minBytesPerStep = double(minBytesPerVertex) * double(r.vertices);
+    r.minBytesPerStep = minBytesPerVertex * double(r.vertices);
     r.achievedGBps = r.minBytesPerStep / t.secondsPerStep / 1e9;
     r.bandwidthFraction = bandwidth > 0 ? r.achievedGBps / bandwidth : NAN;
+    r.peerRatio = NAN;
     return r;
+}
+
+// What one run of the command shares between sizes.
+struct Sweep {
+    const Options& o;
+    const SpeedMeta& meta;
+    std::vector<Method> methods;
+    std::vector<BenchTarget> targets;
+    int cpuThreads = 1;
+    MethodSupport support;
+};
+
+SpeedRow timeBaseline(const Scene& sized, int side, const Sweep& w) {
+    BaselineCloth baseline(sized);
+    const Timing t = timeSteps(
+        [&](long n) {
+            baseline.step(n);
+            return true;
+        },
+        [] { return 0.0; }, w.o.quick);
+    SpeedRow r =
+        makeRow(side, "baseline", methodName(Method::ExplicitEuler), 1, t,
+                double(minStepBytesPerVertex(Backend::Cpu, Precision::Double)), w.meta.triadGBps);
+    r.bytesPerVertex = double(kBaselineBytesPerVertex);
+    r.dt = sized.integrator.dt;
+    return r;
+}
+
+// Every target and integrator on `scene` (the declared scene or its all-features twin).
+void timeBackends(Scene scene, int side, const std::string& features, Sweep& w,
+                  std::vector<SpeedRow>& rows) {
+    for (Method m : w.methods) {
+        scene.integrator.method = m;
+        for (const BenchTarget& t : w.targets) {
+            if (!w.support.runs(t, scene, m, w.o.threads)) continue;
+            auto solver = makeSolver(scene, choiceFor(t, w.o.threads));
+            const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
+                                        [&] { return deviceSecondsPerStep(*solver); }, w.o.quick);
+            const bool onGpu = t.backend == Backend::Gpu;
+            SpeedRow r = makeRow(side, t.id(), methodName(m), onGpu ? 0 : w.cpuThreads, st,
+                                 double(minStepBytesPerVertex(t.backend, t.precision)),
+                                 onGpu ? w.meta.copyGBps : w.meta.triadGBps);
+            r.features = features;
+            r.dt = scene.integrator.dt;
+            r.timingSource = deviceTimingSource(*solver);
+            r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
+                                     : double(cpuBytesPerVertex(t.precision, m));
+            rows.push_back(r);
+        }
+    }
+}
+
+// The peer on the declared scene, timed like ours, then checked: a run that left its cloth
+// (a node not finite, or 5 extents away) is reported as exploded, one in which nothing moved
+// as frozen, either without a time.
+SpeedRow timePeer(Scene sized, int side, const Sweep& w, std::string& description) {
+    if (w.o.peerDt > 0) sized.integrator.dt = w.o.peerDt;
+    auto peer = makePeerCloth(w.o.peer, sized);
+    description = peer->describe();
+    const std::vector<glm::dvec3> start = peer->positions();
+    const Timing t = timeSteps(
+        [&](long n) {
+            peer->step(n);
+            return true;
+        },
+        [] { return 0.0; }, w.o.quick);
+    SpeedRow r = makeRow(side, "peer_" + w.o.peer, peer->method(), 1, t, NAN, NAN);
+    r.bytesPerVertex = peer->bytesPerVertex();
+    r.dt = sized.integrator.dt;
+    const std::vector<glm::dvec3> end = peer->positions();
+    std::optional<std::string> why = peerExplosion(start, end, sized.grid().extent());
+    r.status = why ? "exploded" : "ok";
+    if (!why && glm::length(sized.gravity) > 0 && peerFrozen(start, end)) {
+        why = "no node moved";
+        r.status = "frozen";
+    }
+    if (why) {
+        std::fprintf(stderr, "clothsim bench speed: the %s peer %s at %dx%d (%s): not timed\n",
+                     w.o.peer.c_str(), r.status.c_str(), side, side, why->c_str());
+        r.msPerStep = r.stepsPerSecond = r.vertexStepsPerSecond = NAN;
+    }
+    return r;
+}
+
+// Every row's vertex-steps/s over the peer's at its size, and the speed-ups over the baseline's.
+void ratios(std::vector<SpeedRow>& rows) {
+    for (SpeedRow& r : rows)
+        for (const SpeedRow& q : rows) {
+            if (q.side != r.side) continue;
+            if (q.target == "baseline") r.speedup = r.vertexStepsPerSecond / q.vertexStepsPerSecond;
+            if (q.target.rfind("peer_", 0) == 0 && q.status == "ok")
+                r.peerRatio = r.vertexStepsPerSecond / q.vertexStepsPerSecond;
+        }
 }
 
 }  // namespace
@@ -179,8 +300,6 @@ int benchSpeedCommand(Args& args) {
         if (const auto why = sizeRefusal(side, memory))
             throw InputError("command line", "--sizes", *why);
     const Scene scene = loadScene(o.scenePath, o.sets);
-    const std::vector<Method> methods =
-        o.methods.empty() ? std::vector<Method>{scene.integrator.method} : o.methods;
     auto targets = parseTargets("--backend", o.backend, {Precision::Float, Precision::Double});
     targets = availableTargets(targets, scene, o.backend == "gpu", o.threads);
     const bool gpu = std::any_of(targets.begin(), targets.end(),
@@ -196,49 +315,31 @@ int benchSpeedCommand(Args& args) {
     meta.triadGBps = measureTriadBandwidth(bandwidthBytes, o.quick ? 3 : 5) / 1e9;
     meta.copyGBps = gpu ? gpuCopyBandwidth(bandwidthBytes, o.quick ? 3 : 5) / 1e9 : NAN;
     meta.gpuRenderer = gpu ? gpuRenderer() : "";
-    const int cpuThreads =
-        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
 
+    Sweep w{o,
+            meta,
+            o.methods.empty() ? std::vector<Method>{scene.integrator.method} : o.methods,
+            targets,
+            o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency())),
+            {}};
     std::vector<SpeedRow> rows;
-    MethodSupport support;
     for (int side : o.sizes) {
         std::vector<std::string> sets = o.sets;
         sets.push_back("cloth.resolution=[" + std::to_string(side) + "," + std::to_string(side) +
                        "]");
-        Scene sized = loadScene(o.scenePath, sets);
-        BaselineCloth baseline(sized);
-        const Timing bt = timeSteps(
-            [&](long n) {
-                baseline.step(n);
-                return true;
-            },
-            [] { return 0.0; }, o.quick);
-        SpeedRow base =
-            makeRow(side, "baseline", Method::ExplicitEuler, 1, bt,
-                    minStepBytesPerVertex(Backend::Cpu, Precision::Double), meta.triadGBps);
-        base.speedup = 1;
-        base.bytesPerVertex = double(kBaselineBytesPerVertex);
-        rows.push_back(base);
-        for (Method m : methods) {
-            sized.integrator.method = m;
-            for (const BenchTarget& t : targets) {
-                if (!support.runs(t, sized, m, o.threads)) continue;
-                auto solver = makeSolver(sized, choiceFor(t, o.threads));
-                const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
-                                            [&] { return deviceSecondsPerStep(*solver); }, o.quick);
-                const bool onGpu = t.backend == Backend::Gpu;
-                SpeedRow r = makeRow(side, t.id(), m, onGpu ? 0 : cpuThreads, st,
-                                     minStepBytesPerVertex(t.backend, t.precision),
-                                     onGpu ? meta.copyGBps : meta.triadGBps);
-                r.timingSource = deviceTimingSource(*solver);
-                r.speedup = r.vertexStepsPerSecond / base.vertexStepsPerSecond;
-                r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
-                                         : double(cpuBytesPerVertex(t.precision, m));
-                rows.push_back(r);
-            }
-        }
+        const Scene sized = loadScene(o.scenePath, sets);
+        rows.push_back(timeBaseline(sized, side, w));
+        if (o.features != FeatureSet::All) timeBackends(sized, side, "declared", w, rows);
+        if (o.features != FeatureSet::Declared)
+            timeBackends(withInertFeatures(sized), side, "all", w, rows);
+        if (!o.peer.empty() && side <= kPeerMaxSide)
+            rows.push_back(timePeer(sized, side, w, meta.peer));
+        else if (!o.peer.empty())
+            std::fprintf(stderr, "clothsim bench speed: no %s peer at %dx%d (above %d)\n",
+                         o.peer.c_str(), side, side, kPeerMaxSide);
         std::fprintf(stderr, "clothsim bench speed: %dx%d done\n", side, side);
     }
+    ratios(rows);
     reportSpeed(o.out, meta, rows);
     return kOk;
 }

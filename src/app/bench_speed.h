@@ -11,8 +11,11 @@ namespace cloth::app {
 struct SpeedRow {
     int side = 0;  // the grid is side × side
     long vertices = 0;
-    std::string target;  // "baseline", "cpu_float", "cpu_double", "gpu_float"
+    std::string target;  // "baseline", "cpu_float", "cpu_double", "gpu_float", "peer_bullet"
     std::string method;
+    std::string features = "declared";  // or "all": the scene plus inert other features
+    std::string status = "ok";          // "exploded": a peer's run that blew up (not timed)
+    double dt = 0;                      // the step [s]
     int threads = 0;
     long stepsPerBatch = 0;
     int batches = 0;
@@ -26,10 +29,12 @@ struct SpeedRow {
     double bandwidthFraction = 0;  // of the triad (CPU) or the copy kernel (GPU)
     double speedup = 0;            // vertex-steps/s over the baseline's at this size
     double bytesPerVertex = 0;     // allocated by the backend
+    double peerRatio = 0;          // vertex-steps/s over the peer's at this size (NaN: no peer)
 };
 
 struct SpeedMeta {
     std::string scene, label, buildType, cpuModel, gpuRenderer;
+    std::string peer;  // the peer's model as run (PeerCloth::describe), "" without --peer
     double triadGBps = 0, copyGBps = 0;  // NaN when not measured
     bool quick = false;
 };

@@ -110,6 +110,10 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         {{"--sizes", "1000000"}, "--sizes"},
         {{"--backend", "tpu"}, "--backend"},
         {{"--methods", "euler"}, "--methods"},
+        {{"--features", "some"}, "--features"},
+        {{"--peer", "havok"}, "--peer"},
+        {{"--peer-dt", "1e-3"}, "--peer-dt"},
+        {{"--peer-dt", "-1"}, "--peer-dt"},
         {{"--bogus"}, "--bogus"}};
     for (const auto& [flags, name] : cases) {
         std::vector<std::string> argv{kExe, "bench", "speed"};
@@ -118,6 +122,24 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         EXPECT_EQ(r.exitCode, 2) << name << "\n" << r.err;
         EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
     }
+}
+
+// --features both: each backend twice per size, as declared and with every feature compiled in.
+TEST(BenchSpeed, FeaturesBothTimesDeclaredAndAll) {
+    const fs::path d = tempDir("features");
+    const auto r = runProcess({kExe, "bench", "speed", "--sizes", "16", "--quick", "--backend",
+                               "cpu", "--features", "both", "--out", d.string(), "--label", "f"},
+                              120);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    std::vector<std::string> columns;
+    std::map<std::string, int> count;
+    for (const auto& row : readRows(d / "speed_f.csv", columns))
+        ++count[row.at("target") + ":" + row.at("features")];
+    for (const char* target : {"cpu_double", "cpu_float"}) {
+        EXPECT_EQ(count[std::string(target) + ":declared"], 1) << target;
+        EXPECT_EQ(count[std::string(target) + ":all"], 1) << target;
+    }
+    EXPECT_EQ(count["baseline:declared"], 1);
 }
 
 TEST(BenchSpeed, DebugBuildsAreRefusedUnlessAllowed) {
