@@ -13,6 +13,7 @@ PACKAGES=(
     xvfb xauth                                # viewer tests without a display (xvfb-run)
     clang-14 libfuzzer-14-dev                 # the scene-loader fuzzer
     gnuplot-nox                               # bench accuracy/stability plots (PNG, SVG)
+    libbullet-dev                             # bench speed --peer bullet (btSoftBody)
 )
 
 missing=()

@@ -15,6 +15,9 @@
 
 #include "app/bench.h"
 #include "app/bench_baseline.h"
+#include "app/bench_features.h"
+#include "app/bench_peer.h"
+#include "app/bench_speed_gpu.h"
 #include "app/bench_speed_model.h"
 #include "core/errors.h"
 #include "core/scene_loader.h"
@@ -41,6 +44,16 @@ options:
   --out DIR           output folder (default bench/results)
   --label NAME        file names speed_NAME.csv/.json/.png/.svg (default the scene's name)
   --threads N         CPU threads (default automatic)
+  --features declared|all|both
+                      time the scene as declared (default), with every feature it does not
+                      declare added inert (wind of strength 1e-30, spring families of stiffness
+                      1e-30, a plane and a sphere 1000 extents away: the same motion, every code
+                      path compiled in and run), or both; rows say which in 'features'
+  --peer bullet       also time Bullet's btSoftBody on the same cloth (same links, masses,
+                      pins, gravity, dt; stiffness and damping mapped, see docs/performance.md)
+                      at sizes up to 512 (default sizes 64,128,256), checked not to explode
+  --peer-dt SECONDS   the peer's step, with its stiffness and damping mapped at that step
+                      (default the scene's dt); compare simulated_s_per_s then
   --workgroups LIST   GPU work-group shapes WXxWY, comma-separated (default 16x16); every GPU
                       row is labelled with its variant (shape/forces/dispatch)
   --gpu-forces LIST   global, tiled or both: where the GPU's forces pass reads the neighbours'
@@ -49,7 +62,7 @@ options:
   --gpu-dispatch LIST auto, per-step, many-steps, comma-separated: two dispatches per step, or
                       many steps in one work-group dispatch (explicit/symplectic Euler); auto
                       picks many-steps up to 24x24 on llvmpipe, 64x64 on hardware (default
-                      auto)
+                      auto); many-steps rows use neither the shape nor the tile
   --check-every N     GPU steps between reads of the instability flag (default 64)
   --pass-times        GPU rows also time one forces pass, one integrate pass and the copy
                       kernel over as many vec4 as the grid has vertices, each alone
@@ -60,63 +73,12 @@ options:
 
 struct Options : BenchCommonOptions {  // methods empty: the scene's
     std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
-    bool allowDebug = false;
-    std::vector<std::pair<int, int>> workGroups{{16, 16}};
-    std::vector<ForcesKernel> forces{ForcesKernel::Global};
-    std::vector<StepDispatch> dispatches{StepDispatch::Auto};
-    int checkEvery = GpuOptions{}.checkEvery;
-    bool passTimes = false;
-
-    // Every combination of the GPU flags, in the order given.
-    std::vector<GpuOptions> gpuVariants() const {
-        std::vector<GpuOptions> all;
-        for (const auto& [x, y] : workGroups)
-            for (ForcesKernel f : forces)
-                for (StepDispatch d : dispatches) all.push_back({x, y, checkEvery, f, d});
-        return all;
-    }
+    bool sizesGiven = false, allowDebug = false;
+    FeatureSet features = FeatureSet::Declared;
+    std::string peer;          // "" or "bullet"
+    double peerDt = 0;         // [s]; 0: the scene's
+    GpuSweepOptions gpuSweep;  // --workgroups, --gpu-forces, --gpu-dispatch, ...
 };
-
-// Comma-separated items, each one of `names` (InputError naming `flag` otherwise).
-template <typename T>
-std::vector<T> parseChoices(const std::string& flag, const std::string& value,
-                            const std::vector<std::pair<std::string, std::vector<T>>>& names) {
-    std::vector<T> out;
-    std::stringstream in(value);
-    for (std::string item; std::getline(in, item, ',');) {
-        const auto it = std::find_if(names.begin(), names.end(),
-                                     [&](const auto& n) { return n.first == item; });
-        if (it == names.end()) {
-            std::string list;
-            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n.first;
-            throw InputError(
-                "command line", flag,
-                "expected a comma-separated list of " + list + ", got '" + value + "'");
-        }
-        out.insert(out.end(), it->second.begin(), it->second.end());
-    }
-    if (out.empty()) throw InputError("command line", flag, "expected a value");
-    return out;
-}
-
-std::vector<std::pair<int, int>> parseWorkGroups(const std::string& flag,
-                                                 const std::string& value) {
-    std::vector<std::pair<int, int>> shapes;
-    std::stringstream in(value);
-    for (std::string item; std::getline(in, item, ',');) {
-        int x = 0, y = 0;
-        char sep = 0, rest = 0;
-        if (std::sscanf(item.c_str(), "%d%c%d%c", &x, &sep, &y, &rest) != 3 ||
-            (sep != 'x' && sep != 'X') || x < 1 || y < 1 || x > 4096 || y > 4096)
-            throw InputError("command line", flag,
-                             "expected shapes WXxWY separated by commas, e.g. 8x8,16x16,32x8, "
-                             "got '" +
-                                 value + "'");
-        shapes.push_back({x, y});
-    }
-    if (shapes.empty()) throw InputError("command line", flag, "expected a value");
-    return shapes;
-}
 
 std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
     std::vector<int> sizes;
@@ -135,31 +97,26 @@ bool parse(Args& args, Options& o) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help" || f == "-h") return false;
-        if (parseCommonFlag(f, args, o)) continue;
-        if (f == "--sizes")
+        if (parseCommonFlag(f, args, o) || parseGpuSweepFlag(f, args, o.gpuSweep)) continue;
+        if (f == "--sizes") {
             o.sizes = parseSizes(f, args.value(f));
-        else if (f == "--allow-debug")
+            o.sizesGiven = true;
+        } else if (f == "--features") {
+            o.features = parseFeatureSet(f, args.value(f));
+        } else if (f == "--peer") {
+            o.peer = args.value(f);
+            if (const auto why = peerUnavailable(o.peer)) throw InputError("command line", f, *why);
+        } else if (f == "--peer-dt") {
+            o.peerDt = parsePositive(f, args.value(f));
+        } else if (f == "--allow-debug") {
             o.allowDebug = true;
-        else if (f == "--workgroups")
-            o.workGroups = parseWorkGroups(f, args.value(f));
-        else if (f == "--gpu-forces")
-            o.forces =
-                parseChoices<ForcesKernel>(f, args.value(f),
-                                           {{"global", {ForcesKernel::Global}},
-                                            {"tiled", {ForcesKernel::Tiled}},
-                                            {"both", {ForcesKernel::Global, ForcesKernel::Tiled}}});
-        else if (f == "--gpu-dispatch")
-            o.dispatches = parseChoices<StepDispatch>(f, args.value(f),
-                                                      {{"auto", {StepDispatch::Auto}},
-                                                       {"per-step", {StepDispatch::PerStep}},
-                                                       {"many-steps", {StepDispatch::ManySteps}}});
-        else if (f == "--check-every")
-            o.checkEvery = int(args.positiveInt(f));
-        else if (f == "--pass-times")
-            o.passTimes = true;
-        else
+        } else {
             args.unknown(f);
+        }
     }
+    if (o.peerDt > 0 && o.peer.empty())
+        throw InputError("command line", "--peer-dt", "sets the peer's step: give --peer too");
+    if (!o.peer.empty() && !o.sizesGiven) o.sizes = {64, 128, 256};
     if (o.scenePath.empty())
         o.scenePath =
             (std::filesystem::path(benchScriptDir()).parent_path() / "scenes/hanging.json")
@@ -183,11 +140,6 @@ std::uint64_t availableMemory() {
         in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
     }
     return std::numeric_limits<std::uint64_t>::max();
-}
-
-std::vector<std::string> withResolution(std::vector<std::string> sets, int side) {
-    sets.push_back("cloth.resolution=[" + std::to_string(side) + "," + std::to_string(side) + "]");
-    return sets;
 }
 
 struct Timing {
@@ -231,13 +183,13 @@ Timing timeSteps(const std::function<bool(long)>& step, const std::function<doub
     return t;
 }
 
-SpeedRow makeRow(int side, const std::string& target, Method method, int threads, const Timing& t,
-                 std::size_t minBytesPerVertex, double bandwidth) {
+SpeedRow makeRow(int side, const std::string& target, const std::string& method, int threads,
+                 const Timing& t, double minBytesPerVertex, double bandwidth) {
     SpeedRow r;
     r.side = side;
     r.vertices = long(side) * side;
     r.target = target;
-    r.method = methodName(method);
+    r.method = method;
     r.threads = threads;
     r.stepsPerBatch = t.stepsPerBatch;
     r.batches = t.batches;
@@ -245,34 +197,62 @@ SpeedRow makeRow(int side, const std::string& target, Method method, int threads
     r.deviceMsPerStep = t.deviceSecondsPerStep > 0 ? 1e3 * t.deviceSecondsPerStep : NAN;
     r.stepsPerSecond = 1 / t.secondsPerStep;
     r.vertexStepsPerSecond = double(r.vertices) * r.stepsPerSecond;
-    r.minBytesPerStep = double(minBytesPerVertex) * double(r.vertices);
+    r.minBytesPerStep = minBytesPerVertex * double(r.vertices);
     r.achievedGBps = r.minBytesPerStep / t.secondsPerStep / 1e9;
     r.bandwidthFraction = bandwidth > 0 ? r.achievedGBps / bandwidth : NAN;
+    r.peerRatio = NAN;
     return r;
 }
 
-// One row: `target` with `choice` on `sized`, its speed-up over `base`.
-SpeedRow timeTarget(const Scene& sized, const BenchTarget& target, const BackendChoice& choice,
-                    const Options& o, const SpeedMeta& meta, const SpeedRow& base) {
-    const Method m = sized.integrator.method;
-    auto solver = makeSolver(sized, choice);
+// What one run of the command shares between sizes.
+struct Sweep {
+    const Options& o;
+    const SpeedMeta& meta;
+    std::vector<Method> methods;
+    std::vector<BenchTarget> targets;
+    int cpuThreads = 1;
+    MethodSupport support;
+};
+
+SpeedRow timeBaseline(const Scene& sized, int side, const Sweep& w) {
+    BaselineCloth baseline(sized);
+    const Timing t = timeSteps(
+        [&](long n) {
+            baseline.step(n);
+            return true;
+        },
+        [] { return 0.0; }, w.o.quick);
+    SpeedRow r =
+        makeRow(side, "baseline", methodName(Method::ExplicitEuler), 1, t,
+                double(minStepBytesPerVertex(Backend::Cpu, Precision::Double)), w.meta.triadGBps);
+    r.bytesPerVertex = double(kBaselineBytesPerVertex);
+    r.dt = sized.integrator.dt;
+    return r;
+}
+
+// One row: `target` with `choice` on `scene` at this size.
+SpeedRow timeTarget(const Scene& scene, int side, const BenchTarget& t, const BackendChoice& choice,
+                    const std::string& features, const Sweep& w) {
+    const Method m = scene.integrator.method;
+    auto solver = makeSolver(scene, choice);
     const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
-                                [&] { return deviceSecondsPerStep(*solver); }, o.quick);
-    const bool onGpu = target.backend == Backend::Gpu;
-    const int cpuThreads =
-        o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    SpeedRow r = makeRow(base.side, target.id(), m, onGpu ? 0 : cpuThreads, st,
-                         minStepBytesPerVertex(target.backend, target.precision),
-                         onGpu ? meta.copyGBps : meta.triadGBps);
+                                [&] { return deviceSecondsPerStep(*solver); }, w.o.quick);
+    const bool onGpu = t.backend == Backend::Gpu;
+    SpeedRow r = makeRow(side, t.id(), methodName(m), onGpu ? 0 : w.cpuThreads, st,
+                         double(minStepBytesPerVertex(t.backend, t.precision)),
+                         onGpu ? w.meta.copyGBps : w.meta.triadGBps);
+    r.features = features;
+    r.dt = scene.integrator.dt;
     r.timingSource = deviceTimingSource(*solver);
-    r.speedup = r.vertexStepsPerSecond / base.vertexStepsPerSecond;
     // The GPU's own allocation (every buffer it made, bufferBytes()); the CPU's by its model.
     r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
-                             : double(cpuBytesPerVertex(target.precision, m));
+                             : double(cpuBytesPerVertex(t.precision, m));
     if (!onGpu) return r;
-    r.variant = gpuVariantWord(*solver);
-    if (o.passTimes) {
-        const GpuPassTimes p = gpuPassTimes(*solver, o.quick ? 3 : 5);
+    // The variant as asked (one curve per variant in the plot), the dispatch as run.
+    r.variant = gpuVariantWord(*solver) + "/" + stepDispatchName(choice.gpu.dispatch);
+    r.dispatch = gpuDispatchWord(*solver);
+    if (w.o.gpuSweep.passTimes) {
+        const GpuPassTimes p = gpuPassTimes(*solver, w.o.quick ? 3 : 5);
         r.forcesPassMs = 1e3 * p.forces;
         r.integratePassMs = 1e3 * p.integrate;
         r.copyMs = 1e3 * p.copy;
@@ -280,11 +260,84 @@ SpeedRow timeTarget(const Scene& sized, const BenchTarget& target, const Backend
     return r;
 }
 
+// Every target and integrator on `scene` (the declared scene or its all-features twin).
+void timeBackends(Scene scene, int side, const std::string& features, Sweep& w,
+                  std::vector<SpeedRow>& rows) {
+    for (Method m : w.methods) {
+        scene.integrator.method = m;
+        for (const BenchTarget& t : w.targets) {
+            if (!w.support.runs(t, scene, m, w.o.threads)) continue;
+            if (t.backend != Backend::Gpu) {
+                rows.push_back(timeTarget(scene, side, t, choiceFor(t, w.o.threads), features, w));
+                continue;
+            }
+            for (const GpuOptions& g : w.o.gpuSweep.variants()) {
+                BackendChoice choice = choiceFor(t, w.o.threads);
+                choice.gpu = g;
+                try {
+                    rows.push_back(timeTarget(scene, side, t, choice, features, w));
+                } catch (const InputError& e) {  // e.g. many-steps for rk4: said, skipped
+                    std::fprintf(stderr, "clothsim bench speed: %dx%d %s %s skipped: %s\n", side,
+                                 side, t.id().c_str(), methodName(m), e.what());
+                }
+            }
+        }
+    }
+}
+
+// The peer on the declared scene, timed like ours, then checked: a run that left its cloth
+// (a node not finite, or 5 extents away) is reported as exploded, one in which nothing moved
+// as frozen, either without a time.
+SpeedRow timePeer(Scene sized, int side, const Sweep& w, std::string& description) {
+    if (w.o.peerDt > 0) sized.integrator.dt = w.o.peerDt;
+    auto peer = makePeerCloth(w.o.peer, sized);
+    description = peer->describe();
+    const std::vector<glm::dvec3> start = peer->positions();
+    const Timing t = timeSteps(
+        [&](long n) {
+            peer->step(n);
+            return true;
+        },
+        [] { return 0.0; }, w.o.quick);
+    SpeedRow r = makeRow(side, "peer_" + w.o.peer, peer->method(), 1, t, NAN, NAN);
+    r.bytesPerVertex = peer->bytesPerVertex();
+    r.dt = sized.integrator.dt;
+    const std::vector<glm::dvec3> end = peer->positions();
+    std::optional<std::string> why = peerExplosion(start, end, sized.grid().extent());
+    r.status = why ? "exploded" : "ok";
+    if (!why && glm::length(sized.gravity) > 0 && peerFrozen(start, end)) {
+        why = "no node moved";
+        r.status = "frozen";
+    }
+    if (why) {
+        std::fprintf(stderr, "clothsim bench speed: the %s peer %s at %dx%d (%s): not timed\n",
+                     w.o.peer.c_str(), r.status.c_str(), side, side, why->c_str());
+        r.msPerStep = r.stepsPerSecond = r.vertexStepsPerSecond = NAN;
+    }
+    return r;
+}
+
+// Every row's vertex-steps/s over the peer's at its size, and the speed-ups over the baseline's.
+void ratios(std::vector<SpeedRow>& rows) {
+    for (SpeedRow& r : rows)
+        for (const SpeedRow& q : rows) {
+            if (q.side != r.side) continue;
+            if (q.target == "baseline") r.speedup = r.vertexStepsPerSecond / q.vertexStepsPerSecond;
+            if (q.target.rfind("peer_", 0) == 0 && q.status == "ok")
+                r.peerRatio = r.vertexStepsPerSecond / q.vertexStepsPerSecond;
+        }
+}
+
+std::vector<std::string> withResolution(std::vector<std::string> sets, int side) {
+    sets.push_back("cloth.resolution=[" + std::to_string(side) + "," + std::to_string(side) + "]");
+    return sets;
+}
+
 // A GPU size beyond the device's limits is refused before anything runs, naming the limit.
 void refuseGpuSizes(const Options& o) {
     for (int side : o.sizes) {
         const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
-        for (const GpuOptions& g : o.gpuVariants())
+        for (const GpuOptions& g : o.gpuSweep.variants())
             if (const auto why = gpuSizeRefusal(sized, g))
                 throw InputError("command line", "--sizes",
                                  "the GPU cannot hold size " + std::to_string(side) + ": " + *why);
@@ -308,8 +361,6 @@ int benchSpeedCommand(Args& args) {
         if (const auto why = sizeRefusal(side, memory))
             throw InputError("command line", "--sizes", *why);
     const Scene scene = loadScene(o.scenePath, o.sets);
-    const std::vector<Method> methods =
-        o.methods.empty() ? std::vector<Method>{scene.integrator.method} : o.methods;
     auto targets = parseTargets("--backend", o.backend, {Precision::Float, Precision::Double});
     targets = availableTargets(targets, scene, o.backend == "gpu", o.threads);
     const bool gpu = std::any_of(targets.begin(), targets.end(),
@@ -327,45 +378,28 @@ int benchSpeedCommand(Args& args) {
     meta.triadGBps = measureTriadBandwidth(bandwidthBytes, o.quick ? 3 : 5) / 1e9;
     meta.copyGBps = gpu ? gpuCopyBandwidth(bandwidthBytes, o.quick ? 3 : 5) / 1e9 : NAN;
     meta.gpuRenderer = gpu ? gpuRenderer() : "";
+
+    Sweep w{o,
+            meta,
+            o.methods.empty() ? std::vector<Method>{scene.integrator.method} : o.methods,
+            targets,
+            o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency())),
+            {}};
     std::vector<SpeedRow> rows;
-    MethodSupport support;
     for (int side : o.sizes) {
-        Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
-        BaselineCloth baseline(sized);
-        const Timing bt = timeSteps(
-            [&](long n) {
-                baseline.step(n);
-                return true;
-            },
-            [] { return 0.0; }, o.quick);
-        SpeedRow base =
-            makeRow(side, "baseline", Method::ExplicitEuler, 1, bt,
-                    minStepBytesPerVertex(Backend::Cpu, Precision::Double), meta.triadGBps);
-        base.speedup = 1;
-        base.bytesPerVertex = double(kBaselineBytesPerVertex);
-        rows.push_back(base);
-        for (Method m : methods) {
-            sized.integrator.method = m;
-            for (const BenchTarget& t : targets) {
-                if (!support.runs(t, sized, m, o.threads)) continue;
-                if (t.backend != Backend::Gpu) {
-                    rows.push_back(timeTarget(sized, t, choiceFor(t, o.threads), o, meta, base));
-                    continue;
-                }
-                for (const GpuOptions& g : o.gpuVariants()) {
-                    BackendChoice choice = choiceFor(t, o.threads);
-                    choice.gpu = g;
-                    try {
-                        rows.push_back(timeTarget(sized, t, choice, o, meta, base));
-                    } catch (const InputError& e) {  // e.g. many-steps for rk4: said, skipped
-                        std::fprintf(stderr, "clothsim bench speed: %dx%d %s %s skipped: %s\n",
-                                     side, side, t.id().c_str(), methodName(m), e.what());
-                    }
-                }
-            }
-        }
+        const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
+        rows.push_back(timeBaseline(sized, side, w));
+        if (o.features != FeatureSet::All) timeBackends(sized, side, "declared", w, rows);
+        if (o.features != FeatureSet::Declared)
+            timeBackends(withInertFeatures(sized), side, "all", w, rows);
+        if (!o.peer.empty() && side <= kPeerMaxSide)
+            rows.push_back(timePeer(sized, side, w, meta.peer));
+        else if (!o.peer.empty())
+            std::fprintf(stderr, "clothsim bench speed: no %s peer at %dx%d (above %d)\n",
+                         o.peer.c_str(), side, side, kPeerMaxSide);
         std::fprintf(stderr, "clothsim bench speed: %dx%d done\n", side, side);
     }
+    ratios(rows);
     reportSpeed(o.out, meta, rows);
     return kOk;
 }

@@ -12,8 +12,11 @@ namespace cloth::app {
 struct SpeedRow {
     int side = 0;  // the grid is side × side
     long vertices = 0;
-    std::string target;  // "baseline", "cpu_float", "cpu_double", "gpu_float"
+    std::string target;  // "baseline", "cpu_float", "cpu_double", "gpu_float", "peer_bullet"
     std::string method;
+    std::string features = "declared";  // or "all": the scene plus inert other features
+    std::string status = "ok";          // "exploded": a peer's run that blew up (not timed)
+    double dt = 0;                      // the step [s]
     int threads = 0;
     long stepsPerBatch = 0;
     int batches = 0;
@@ -27,7 +30,9 @@ struct SpeedRow {
     double bandwidthFraction = 0;  // of the triad (CPU) or the copy kernel (GPU)
     double speedup = 0;            // vertex-steps/s over the baseline's at this size
     double bytesPerVertex = 0;     // allocated by the backend
-    std::string variant;           // GPU: "16x16/global/per-step"; "" for the CPU
+    double peerRatio = 0;          // vertex-steps/s over the peer's at this size (NaN: no peer)
+    std::string variant;   // GPU as asked: shape/forces/dispatch, "16x16/global/auto"; "" CPU
+    std::string dispatch;  // GPU: the dispatch that ran, "per-step" or "many-steps"; "" CPU
     // GPU with --pass-times: one forces pass, one integrate pass, the copy kernel over as many
     // vec4 as vertices, each alone [ms]; NaN otherwise.
     double forcesPassMs = NAN, integratePassMs = NAN, copyMs = NAN;
@@ -35,6 +40,7 @@ struct SpeedRow {
 
 struct SpeedMeta {
     std::string scene, label, buildType, cpuModel, gpuRenderer;
+    std::string peer;  // the peer's model as run (PeerCloth::describe), "" without --peer
     double triadGBps = 0, copyGBps = 0;  // NaN when not measured
     bool quick = false;
 };

@@ -15,6 +15,9 @@ const std::vector<std::string> kColumns = {"size",
                                            "vertices",
                                            "target",
                                            "method",
+                                           "features",
+                                           "status",
+                                           "dt",
                                            "threads",
                                            "steps_per_batch",
                                            "batches",
@@ -26,9 +29,12 @@ const std::vector<std::string> kColumns = {"size",
                                            "min_bytes_per_step",
                                            "achieved_GB_per_s",
                                            "bandwidth_fraction",
+                                           "simulated_s_per_s",
                                            "speedup",
+                                           "peer_ratio",
                                            "bytes_per_vertex",
                                            "gpu_variant",
+                                           "gpu_dispatch",
                                            "forces_pass_ms",
                                            "integrate_pass_ms",
                                            "copy_ms"};
@@ -38,6 +44,9 @@ std::vector<std::string> cells(const SpeedRow& r) {
             std::to_string(r.vertices),
             r.target,
             r.method,
+            r.features,
+            r.status,
+            cell(r.dt),
             std::to_string(r.threads),
             std::to_string(r.stepsPerBatch),
             std::to_string(r.batches),
@@ -49,9 +58,12 @@ std::vector<std::string> cells(const SpeedRow& r) {
             cell(r.minBytesPerStep),
             cell(r.achievedGBps),
             cell(r.bandwidthFraction),
+            cell(r.stepsPerSecond * r.dt),
             cell(r.speedup),
+            cell(r.peerRatio),
             cell(r.bytesPerVertex),
             r.variant,
+            r.dispatch,
             cell(r.forcesPassMs),
             cell(r.integratePassMs),
             cell(r.copyMs)};
@@ -68,12 +80,16 @@ std::string csvText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
     s += "# bandwidth: cpu triad " + cell(m.triadGBps) + " GB/s, gpu copy " + cell(m.copyGBps) +
          " GB/s (read + write bytes / best time)\n";
     s += std::string("# traffic model: ") + kTrafficModel + "\n";
+    if (!m.peer.empty()) s += "# peer: " + m.peer + "\n";
     s += "# units: ms_per_step wall clock median batch [ms]; device_ms_per_step the GPU's own "
          "timing [ms]; vertex_steps_per_s [1/s]; min_bytes_per_step [B]; achieved_GB_per_s "
          "[1e9 B/s]; bandwidth_fraction of the triad (cpu, baseline) or copy (gpu); speedup over "
-         "the baseline's vertex_steps_per_s at the same size; bytes_per_vertex allocated [B]; "
-         "gpu_variant work groups/forces kernel/dispatch; forces_pass_ms, integrate_pass_ms, "
-         "copy_ms one pass alone, copy over as many vec4 as vertices [ms]\n";
+         "the baseline's vertex_steps_per_s at the same size; peer_ratio over the peer's; dt the "
+         "step [s]; simulated_s_per_s simulated seconds per wall second; features declared (the "
+         "scene) or all (plus inert copies of the features it lacks); bytes_per_vertex "
+         "allocated [B]; gpu_variant work groups/forces kernel/dispatch asked; gpu_dispatch "
+         "the dispatch run (auto resolved); forces_pass_ms, integrate_pass_ms, copy_ms one pass "
+         "alone, copy over as many vec4 as vertices [ms]\n";
     s += join(kColumns, ',') + "\n";
     for (const SpeedRow& r : rows) s += join(cells(r), ',') + "\n";
     return s;
@@ -89,6 +105,7 @@ std::string jsonText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
     j["gpu_copy_GB_per_s"] = number(m.copyGBps);
     j["traffic_model"] = kTrafficModel;
     j["quick"] = m.quick;
+    j["peer"] = m.peer;
     j["rows"] = nlohmann::json::array();
     for (const SpeedRow& r : rows) {
         nlohmann::json row;
@@ -101,7 +118,10 @@ std::string jsonText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
                                          {"min_bytes_per_step", r.minBytesPerStep},
                                          {"achieved_GB_per_s", r.achievedGBps},
                                          {"bandwidth_fraction", r.bandwidthFraction},
+                                         {"dt", r.dt},
+                                         {"simulated_s_per_s", r.stepsPerSecond * r.dt},
                                          {"speedup", r.speedup},
+                                         {"peer_ratio", r.peerRatio},
                                          {"bytes_per_vertex", r.bytesPerVertex},
                                          {"forces_pass_ms", r.forcesPassMs},
                                          {"integrate_pass_ms", r.integratePassMs},
@@ -122,16 +142,28 @@ void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
     std::printf("build %s | cpu %s | gpu %s\n", m.buildType.c_str(), m.cpuModel.c_str(),
                 m.gpuRenderer.empty() ? "none" : m.gpuRenderer.c_str());
     std::printf("bandwidth: cpu triad %.3g GB/s, gpu copy %.3g GB/s\n", m.triadGBps, m.copyGBps);
-    std::printf("%6s %-10s %-15s %10s %10s %12s %8s %6s %8s %7s %s\n", "size", "target", "method",
-                "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw", "speedup", "B/vtx", "variant");
+    if (!m.peer.empty()) std::printf("peer: %s\n", m.peer.c_str());
+    std::printf("%6s %-11s %-16s %-8s %10s %10s %12s %8s %6s %8s %7s %7s %s\n", "size", "target",
+                "method", "features", "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw",
+                "speedup", "B/vtx", "vs peer", "variant");
     for (const SpeedRow& r : rows) {
         char device[16] = "-";  // CPU rows have no separate device time
         if (std::isfinite(r.deviceMsPerStep))
             std::snprintf(device, sizeof device, "%.4g", r.deviceMsPerStep);
-        std::printf("%6d %-10s %-15s %10.4g %10s %12.4g %8.3g %5.1f%% %7.2fx %7.1f %s", r.side,
-                    r.target.c_str(), r.method.c_str(), r.msPerStep, device, r.vertexStepsPerSecond,
-                    r.achievedGBps, 100 * r.bandwidthFraction, r.speedup, r.bytesPerVertex,
+        char peer[16] = "-";
+        if (std::isfinite(r.peerRatio)) std::snprintf(peer, sizeof peer, "%.3gx", r.peerRatio);
+        if (r.status != "ok") std::snprintf(peer, sizeof peer, "%s", r.status.c_str());
+        char bandwidth[32];  // the peer has no traffic model: "-"
+        std::snprintf(bandwidth, sizeof bandwidth, "%8s %6s", "-", "-");
+        if (std::isfinite(r.achievedGBps))
+            std::snprintf(bandwidth, sizeof bandwidth, "%8.3g %5.1f%%", r.achievedGBps,
+                          100 * r.bandwidthFraction);
+        std::printf("%6d %-11s %-16s %-8s %10.4g %10s %12.4g %s %7.2fx %7.1f %7s %s", r.side,
+                    r.target.c_str(), r.method.c_str(), r.features.c_str(), r.msPerStep, device,
+                    r.vertexStepsPerSecond, bandwidth, r.speedup, r.bytesPerVertex, peer,
                     r.variant.c_str());
+        if (r.variant.size() >= 5 && r.variant.substr(r.variant.size() - 5) == "/auto")
+            std::printf(" (%s)", r.dispatch.c_str());  // what auto chose
         if (std::isfinite(r.forcesPassMs))
             std::printf(" | forces %.4g ms, integrate %.4g ms, copy %.4g ms", r.forcesPassMs,
                         r.integratePassMs, r.copyMs);
@@ -149,7 +181,7 @@ void reportSpeed(const std::string& outDir, const SpeedMeta& meta,
     printTable(meta, rows);
     std::vector<std::string> series;
     for (const SpeedRow& r : rows) {
-        const std::string id = r.target + ":" + r.method + ":" + r.variant;
+        const std::string id = r.target + ":" + r.method + ":" + r.features + ":" + r.variant;
         if (std::find(series.begin(), series.end(), id) == series.end()) series.push_back(id);
     }
     const auto plots = plot("speed.gp", stem,

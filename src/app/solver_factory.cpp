@@ -68,8 +68,15 @@ std::string gpuVariantWord([[maybe_unused]] const Solver& solver) {
 #ifdef CLOTH_GPU_BUILT
     if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver))
         return std::to_string(gpu->workGroup().x) + "x" + std::to_string(gpu->workGroup().y) + "/" +
-               forcesKernelName(gpu->forcesKernel()) + "/" +
-               stepDispatchName(gpu->manySteps() ? StepDispatch::ManySteps : StepDispatch::PerStep);
+               forcesKernelName(gpu->forcesKernel());
+#endif
+    return "";
+}
+
+std::string gpuDispatchWord([[maybe_unused]] const Solver& solver) {
+#ifdef CLOTH_GPU_BUILT
+    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver))
+        return stepDispatchName(gpu->manySteps() ? StepDispatch::ManySteps : StepDispatch::PerStep);
 #endif
     return "";
 }

@@ -33,9 +33,10 @@ std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choi
 // (GL timer query or glFinish + clock); 0 and "" for the CPU backend.
 double deviceSecondsPerStep(const Solver& solver);
 std::string deviceTimingSource(const Solver& solver);
-// The GPU solver's variant as a word, e.g. "16x16/global/per-step" (the dispatch it actually
-// uses, auto resolved); "" for the CPU backend.
+// The GPU solver's work-group shape and forces kernel as a word, e.g. "16x16/global", and the
+// dispatch it uses ("per-step" or "many-steps", auto resolved); "" for the CPU backend.
 std::string gpuVariantWord(const Solver& solver);
+std::string gpuDispatchWord(const Solver& solver);
 // Why the GPU cannot hold this scene's grid with these options (a limit of the device, named),
 // or nothing. Throws GpuUnavailable.
 std::optional<std::string> gpuSizeRefusal(const Scene& scene, const GpuOptions& options);

@@ -84,6 +84,13 @@ TEST(BenchSpeed, QuickRunWritesCsvAndJsonWithBaselinePerSize) {
         }
         if (row.at("target") == "gpu_float") {
             EXPECT_GE(std::stod(row.at("bytes_per_vertex")), 64.0);  // 4 vec4 at least
+            // As asked (auto by default) and as run: many steps per dispatch at 16² (the
+            // crossover is at 24² on llvmpipe, 64² assumed on hardware).
+            EXPECT_EQ(row.at("gpu_variant"), "16x16/global/auto");
+            const std::string& dispatch = row.at("gpu_dispatch");
+            EXPECT_TRUE(dispatch == "many-steps" ||
+                        (dispatch == "per-step" && row.at("size") != "16"))
+                << dispatch;
         }
     }
     EXPECT_TRUE(cpuDouble);
@@ -110,6 +117,10 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         {{"--sizes", "1000000"}, "--sizes"},
         {{"--backend", "tpu"}, "--backend"},
         {{"--methods", "euler"}, "--methods"},
+        {{"--features", "some"}, "--features"},
+        {{"--peer", "havok"}, "--peer"},
+        {{"--peer-dt", "1e-3"}, "--peer-dt"},
+        {{"--peer-dt", "-1"}, "--peer-dt"},
         {{"--workgroups", "16by16"}, "--workgroups"},
         {{"--workgroups", "0x8"}, "--workgroups"},
         {{"--gpu-forces", "shared"}, "--gpu-forces"},
@@ -123,6 +134,24 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         EXPECT_EQ(r.exitCode, 2) << name << "\n" << r.err;
         EXPECT_NE(r.err.find(name), std::string::npos) << r.err;
     }
+}
+
+// --features both: each backend twice per size, as declared and with every feature compiled in.
+TEST(BenchSpeed, FeaturesBothTimesDeclaredAndAll) {
+    const fs::path d = tempDir("features");
+    const auto r = runProcess({kExe, "bench", "speed", "--sizes", "16", "--quick", "--backend",
+                               "cpu", "--features", "both", "--out", d.string(), "--label", "f"},
+                              120);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    std::vector<std::string> columns;
+    std::map<std::string, int> count;
+    for (const auto& row : readRows(d / "speed_f.csv", columns))
+        ++count[row.at("target") + ":" + row.at("features")];
+    for (const char* target : {"cpu_double", "cpu_float"}) {
+        EXPECT_EQ(count[std::string(target) + ":declared"], 1) << target;
+        EXPECT_EQ(count[std::string(target) + ":all"], 1) << target;
+    }
+    EXPECT_EQ(count["baseline:declared"], 1);
 }
 
 TEST(BenchSpeed, DebugBuildsAreRefusedUnlessAllowed) {
