@@ -1,8 +1,9 @@
 # `clothsim bench speed`: vertex-steps per second against the vertex count, log-log, one line
 # per target (backend and precision, or the baseline) and integrator.
 # Set by the command (gnuplot -e): format ('png' or 'svg'), out, csv, title, and series: the
-# curves as words 'target:method:features' (e.g. 'baseline:explicit_euler:declared
-# cpu_double:explicit_euler:all peer_bullet:pbd_1_iteration:declared').
+# curves as words 'target:method:features:variant' (e.g. 'baseline:explicit_euler:declared:
+# cpu_double:explicit_euler:all: gpu_float:explicit_euler:declared:16x16/global/per-step'; the
+# variant is the GPU's, empty elsewhere).
 if (format eq 'png') {
     set terminal pngcairo size 1200,750 enhanced font ',11'
 } else {
@@ -26,9 +27,11 @@ item(i) = word(series, i)
 target(i) = item(i)[1:strstrt(item(i), ':') - 1]
 rest(i) = item(i)[strstrt(item(i), ':') + 1:]
 method(i) = rest(i)[1:strstrt(rest(i), ':') - 1]
-features(i) = rest(i)[strstrt(rest(i), ':') + 1:]
+tail(i) = rest(i)[strstrt(rest(i), ':') + 1:]
+features(i) = tail(i)[1:strstrt(tail(i), ':') - 1]
+variant(i) = tail(i)[strstrt(tail(i), ':') + 1:]
 mine(i) = strcol('target') eq target(i) && strcol('method') eq method(i) && \
-          strcol('features') eq features(i)
+          strcol('features') eq features(i) && strcol('gpu_variant') eq variant(i)
 peer(i) = target(i)[1:5] eq 'peer_'
 width(i) = target(i) eq 'baseline' || peer(i) ? 3 : 2
 dash(i) = features(i) eq 'all' ? 2 : 1
@@ -38,7 +41,8 @@ colour(i) = target(i) eq 'baseline' ? 1 : target(i) eq 'cpu_float' ? 2 : \
             target(i) eq 'cpu_double' ? 3 : target(i) eq 'gpu_float' ? 4 : 8
 label(i) = target(i) eq 'baseline' ? 'baseline (1x, one thread, double)' : \
            peer(i) ? target(i)[6:].' (peer, '.method(i).', one thread)' : \
-           target(i).' '.method(i).(features(i) eq 'all' ? ' (every feature compiled in)' : '')
+           target(i).' '.method(i).(variant(i) eq '' ? '' : ' '.variant(i)). \
+           (features(i) eq 'all' ? ' (every feature compiled in)' : '')
 
 # Each curve's rows first gathered into a datablock of its own ($curve1, ...): rows of other
 # curves between them would otherwise break its line. Then drawn from there, log-log.

@@ -8,9 +8,9 @@ layout(local_size_x = WX, local_size_y = WY) in;
 
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
-    if (ij.x >= gridU() || ij.y >= gridV() || frozen()) return;
+    if (ij.x >= gridU() || ij.y >= gridV() || frozen(uStep)) return;
     uint k = vertexIndex(ij);
     vec4 x = positions[k], v = velocities[k];
     vec3 vel = v.xyz + cgVelocityChange[k].xyz;
-    finishStep(k, x, v, x.xyz + params.integration.x * vel, vel);
+    finishStep(uStep, k, x, v, x.xyz + params.integration.x * vel, vel);
 }

@@ -2,16 +2,22 @@
 // whose static_asserts pin the offsets: change both together.
 // One vec4 per vertex, index k = j·nu + i (DESIGN.md §2).
 
-layout(std430, binding = 0) buffer Positions {
+// many_steps.comp defines STATE_COHERENT as `coherent`: its invocations read what others of
+// the same work group wrote in the same dispatch. The per-pass kernels need no such thing.
+#ifndef STATE_COHERENT
+#define STATE_COHERENT
+#endif
+
+layout(std430, binding = 0) STATE_COHERENT buffer Positions {
     vec4 positions[];  // xyz [m], w inverse mass [1/kg], 0 for a pinned vertex
 };
-layout(std430, binding = 1) buffer Velocities {
+layout(std430, binding = 1) STATE_COHERENT buffer Velocities {
     vec4 velocities[];  // xyz [m/s], w the pinned vertex's slot in pins[]
 };
-layout(std430, binding = 2) buffer Forces {
+layout(std430, binding = 2) STATE_COHERENT buffer Forces {
     vec4 forces[];  // spring + wind force [N] of the current step
 };
-layout(std430, binding = 3) buffer Normals {
+layout(std430, binding = 3) STATE_COHERENT buffer Normals {
     vec4 normals[];  // unit vertex normal, 0 where undefined; the renderer draws with it
 };
 layout(std430, binding = 4) readonly buffer Params {

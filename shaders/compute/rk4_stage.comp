@@ -13,7 +13,7 @@ layout(location = 1) uniform int uStage;  // 0..3: which k this pass computes, m
 
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
-    if (ij.x >= gridU() || ij.y >= gridV() || frozen()) return;
+    if (ij.x >= gridU() || ij.y >= gridV() || frozen(uStep)) return;
     uint k = vertexIndex(ij);
     float h = params.integration.x;
     vec4 x = positions[k], v = velocities[k];
@@ -32,7 +32,7 @@ void main() {
     }
     if (uStage == 3) {
         float sixth = h / 6.0;
-        finishStep(k, x, v, x0 + sixth * (rk4SumPositions[k].xyz + v.xyz),
+        finishStep(uStep, k, x, v, x0 + sixth * (rk4SumPositions[k].xyz + v.xyz),
                    v0 + sixth * (rk4SumVelocities[k].xyz + a));
         return;
     }

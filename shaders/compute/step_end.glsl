@@ -2,11 +2,12 @@
 // docs/integrators.md): pins, then the colliders in scene order, then the instability check.
 // Included by the kernels that write the state.
 
-// The 1-based global number of the step being taken.
-layout(location = 0) uniform uint uStep;
+// The 1-based global number of the step being taken; many_steps.comp: the first of its steps.
+// The functions below take the step as an argument so that many_steps.comp can count on.
+layout(location = 2) uniform uint uStep;
 
 // Mirrors gpu::Status (src/gpu/gpu_layout.h). The host reads it every few steps only.
-layout(std430, binding = 7) buffer Status {
+layout(std430, binding = 7) STATE_COHERENT buffer Status {
     uint firstBadStep;  // atomicMin of the step number; 0xffffffff while stable
     uint badVertex;
     uint badKind;       // 1 non-finite, 2 too fast
@@ -14,17 +15,17 @@ layout(std430, binding = 7) buffer Status {
 } status;
 
 // Once a step went bad the state stays as it was after that step, for the host to report.
-bool frozen() { return status.firstBadStep < uStep; }
+bool frozen(uint step) { return status.firstBadStep < step; }
 
 // DESIGN.md §2: unstable after a step that leaves a position or velocity non-finite or a speed
 // above max_speed. Only the first invocation to report the earliest step writes the details.
-void checkStability(uint k, vec3 p, vec3 v) {
+void checkStability(uint step, uint k, vec3 p, vec3 v) {
     // As the CPU backend tests it (src/core/cpu_solver.cpp): a sum of the coordinates and |v|²
     // that overflow float count as non-finite, so both backends stop at the same step.
     float speed2 = dot(v, v);
     bool bad = nonFinite(vec3(p.x + p.y + p.z, speed2, 0.0));
     if (!bad && !(speed2 > params.integration.y)) return;
-    if (atomicMin(status.firstBadStep, uStep) > uStep) {
+    if (atomicMin(status.firstBadStep, step) > step) {
         status.badVertex = k;
         status.badKind = bad ? 1u : 2u;
         status.badSpeed = sqrt(speed2);
@@ -49,14 +50,14 @@ void applyColliders(inout vec3 p, inout vec3 vel) {
 }
 #endif
 
-// The scheme's new (p, vel) of vertex k: pins, colliders, store (keeping the w of x and v),
+// The scheme's new (p, vel) of vertex k at step `step`: pins, colliders, store (keeping the w of x and v),
 // check.
-void finishStep(uint k, vec4 x, vec4 v, vec3 p, vec3 vel) {
+void finishStep(uint step, uint k, vec4 x, vec4 v, vec3 p, vec3 vel) {
     applyPin(x, v, p, vel);
 #ifdef HAS_COLLIDERS
     applyColliders(p, vel);
 #endif
     positions[k] = vec4(p, x.w);
     velocities[k] = vec4(vel, v.w);
-    checkStability(k, p, vel);
+    checkStability(step, k, p, vel);
 }

@@ -9,7 +9,7 @@ layout(local_size_x = WX, local_size_y = WY) in;
 
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
-    if (ij.x >= gridU() || ij.y >= gridV() || frozen()) return;
+    if (ij.x >= gridU() || ij.y >= gridV() || frozen(uStep)) return;
     uint k = vertexIndex(ij);
     vec4 x = positions[k], v = velocities[k];
     vec3 p = x.xyz;
@@ -17,5 +17,5 @@ void main() {
                     params.gravity.xyz);
     applyPin(x, v, p, vel);
     velocities[k] = vec4(vel, v.w);
-    checkStability(k, p, vel);
+    checkStability(uStep, k, p, vel);
 }

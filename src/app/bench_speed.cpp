@@ -17,6 +17,7 @@
 #include "app/bench_baseline.h"
 #include "app/bench_features.h"
 #include "app/bench_peer.h"
+#include "app/bench_speed_gpu.h"
 #include "app/bench_speed_model.h"
 #include "core/errors.h"
 #include "core/scene_loader.h"
@@ -53,6 +54,18 @@ options:
                       at sizes up to 512 (default sizes 64,128,256), checked not to explode
   --peer-dt SECONDS   the peer's step, with its stiffness and damping mapped at that step
                       (default the scene's dt); compare simulated_s_per_s then
+  --workgroups LIST   GPU work-group shapes WXxWY, comma-separated (default 16x16); every GPU
+                      row is labelled with its variant (shape/forces/dispatch)
+  --gpu-forces LIST   global, tiled or both: where the GPU's forces pass reads the neighbours'
+                      positions, straight from the buffer or from a shared-memory tile (default
+                      global)
+  --gpu-dispatch LIST auto, per-step, many-steps, comma-separated: two dispatches per step, or
+                      many steps in one work-group dispatch (explicit/symplectic Euler); auto
+                      picks many-steps up to 24x24 on llvmpipe, 64x64 on hardware (default
+                      auto); many-steps rows use neither the shape nor the tile
+  --check-every N     GPU steps between reads of the instability flag (default 64)
+  --pass-times        GPU rows also time one forces pass, one integrate pass and the copy
+                      kernel over as many vec4 as the grid has vertices, each alone
   --quick             short timing (5 ms batches, 30 ms per run, small bandwidth arrays)
   --allow-debug       run in a Debug build (refused otherwise: its timings mean nothing)
   --help              this text
@@ -62,8 +75,9 @@ struct Options : BenchCommonOptions {  // methods empty: the scene's
     std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
     bool sizesGiven = false, allowDebug = false;
     FeatureSet features = FeatureSet::Declared;
-    std::string peer;   // "" or "bullet"
-    double peerDt = 0;  // [s]; 0: the scene's
+    std::string peer;          // "" or "bullet"
+    double peerDt = 0;         // [s]; 0: the scene's
+    GpuSweepOptions gpuSweep;  // --workgroups, --gpu-forces, --gpu-dispatch, ...
 };
 
 std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
@@ -83,7 +97,7 @@ bool parse(Args& args, Options& o) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help" || f == "-h") return false;
-        if (parseCommonFlag(f, args, o)) continue;
+        if (parseCommonFlag(f, args, o) || parseGpuSweepFlag(f, args, o.gpuSweep)) continue;
         if (f == "--sizes") {
             o.sizes = parseSizes(f, args.value(f));
             o.sizesGiven = true;
@@ -216,6 +230,36 @@ SpeedRow timeBaseline(const Scene& sized, int side, const Sweep& w) {
     return r;
 }
 
+// One row: `target` with `choice` on `scene` at this size.
+SpeedRow timeTarget(const Scene& scene, int side, const BenchTarget& t, const BackendChoice& choice,
+                    const std::string& features, const Sweep& w) {
+    const Method m = scene.integrator.method;
+    auto solver = makeSolver(scene, choice);
+    const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
+                                [&] { return deviceSecondsPerStep(*solver); }, w.o.quick);
+    const bool onGpu = t.backend == Backend::Gpu;
+    SpeedRow r = makeRow(side, t.id(), methodName(m), onGpu ? 0 : w.cpuThreads, st,
+                         double(minStepBytesPerVertex(t.backend, t.precision)),
+                         onGpu ? w.meta.copyGBps : w.meta.triadGBps);
+    r.features = features;
+    r.dt = scene.integrator.dt;
+    r.timingSource = deviceTimingSource(*solver);
+    // The GPU's own allocation (every buffer it made, bufferBytes()); the CPU's by its model.
+    r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
+                             : double(cpuBytesPerVertex(t.precision, m));
+    if (!onGpu) return r;
+    // The variant as asked (one curve per variant in the plot), the dispatch as run.
+    r.variant = gpuVariantWord(*solver) + "/" + stepDispatchName(choice.gpu.dispatch);
+    r.dispatch = gpuDispatchWord(*solver);
+    if (w.o.gpuSweep.passTimes) {
+        const GpuPassTimes p = gpuPassTimes(*solver, w.o.quick ? 3 : 5);
+        r.forcesPassMs = 1e3 * p.forces;
+        r.integratePassMs = 1e3 * p.integrate;
+        r.copyMs = 1e3 * p.copy;
+    }
+    return r;
+}
+
 // Every target and integrator on `scene` (the declared scene or its all-features twin).
 void timeBackends(Scene scene, int side, const std::string& features, Sweep& w,
                   std::vector<SpeedRow>& rows) {
@@ -223,19 +267,20 @@ void timeBackends(Scene scene, int side, const std::string& features, Sweep& w,
         scene.integrator.method = m;
         for (const BenchTarget& t : w.targets) {
             if (!w.support.runs(t, scene, m, w.o.threads)) continue;
-            auto solver = makeSolver(scene, choiceFor(t, w.o.threads));
-            const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
-                                        [&] { return deviceSecondsPerStep(*solver); }, w.o.quick);
-            const bool onGpu = t.backend == Backend::Gpu;
-            SpeedRow r = makeRow(side, t.id(), methodName(m), onGpu ? 0 : w.cpuThreads, st,
-                                 double(minStepBytesPerVertex(t.backend, t.precision)),
-                                 onGpu ? w.meta.copyGBps : w.meta.triadGBps);
-            r.features = features;
-            r.dt = scene.integrator.dt;
-            r.timingSource = deviceTimingSource(*solver);
-            r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
-                                     : double(cpuBytesPerVertex(t.precision, m));
-            rows.push_back(r);
+            if (t.backend != Backend::Gpu) {
+                rows.push_back(timeTarget(scene, side, t, choiceFor(t, w.o.threads), features, w));
+                continue;
+            }
+            for (const GpuOptions& g : w.o.gpuSweep.variants()) {
+                BackendChoice choice = choiceFor(t, w.o.threads);
+                choice.gpu = g;
+                try {
+                    rows.push_back(timeTarget(scene, side, t, choice, features, w));
+                } catch (const InputError& e) {  // e.g. many-steps for rk4: said, skipped
+                    std::fprintf(stderr, "clothsim bench speed: %dx%d %s %s skipped: %s\n", side,
+                                 side, t.id().c_str(), methodName(m), e.what());
+                }
+            }
         }
     }
 }
@@ -283,6 +328,22 @@ void ratios(std::vector<SpeedRow>& rows) {
         }
 }
 
+std::vector<std::string> withResolution(std::vector<std::string> sets, int side) {
+    sets.push_back("cloth.resolution=[" + std::to_string(side) + "," + std::to_string(side) + "]");
+    return sets;
+}
+
+// A GPU size beyond the device's limits is refused before anything runs, naming the limit.
+void refuseGpuSizes(const Options& o) {
+    for (int side : o.sizes) {
+        const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
+        for (const GpuOptions& g : o.gpuSweep.variants())
+            if (const auto why = gpuSizeRefusal(sized, g))
+                throw InputError("command line", "--sizes",
+                                 "the GPU cannot hold size " + std::to_string(side) + ": " + *why);
+    }
+}
+
 }  // namespace
 
 int benchSpeedCommand(Args& args) {
@@ -305,6 +366,8 @@ int benchSpeedCommand(Args& args) {
     const bool gpu = std::any_of(targets.begin(), targets.end(),
                                  [](const BenchTarget& t) { return t.backend == Backend::Gpu; });
 
+    if (gpu) refuseGpuSizes(o);
+
     SpeedMeta meta;
     meta.scene = o.scenePath;
     meta.label = o.label.empty() ? scene.name : o.label;
@@ -324,10 +387,7 @@ int benchSpeedCommand(Args& args) {
             {}};
     std::vector<SpeedRow> rows;
     for (int side : o.sizes) {
-        std::vector<std::string> sets = o.sets;
-        sets.push_back("cloth.resolution=[" + std::to_string(side) + "," + std::to_string(side) +
-                       "]");
-        const Scene sized = loadScene(o.scenePath, sets);
+        const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
         rows.push_back(timeBaseline(sized, side, w));
         if (o.features != FeatureSet::All) timeBackends(sized, side, "declared", w, rows);
         if (o.features != FeatureSet::Declared)

@@ -2,6 +2,7 @@
 // writes the CSV, the JSON, the table and the plot).
 #pragma once
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,11 @@ struct SpeedRow {
     double speedup = 0;            // vertex-steps/s over the baseline's at this size
     double bytesPerVertex = 0;     // allocated by the backend
     double peerRatio = 0;          // vertex-steps/s over the peer's at this size (NaN: no peer)
+    std::string variant;   // GPU as asked: shape/forces/dispatch, "16x16/global/auto"; "" CPU
+    std::string dispatch;  // GPU: the dispatch that ran, "per-step" or "many-steps"; "" CPU
+    // GPU with --pass-times: one forces pass, one integrate pass, the copy kernel over as many
+    // vec4 as vertices, each alone [ms]; NaN otherwise.
+    double forcesPassMs = NAN, integratePassMs = NAN, copyMs = NAN;
 };
 
 struct SpeedMeta {

@@ -32,7 +32,12 @@ const std::vector<std::string> kColumns = {"size",
                                            "simulated_s_per_s",
                                            "speedup",
                                            "peer_ratio",
-                                           "bytes_per_vertex"};
+                                           "bytes_per_vertex",
+                                           "gpu_variant",
+                                           "gpu_dispatch",
+                                           "forces_pass_ms",
+                                           "integrate_pass_ms",
+                                           "copy_ms"};
 
 std::vector<std::string> cells(const SpeedRow& r) {
     return {std::to_string(r.side),
@@ -56,7 +61,12 @@ std::vector<std::string> cells(const SpeedRow& r) {
             cell(r.stepsPerSecond * r.dt),
             cell(r.speedup),
             cell(r.peerRatio),
-            cell(r.bytesPerVertex)};
+            cell(r.bytesPerVertex),
+            r.variant,
+            r.dispatch,
+            cell(r.forcesPassMs),
+            cell(r.integratePassMs),
+            cell(r.copyMs)};
 }
 
 nlohmann::json number(double x) {
@@ -77,7 +87,9 @@ std::string csvText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
          "the baseline's vertex_steps_per_s at the same size; peer_ratio over the peer's; dt the "
          "step [s]; simulated_s_per_s simulated seconds per wall second; features declared (the "
          "scene) or all (plus inert copies of the features it lacks); bytes_per_vertex "
-         "allocated [B]\n";
+         "allocated [B]; gpu_variant work groups/forces kernel/dispatch asked; gpu_dispatch "
+         "the dispatch run (auto resolved); forces_pass_ms, integrate_pass_ms, copy_ms one pass "
+         "alone, copy over as many vec4 as vertices [ms]\n";
     s += join(kColumns, ',') + "\n";
     for (const SpeedRow& r : rows) s += join(cells(r), ',') + "\n";
     return s;
@@ -110,7 +122,10 @@ std::string jsonText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
                                          {"simulated_s_per_s", r.stepsPerSecond * r.dt},
                                          {"speedup", r.speedup},
                                          {"peer_ratio", r.peerRatio},
-                                         {"bytes_per_vertex", r.bytesPerVertex}})
+                                         {"bytes_per_vertex", r.bytesPerVertex},
+                                         {"forces_pass_ms", r.forcesPassMs},
+                                         {"integrate_pass_ms", r.integratePassMs},
+                                         {"copy_ms", r.copyMs}})
             row[key] = number(value);
         for (const auto& [key, value] : {std::pair<const char*, long>{"size", r.side},
                                          {"vertices", r.vertices},
@@ -128,9 +143,9 @@ void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
                 m.gpuRenderer.empty() ? "none" : m.gpuRenderer.c_str());
     std::printf("bandwidth: cpu triad %.3g GB/s, gpu copy %.3g GB/s\n", m.triadGBps, m.copyGBps);
     if (!m.peer.empty()) std::printf("peer: %s\n", m.peer.c_str());
-    std::printf("%6s %-11s %-16s %-8s %10s %10s %12s %8s %6s %8s %7s %7s\n", "size", "target",
+    std::printf("%6s %-11s %-16s %-8s %10s %10s %12s %8s %6s %8s %7s %7s %s\n", "size", "target",
                 "method", "features", "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw",
-                "speedup", "B/vtx", "vs peer");
+                "speedup", "B/vtx", "vs peer", "variant");
     for (const SpeedRow& r : rows) {
         char device[16] = "-";  // CPU rows have no separate device time
         if (std::isfinite(r.deviceMsPerStep))
@@ -143,9 +158,16 @@ void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
         if (std::isfinite(r.achievedGBps))
             std::snprintf(bandwidth, sizeof bandwidth, "%8.3g %5.1f%%", r.achievedGBps,
                           100 * r.bandwidthFraction);
-        std::printf("%6d %-11s %-16s %-8s %10.4g %10s %12.4g %s %7.2fx %7.1f %7s\n", r.side,
+        std::printf("%6d %-11s %-16s %-8s %10.4g %10s %12.4g %s %7.2fx %7.1f %7s %s", r.side,
                     r.target.c_str(), r.method.c_str(), r.features.c_str(), r.msPerStep, device,
-                    r.vertexStepsPerSecond, bandwidth, r.speedup, r.bytesPerVertex, peer);
+                    r.vertexStepsPerSecond, bandwidth, r.speedup, r.bytesPerVertex, peer,
+                    r.variant.c_str());
+        if (r.variant.size() >= 5 && r.variant.substr(r.variant.size() - 5) == "/auto")
+            std::printf(" (%s)", r.dispatch.c_str());  // what auto chose
+        if (std::isfinite(r.forcesPassMs))
+            std::printf(" | forces %.4g ms, integrate %.4g ms, copy %.4g ms", r.forcesPassMs,
+                        r.integratePassMs, r.copyMs);
+        std::printf("\n");
     }
 }
 
@@ -159,7 +181,7 @@ void reportSpeed(const std::string& outDir, const SpeedMeta& meta,
     printTable(meta, rows);
     std::vector<std::string> series;
     for (const SpeedRow& r : rows) {
-        const std::string id = r.target + ":" + r.method + ":" + r.features;
+        const std::string id = r.target + ":" + r.method + ":" + r.features + ":" + r.variant;
         if (std::find(series.begin(), series.end(), id) == series.end()) series.push_back(id);
     }
     const auto plots = plot("speed.gp", stem,

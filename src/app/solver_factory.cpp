@@ -10,6 +10,7 @@
 #include "gpu/gpu_backend.h"
 #include "gpu/gpu_bandwidth.h"
 #include "gpu/gpu_solver.h"
+#include "gpu/gpu_variant.h"
 #define CLOTH_GPU_BUILT 1
 #endif
 
@@ -43,7 +44,7 @@ std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choi
     if (choice.backend == Backend::Cpu)
         return makeCpuSolver(scene, CpuOptions{choice.precision, choice.threads});
 #ifdef CLOTH_GPU_BUILT
-    return makeGpuSolver(scene);
+    return makeGpuSolver(scene, choice.gpu);
 #else
     throw GpuUnavailable("this clothsim was built without the GPU backend");
 #endif
@@ -61,6 +62,52 @@ std::string deviceTimingSource([[maybe_unused]] const Solver& solver) {
     if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->timingSource();
 #endif
     return "";
+}
+
+std::string gpuVariantWord([[maybe_unused]] const Solver& solver) {
+#ifdef CLOTH_GPU_BUILT
+    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver))
+        return std::to_string(gpu->workGroup().x) + "x" + std::to_string(gpu->workGroup().y) + "/" +
+               forcesKernelName(gpu->forcesKernel());
+#endif
+    return "";
+}
+
+std::string gpuDispatchWord([[maybe_unused]] const Solver& solver) {
+#ifdef CLOTH_GPU_BUILT
+    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver))
+        return stepDispatchName(gpu->manySteps() ? StepDispatch::ManySteps : StepDispatch::PerStep);
+#endif
+    return "";
+}
+
+std::optional<std::string> gpuSizeRefusal([[maybe_unused]] const Scene& scene,
+                                          [[maybe_unused]] const GpuOptions& options) {
+#ifdef CLOTH_GPU_BUILT
+    const GpuInfo& info = GlContext::instance().info();
+    try {
+        checkGridFits(scene, chooseWorkGroup({options.workGroupX, options.workGroupY}, &info),
+                      info);
+    } catch (const InputError& e) {
+        return e.reason();
+    }
+    return std::nullopt;
+#else
+    throw GpuUnavailable("this clothsim was built without the GPU backend");
+#endif
+}
+
+GpuPassTimes gpuPassTimes([[maybe_unused]] Solver& solver, [[maybe_unused]] int repeats) {
+    GpuPassTimes t;
+#ifdef CLOTH_GPU_BUILT
+    if (auto* gpu = dynamic_cast<GpuSolver*>(&solver)) {
+        t.forces = gpu->timePass(Kernel::Forces, repeats);
+        t.integrate = gpu->timePass(Kernel::Integrate, repeats);
+        const std::size_t bytes = std::size_t(solver.read().positions.size()) * 16;
+        t.copy = 2.0 * double(bytes) / measureGpuCopyBandwidth(bytes, repeats);
+    }
+#endif
+    return t;
 }
 
 std::size_t gpuBufferBytes([[maybe_unused]] const Solver& solver) {

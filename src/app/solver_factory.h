@@ -3,10 +3,12 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "app/cli.h"
 #include "core/solver.h"
+#include "gpu/gpu_options.h"
 
 namespace cloth::app {
 
@@ -14,6 +16,7 @@ struct BackendChoice {
     Backend backend = Backend::Cpu;
     Precision precision = Precision::Double;  // CPU only; the GPU computes in float
     int threads = 0;                          // CPU only; 0 = automatic
+    GpuOptions gpu{};                         // GPU only: work groups, kernels, read-backs
 };
 
 // --backend cpu|gpu, --precision float|double, --threads N: true when `flag` was one of them
@@ -30,6 +33,19 @@ std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choi
 // (GL timer query or glFinish + clock); 0 and "" for the CPU backend.
 double deviceSecondsPerStep(const Solver& solver);
 std::string deviceTimingSource(const Solver& solver);
+// The GPU solver's work-group shape and forces kernel as a word, e.g. "16x16/global", and the
+// dispatch it uses ("per-step" or "many-steps", auto resolved); "" for the CPU backend.
+std::string gpuVariantWord(const Solver& solver);
+std::string gpuDispatchWord(const Solver& solver);
+// Why the GPU cannot hold this scene's grid with these options (a limit of the device, named),
+// or nothing. Throws GpuUnavailable.
+std::optional<std::string> gpuSizeRefusal(const Scene& scene, const GpuOptions& options);
+// Seconds of one forces pass, one integrate pass and one copy kernel over as many vec4 as the
+// grid has vertices, each alone, best of `repeats`: what a step's time is made of.
+struct GpuPassTimes {
+    double forces = 0, integrate = 0, copy = 0;
+};
+GpuPassTimes gpuPassTimes(Solver& solver, int repeats);
 // Bytes of GPU memory the solver's buffers hold; 0 for the CPU backend.
 std::size_t gpuBufferBytes(const Solver& solver);
 // The GPU copy kernel's read+write bandwidth over `bytes` [bytes/s] (gpu/gpu_bandwidth.h).

@@ -7,13 +7,9 @@
 
 #include "core/scene.h"
 #include "core/solver.h"
+#include "gpu/gpu_options.h"
 
 namespace cloth {
-
-struct GpuOptions {
-    int workGroupX = 16, workGroupY = 16;  // CLOTH_WORKGROUP=WXxWY overrides
-    int checkEvery = 64;                   // steps between reads of the instability flag
-};
 
 // Creates the (process-wide, lazily made) headless context if needed. Throws GpuUnavailable,
 // InputError (bad work-group override, impossible grid), std::runtime_error (shader problems,

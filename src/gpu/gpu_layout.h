@@ -36,10 +36,11 @@ enum Binding : unsigned {
 };
 
 // Uniform locations. The kernels that end a step (step_end.glsl): the 1-based global step
-// number; rk4_stage.comp also the stage 0..3. The kernels that include grab.glsl: the grab
-// (Solver::setGrab), int vertex (-1: none) and vec4 (target [m], stiffness [N/m]).
-// cg_reduce.comp: which sum it reduces (CgReduction).
-inline constexpr int kStepLocation = 0, kStageLocation = 1;
+// number (many_steps.comp: its first step, and the number of steps); rk4_stage.comp also the
+// stage 0..3. The kernels that include grab.glsl: the grab (Solver::setGrab), int vertex (-1:
+// none) and vec4 (target [m], stiffness [N/m]). cg_reduce.comp: which sum it reduces
+// (CgReduction). many_steps.comp includes both, so the step's locations differ from the grab's.
+inline constexpr int kStepLocation = 2, kStageLocation = 1, kStepCountLocation = 3;
 inline constexpr int kGrabVertexLocation = 0, kGrabLocation = 1;
 inline constexpr int kReductionLocation = 0;
 enum CgReduction : int { kReduceStart = 0, kReduceAlpha = 1, kReduceBeta = 2 };

@@ -25,8 +25,10 @@ using Clock = std::chrono::steady_clock;
 // Room for this many pins before setPinned has to grow the table.
 constexpr std::size_t kMinPinCapacity = 16;
 
-// The scene's kernels (kernelsOf its integrator); none leaks if a later one fails to build.
-std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup wg) {
+// The scene's kernels (kernelsOf its integrator, and many_steps.comp when `manyStepsGroup` > 0)
+// with the variant's defines; none leaks if a later one fails to build.
+std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup wg,
+                                                 ForcesKernel forces, int manyStepsGroup) {
     const ShaderDirectory dir = findShaderDirectory();
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -35,10 +37,17 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
                                  "/compute (shader directory " + dir.how +
                                  "); set CLOTH_SHADER_DIR to the project's shaders/");
     std::array<unsigned, kKernelCount> programs{};
+    std::vector<Kernel> kernels = kernelsOf(scene.integrator.method);
+    Defines extra;
+    if (forces == ForcesKernel::Tiled) extra.push_back({"FORCES_TILED", ""});
+    if (manyStepsGroup > 0) {
+        kernels.push_back(Kernel::ManySteps);
+        extra.push_back({"MANY_STEPS_GROUP", std::to_string(manyStepsGroup)});
+    }
     try {
-        for (Kernel k : kernelsOf(scene.integrator.method))
+        for (Kernel k : kernels)
             programs[int(k)] =
-                compileComputeProgram(assembleKernel(dir.path, kernelFile(k), scene, wg));
+                compileComputeProgram(assembleKernel(dir.path, kernelFile(k), scene, wg, extra));
     } catch (...) {
         for (unsigned p : programs) glDeleteProgram(p);  // 0 is silently ignored
         throw;
@@ -67,6 +76,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       features_(Features::of(scene)),
       method_(scene.integrator.method),
       maxIterations_(scene.integrator.maxIterations),
+      forces_(options.forces),
       nu_(scene.cloth.nu),
       nv_(scene.cloth.nv),
       checkEvery_(options.checkEvery),
@@ -78,11 +88,15 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
                          "must be at least 1, not " + std::to_string(checkEvery_));
     workGroup_ = chooseWorkGroup({options.workGroupX, options.workGroupY}, &info);
     checkGridFits(scene, workGroup_, info);
+    if (forces_ == ForcesKernel::Tiled) checkTileFits(workGroup_, info);
+    const long long vertices = static_cast<long long>(nu_) * nv_;
+    if (usesManySteps(options.dispatch, method_, vertices, info.software))
+        manyStepsGroup_ = manyStepsGroupSize(vertices, info);
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
     dt_ = scene.integrator.dt;
     defines_ = gpuDefines(scene, workGroup_);
-    programs_ = buildPrograms(scene, workGroup_);
+    programs_ = buildPrograms(scene, workGroup_, forces_, manyStepsGroup_);
     glGenBuffers(gpu::kStatus + 1, buffers_.data());
     for (gpu::Binding b : integratorBindings(method_)) glGenBuffers(1, &buffers_[b]);
     upload(scene);
@@ -91,7 +105,12 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     // the wall clock.
     if (info.timerQueries && !info.software) glGenQueries(1, &timer_);
     name_ = "gpu float (" + info.renderer.substr(0, info.renderer.find(" (")) + ", work groups " +
-            std::to_string(workGroup_.x) + "x" + std::to_string(workGroup_.y) + ")";
+            std::to_string(workGroup_.x) + "x" + std::to_string(workGroup_.y) + ", " +
+            forcesKernelName(forces_) + " forces" +
+            (manySteps() ? ", many steps per dispatch in " + std::to_string(manyStepsGroup_) +
+                               " invocations"
+                         : "") +
+            ")";
     computeNormals();  // valid before the first step, for a renderer drawing frame 0
 }
 
@@ -197,10 +216,11 @@ void GpuSolver::bindBuffers() const {
         if (buffers_[b] != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
 }
 
-// The grab's two uniforms in every kernel that includes grab.glsl: the forces pass and, for
-// implicit_euler, the two stiffness products.
+// The grab's two uniforms in every kernel that includes grab.glsl: the forces pass, many steps
+// per dispatch and, for implicit_euler, the two stiffness products.
 void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
-    for (Kernel k : {Kernel::Forces, Kernel::CgRightHandSide, Kernel::CgProduct}) {
+    for (Kernel k :
+         {Kernel::Forces, Kernel::ManySteps, Kernel::CgRightHandSide, Kernel::CgProduct}) {
         const unsigned program = programs_[int(k)];
         if (program == 0) continue;
         glProgramUniform1i(program, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);
@@ -247,7 +267,10 @@ StepResult GpuSolver::step(long n) {
     const long every = method_ == Method::ImplicitEuler ? 1 : checkEvery_;
     while (done < n && status.firstBadStep == gpu::kNoBadStep) {
         const long chunk = std::min<long>(n - done, every);
-        for (long s = 1; s <= chunk; ++s) dispatchStep(before + done + s);
+        if (manySteps())
+            runManySteps(before + done + 1, chunk);
+        else
+            for (long s = 1; s <= chunk; ++s) dispatchStep(before + done + s);
         done += chunk;
         status = readStatus();  // the only round trip: 16 bytes every checkEvery steps
     }

@@ -48,6 +48,14 @@ public:
     double lastSecondsPerStep() const { return secondsPerStep_; }
     const char* timingSource() const { return timedByQuery_ ? "GL timer query" : "wall clock"; }
     WorkGroup workGroup() const { return workGroup_; }
+    ForcesKernel forcesKernel() const { return forces_; }
+    bool manySteps() const { return manyStepsGroup_ > 0; }  // many_steps.comp steps this scene
+    int checkEvery() const { return checkEvery_; }
+    // Seconds per dispatch of one pass over the grid alone, best of `repeats` (glFinish and a
+    // steady clock): what bench speed --pass-times reports to say what limits a step. The state
+    // changes as a step's would (Integrate) or not at all (Forces). NaN for a kernel the scene's
+    // integrator does not compile.
+    double timePass(Kernel k, int repeats);
     // Bytes of GPU memory in the solver's buffers: the state, the tables and the integrator's
     // own (RK4's stages, the CG's vectors), which only a scene with that integrator allocates.
     std::size_t bufferBytes() const;
@@ -72,6 +80,7 @@ private:
     void dispatchStep(long stepNumber);
     void runPass(Kernel k) const;
     void runStepPass(Kernel k, long stepNumber) const;
+    void runManySteps(long firstStep, long count) const;
     void stepVerlet(long stepNumber);
     void stepRk4(long stepNumber) const;
     void stepImplicit(long stepNumber);
@@ -91,6 +100,8 @@ private:
     bool forcesKept_ = false;
     Defines defines_;  // the compiled variant: setParameters must not need another
     WorkGroup workGroup_;
+    ForcesKernel forces_;
+    int manyStepsGroup_ = 0;  // many_steps.comp's invocations; 0: two dispatches per step
     int nu_, nv_;
     int groupsX_, groupsY_;
     int checkEvery_;

@@ -4,8 +4,10 @@
 #include <GL/glew.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
+#include "gpu/egl_context.h"
 #include "gpu/gpu_solver.h"
 
 namespace cloth {
@@ -29,6 +31,38 @@ void GpuSolver::runPass(Kernel k) const {
 void GpuSolver::runStepPass(Kernel k, long stepNumber) const {
     glProgramUniform1ui(programs_[int(k)], gpu::kStepLocation, GLuint(stepNumber));
     runPass(k);
+}
+
+// Steps firstStep .. firstStep + count − 1 of explicit or symplectic Euler in one dispatch of one
+// work group (many_steps.comp): no dispatch per pass, the barriers are inside the kernel.
+void GpuSolver::runManySteps(long firstStep, long count) const {
+    const unsigned program = programs_[int(Kernel::ManySteps)];
+    glProgramUniform1ui(program, gpu::kStepLocation, GLuint(firstStep));
+    glProgramUniform1ui(program, gpu::kStepCountLocation, GLuint(count));
+    glUseProgram(program);
+    glDispatchCompute(1, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+}
+
+double GpuSolver::timePass(Kernel k, int repeats) {
+    if (programs_[int(k)] == 0) return std::nan("");  // not a kernel of this scene
+    context_.makeCurrent();
+    bindBuffers();
+    forcesKept_ = false;
+    double best = 1e300;
+    for (int r = 0; r <= repeats; ++r) {  // r = 0 is the warm-up
+        glFinish();
+        const auto t0 = std::chrono::steady_clock::now();
+        if (k == Kernel::Forces)
+            runPass(k);
+        else
+            runStepPass(k, steps_ + 1);
+        glFinish();
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (r > 0) best = std::min(best, s);
+    }
+    return best;
 }
 
 void GpuSolver::dispatchStep(long stepNumber) {

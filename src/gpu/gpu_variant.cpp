@@ -14,6 +14,12 @@ namespace {
 // DESIGN.md §3: no dispatch dimension may exceed 65535 work groups, whatever the device says.
 constexpr long long kMaxGroupsPerDimension = 65535;
 constexpr long long kBytesPerVertexBuffer = 16;  // one vec4 per vertex
+constexpr int kTileHalo = 2;                     // forces_tile.glsl: the bend springs' reach
+// many_steps.comp's invocations on a software rasteriser: llvmpipe runs a work group on one
+// thread whatever its size and each barrier switches between its 8-wide slices, so few
+// invocations doing many vertices each cost least (measured: 32 to 64 best, 1024 3x slower at
+// 16², docs/performance.md). A hardware GPU gets the most it allows per work group.
+constexpr long long kManyStepsGroupSoftware = 32;
 
 std::string integratorDefine(Method m) {
     switch (m) {
@@ -146,12 +152,12 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg) {
 
 const char* kernelFile(Kernel k) {
     static constexpr const char* kFiles[kKernelCount] = {
-        "compute/forces.comp",         "compute/integrate.comp",
-        "compute/verlet_drift.comp",   "compute/verlet_kick.comp",
-        "compute/rk4_stage.comp",      "compute/cg_right_hand_side.comp",
-        "compute/cg_product.comp",     "compute/cg_reduce.comp",
-        "compute/cg_update.comp",      "compute/cg_direction.comp",
-        "compute/implicit_finish.comp"};
+        "compute/forces.comp",          "compute/integrate.comp",
+        "compute/verlet_drift.comp",    "compute/verlet_kick.comp",
+        "compute/rk4_stage.comp",       "compute/cg_right_hand_side.comp",
+        "compute/cg_product.comp",      "compute/cg_reduce.comp",
+        "compute/cg_update.comp",       "compute/cg_direction.comp",
+        "compute/implicit_finish.comp", "compute/many_steps.comp"};
     return kFiles[int(k)];
 }
 
@@ -172,9 +178,42 @@ std::vector<Kernel> kernelsOf(Method m) {
     return {};
 }
 
+bool usesManySteps(StepDispatch dispatch, Method method, long long vertices, bool software) {
+    const bool euler = method == Method::ExplicitEuler || method == Method::SymplecticEuler;
+    if (dispatch == StepDispatch::ManySteps && !euler)
+        throw InputError("", "dispatch",
+                         std::string("many steps per dispatch exist for explicit_euler and "
+                                     "symplectic_euler only, not ") +
+                             methodName(method));
+    if (dispatch == StepDispatch::Auto) return euler && vertices <= manyStepsMaxVertices(software);
+    return dispatch == StepDispatch::ManySteps;
+}
+
+std::size_t tileBytes(WorkGroup wg) {
+    return std::size_t(wg.x + 2 * kTileHalo) * std::size_t(wg.y + 2 * kTileHalo) * 16;
+}
+
+void checkTileFits(WorkGroup wg, const GpuInfo& info) {
+    const std::size_t bytes = tileBytes(wg);
+    if (bytes <= std::size_t(info.maxSharedMemory)) return;
+    throw InputError("", "forces",
+                     "the tiled forces pass with " + std::to_string(wg.x) + "x" +
+                         std::to_string(wg.y) + " work groups needs " + std::to_string(bytes) +
+                         " bytes of shared memory; the device allows " +
+                         std::to_string(info.maxSharedMemory) + " per work group");
+}
+
+int manyStepsGroupSize(long long vertices, const GpuInfo& info) {
+    const long long most = info.software ? kManyStepsGroupSoftware : info.maxInvocations;
+    const long long wanted = std::min<long long>(most, (vertices + 31) / 32 * 32);
+    return int(std::min<long long>({wanted, info.maxInvocations, info.maxWorkGroupSize[0]}));
+}
+
 ShaderSource assembleKernel(const std::string& dir, const std::string& file, const Scene& scene,
-                            WorkGroup wg) {
-    return assembleShader(dir, file, gpuDefines(scene, wg));
+                            WorkGroup wg, const Defines& extra) {
+    Defines d = gpuDefines(scene, wg);
+    d.insert(d.end(), extra.begin(), extra.end());
+    return assembleShader(dir, file, d);
 }
 
 }  // namespace cloth

@@ -2,10 +2,12 @@
 // checks that the grid fits the device. No GL here, so `validate` and tests can use it freely.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "core/scene.h"
+#include "gpu/gpu_options.h"
 #include "gpu/shader_loader.h"
 
 namespace cloth {
@@ -46,14 +48,31 @@ enum class Kernel {
     CgUpdate,         // implicit_euler: Δv, r
     CgDirection,      // implicit_euler: p
     ImplicitFinish,   // implicit_euler: v, x, pins, colliders, check
+    ManySteps,        // explicit/symplectic Euler, small grids: many steps in one work group
 };
-inline constexpr int kKernelCount = int(Kernel::ImplicitFinish) + 1;
+inline constexpr int kKernelCount = int(Kernel::ManySteps) + 1;
 
 const char* kernelFile(Kernel k);  // "compute/forces.comp", ...
 std::vector<Kernel> kernelsOf(Method m);
 
-// The assembled source of a kernel file (kernelFile) for `scene`.
+// Whether a scene runs many steps per dispatch (many_steps.comp): as asked, or with Auto for
+// explicit and symplectic Euler up to manyStepsMaxVertices(software). Throws InputError (key
+// `dispatch`) when ManySteps is asked for another integrator.
+bool usesManySteps(StepDispatch dispatch, Method method, long long vertices, bool software);
+
+// Throws InputError (key `forces`) when forces.comp's tile of WX × WY vertices and its 2-vertex
+// halo, one vec4 each, exceeds the device's shared memory per work group.
+void checkTileFits(WorkGroup wg, const GpuInfo& info);
+std::size_t tileBytes(WorkGroup wg);
+
+// Invocations of many_steps.comp's one work group for a grid of `vertices`: 32 on a software
+// rasteriser, the device's most per work group on hardware, fewer for a grid that has fewer
+// vertices (in whole multiples of 32).
+int manyStepsGroupSize(long long vertices, const GpuInfo& info);
+
+// The assembled source of a kernel file (kernelFile) for `scene`, with `extra` defines after the
+// scene's (FORCES_TILED, MANY_STEPS_GROUP).
 ShaderSource assembleKernel(const std::string& dir, const std::string& file, const Scene& scene,
-                            WorkGroup wg);
+                            WorkGroup wg, const Defines& extra = {});
 
 }  // namespace cloth

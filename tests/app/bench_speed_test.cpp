@@ -84,6 +84,13 @@ TEST(BenchSpeed, QuickRunWritesCsvAndJsonWithBaselinePerSize) {
         }
         if (row.at("target") == "gpu_float") {
             EXPECT_GE(std::stod(row.at("bytes_per_vertex")), 64.0);  // 4 vec4 at least
+            // As asked (auto by default) and as run: many steps per dispatch at 16² (the
+            // crossover is at 24² on llvmpipe, 64² assumed on hardware).
+            EXPECT_EQ(row.at("gpu_variant"), "16x16/global/auto");
+            const std::string& dispatch = row.at("gpu_dispatch");
+            EXPECT_TRUE(dispatch == "many-steps" ||
+                        (dispatch == "per-step" && row.at("size") != "16"))
+                << dispatch;
         }
     }
     EXPECT_TRUE(cpuDouble);
@@ -114,6 +121,11 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         {{"--peer", "havok"}, "--peer"},
         {{"--peer-dt", "1e-3"}, "--peer-dt"},
         {{"--peer-dt", "-1"}, "--peer-dt"},
+        {{"--workgroups", "16by16"}, "--workgroups"},
+        {{"--workgroups", "0x8"}, "--workgroups"},
+        {{"--gpu-forces", "shared"}, "--gpu-forces"},
+        {{"--gpu-dispatch", "fused"}, "--gpu-dispatch"},
+        {{"--check-every", "0"}, "--check-every"},
         {{"--bogus"}, "--bogus"}};
     for (const auto& [flags, name] : cases) {
         std::vector<std::string> argv{kExe, "bench", "speed"};

@@ -1,0 +1,38 @@
+// The force pass's physics for one vertex (DESIGN.md §2, §3), shared by forces.comp and
+// many_steps.comp. The including kernel first defines `vec3 positionAt(ivec2 q)` for any q inside
+// the grid within two of the vertex: where the positions come from (the SSBO, or the work
+// group's tile in shared memory, forces_tile.glsl).
+
+// The springs of the up to 12 neighbours, the wind and the grab on vertex ij (index k), and its
+// normal.
+void vertexForce(ivec2 ij, uint k, out vec3 f, out vec3 n) {
+    vec3 p = positionAt(ij);
+    f = vec3(0.0);
+#if NUM_SPRING_OFFSETS > 0
+    // One loop walks every family the scene declares (the seed's Q10).
+    for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
+        ivec4 s = kSpringOffsets[o];
+        ivec2 q = ij + s.xy;
+        if (!insideGrid(q)) continue;
+        f += springForce(p, positionAt(q), springStiffness(s), springRestLength(s));
+    }
+#endif
+    int i = ij.x, j = ij.y;
+    n = vertexNormal(positionAt(ivec2(min(i + 1, gridU() - 1), j)),
+                     positionAt(ivec2(max(i - 1, 0), j)),
+                     positionAt(ivec2(i, min(j + 1, gridV() - 1))),
+                     positionAt(ivec2(i, max(j - 1, 0))));
+#ifdef HAS_WIND
+    f += windForce(n, params.wind.xyz, params.wind.w);
+#endif
+    if (grabbed(k)) f += grabForce(p, uGrab.xyz, uGrab.w);
+}
+
+// Pass 1's output for vertex ij: its force and normal, as vec4 stores.
+void storeForce(ivec2 ij) {
+    uint k = vertexIndex(ij);
+    vec3 f, n;
+    vertexForce(ij, k, f, n);
+    forces[k] = vec4(f, 0.0);
+    normals[k] = vec4(n, 0.0);
+}
