@@ -58,7 +58,7 @@ CLOTH_LANE void eulerComponent(T& p, T& v, T f, T h, T damping, T inverseMass, T
 template <typename T>
 CLOTH_LANE bool badVertex(T px, T py, T pz, T vx, T vy, T vz, T maxSpeed2) {
     const T s = px + py + pz, speed2 = vx * vx + vy * vy + vz * vz;
-    return !(s - s == T(0)) || !(speed2 - speed2 == T(0)) || speed2 > maxSpeed2;
+    return !(s - s == T(0)) | !(speed2 - speed2 == T(0)) | (speed2 > maxSpeed2);  // no branch
 }
 
 }  // namespace cloth

@@ -13,55 +13,67 @@
 namespace cloth::CLOTH_ISA_NS {
 namespace {
 
+// Every array a parameter of its own, restrict-qualified: GCC then knows the stores do not
+// alias the loads and vectorises (positions may alias each other: they are only read).
 template <typename T>
-void coefficients(ConstRow3<T> p, ConstRow3<T> q, T stiffness, T restLength, T* __restrict c,
-                  int n) {
+void coefficientLoop(const T* __restrict px, const T* __restrict py, const T* __restrict pz,
+                     const T* __restrict qx, const T* __restrict qy, const T* __restrict qz,
+                     T stiffness, T restLength, T* __restrict c, int n) {
     for (int i = 0; i < n; ++i)
-        c[i] = springCoefficient(q.x[i] - p.x[i], q.y[i] - p.y[i], q.z[i] - p.z[i], stiffness,
-                                 restLength);
+        c[i] =
+            springCoefficient(qx[i] - px[i], qy[i] - py[i], qz[i] - pz[i], stiffness, restLength);
+}
+template <typename T>
+void coefficients(ConstRow3<T> p, ConstRow3<T> q, T stiffness, T restLength, T* c, int n) {
+    coefficientLoop(p.x, p.y, p.z, q.x, q.y, q.z, stiffness, restLength, c, n);
 }
 
 template <typename T>
-void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
-    T* __restrict fx = f.x;
-    T* __restrict fy = f.y;
-    T* __restrict fz = f.z;
+void accumulateLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict px,
+                    const T* __restrict py, const T* __restrict pz, const T* __restrict qx,
+                    const T* __restrict qy, const T* __restrict qz, const T* __restrict c, int n) {
     for (int i = 0; i < n; ++i) {
-        fx[i] += c[i] * (q.x[i] - p.x[i]);
-        fy[i] += c[i] * (q.y[i] - p.y[i]);
-        fz[i] += c[i] * (q.z[i] - p.z[i]);
+        fx[i] += c[i] * (qx[i] - px[i]);
+        fy[i] += c[i] * (qy[i] - py[i]);
+        fz[i] += c[i] * (qz[i] - pz[i]);
     }
 }
+template <typename T>
+void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
+    accumulateLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, c, n);
+}
 
 template <typename T>
-void wind(Row3<T> f, ConstRow3<T> left, ConstRow3<T> right, ConstRow3<T> down, ConstRow3<T> up,
-          T wx, T wy, T wz, T strength, int n) {
-    T* __restrict fx = f.x;
-    T* __restrict fy = f.y;
-    T* __restrict fz = f.z;
+void windLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict lx,
+              const T* __restrict ly, const T* __restrict lz, const T* __restrict rx,
+              const T* __restrict ry, const T* __restrict rz, const T* __restrict dx,
+              const T* __restrict dy, const T* __restrict dz, const T* __restrict ux,
+              const T* __restrict uy, const T* __restrict uz, T wx, T wy, T wz, T strength, int n) {
     for (int i = 0; i < n; ++i) {
         T nx, ny, nz;
-        unitNormal(right.x[i] - left.x[i], right.y[i] - left.y[i], right.z[i] - left.z[i],
-                   up.x[i] - down.x[i], up.y[i] - down.y[i], up.z[i] - down.z[i], nx, ny, nz);
+        unitNormal(rx[i] - lx[i], ry[i] - ly[i], rz[i] - lz[i], ux[i] - dx[i], uy[i] - dy[i],
+                   uz[i] - dz[i], nx, ny, nz);
         addWind(nx, ny, nz, wx, wy, wz, strength, fx[i], fy[i], fz[i]);
     }
 }
+template <typename T>
+void wind(Row3<T> f, ConstRow3<T> left, ConstRow3<T> right, ConstRow3<T> down, ConstRow3<T> up,
+          T wx, T wy, T wz, T strength, int n) {
+    windLoop(f.x, f.y, f.z, left.x, left.y, left.z, right.x, right.y, right.z, down.x, down.y,
+             down.z, up.x, up.y, up.z, wx, wy, wz, strength, n);
+}
 
 template <typename T, bool kSymplectic>
-void euler(const EulerRow<T>& r, int n) {
-    T* __restrict px = r.xOut.x;
-    T* __restrict py = r.xOut.y;
-    T* __restrict pz = r.xOut.z;
-    T* __restrict vx = r.v.x;
-    T* __restrict vy = r.v.y;
-    T* __restrict vz = r.v.z;
-    const T h = r.h, mu = r.damping, w = r.inverseMass;
+void eulerLoop(const T* __restrict xx, const T* __restrict xy, const T* __restrict xz,
+               const T* __restrict fx, const T* __restrict fy, const T* __restrict fz,
+               T* __restrict vx, T* __restrict vy, T* __restrict vz, T* __restrict px,
+               T* __restrict py, T* __restrict pz, T h, T mu, T w, T gx, T gy, T gz, int n) {
     for (int i = 0; i < n; ++i) {
-        T x = r.xIn.x[i], y = r.xIn.y[i], z = r.xIn.z[i];
+        T x = xx[i], y = xy[i], z = xz[i];
         T u = vx[i], v = vy[i], s = vz[i];
-        eulerComponent<T, kSymplectic>(x, u, r.f.x[i], h, mu, w, r.gx);
-        eulerComponent<T, kSymplectic>(y, v, r.f.y[i], h, mu, w, r.gy);
-        eulerComponent<T, kSymplectic>(z, s, r.f.z[i], h, mu, w, r.gz);
+        eulerComponent<T, kSymplectic>(x, u, fx[i], h, mu, w, gx);
+        eulerComponent<T, kSymplectic>(y, v, fy[i], h, mu, w, gy);
+        eulerComponent<T, kSymplectic>(z, s, fz[i], h, mu, w, gz);
         px[i] = x;
         py[i] = y;
         pz[i] = z;
@@ -70,12 +82,20 @@ void euler(const EulerRow<T>& r, int n) {
         vz[i] = s;
     }
 }
+template <typename T, bool kSymplectic>
+void euler(const EulerRow<T>& r, int n) {
+    eulerLoop<T, kSymplectic>(r.xIn.x, r.xIn.y, r.xIn.z, r.f.x, r.f.y, r.f.z, r.v.x, r.v.y, r.v.z,
+                              r.xOut.x, r.xOut.y, r.xOut.z, r.h, r.damping, r.inverseMass, r.gx,
+                              r.gy, r.gz, n);
+}
 
 template <typename T>
 bool anyBad(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n) {
+    const T* __restrict px = x.x, * __restrict py = x.y, * __restrict pz = x.z;
+    const T* __restrict vx = v.x, * __restrict vy = v.y, * __restrict vz = v.z;
     int bad = 0;
     for (int i = 0; i < n; ++i)
-        bad |= int(badVertex(x.x[i], x.y[i], x.z[i], v.x[i], v.y[i], v.z[i], maxSpeed2));
+        bad |= int(badVertex(px[i], py[i], pz[i], vx[i], vy[i], vz[i], maxSpeed2));
     return bad != 0;
 }
 
