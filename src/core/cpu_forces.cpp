@@ -31,25 +31,46 @@ void CpuSolver<T>::coefficientRow(Band& band, int j) {
     }
 }
 
-// Row j's forces into f: the springs in table order, then the wind, then the grab.
+// The coefficient of spring s for the vertex at column i of row j: an upward spring's is at its
+// own vertex, a downward one's at its far end (row j + dj, column i + di).
+template <typename T>
+const T* CpuSolver<T>::coefficientAt(const Band& band, const RowSpring& s, int j, int i) const {
+    const int nu = grid_.nu;
+    const int cj = s.upward ? j : j + s.dj, ci = s.upward ? i : i + s.di;
+    return band.coefficients.data() + (std::size_t(cj % 3) * upwardSprings_ + s.slot) * nu + ci;
+}
+
+// Row j's forces into f: the springs in table order, then the wind, then the grab. Columns two
+// or more from the border of rows two or more from the border gather all their springs in one
+// loop; the rest take each spring's loop over the columns where it exists.
 template <typename T>
 void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
     const int nu = grid_.nu, nv = grid_.nv;
     const std::int64_t k = std::int64_t(j) * nu;
-    std::fill_n(f.x, nu, T(0));
-    std::fill_n(f.y, nu, T(0));
-    std::fill_n(f.z, nu, T(0));
-    const std::size_t ringRow = std::size_t(upwardSprings_) * nu;
-    for (const RowSpring& s : rowSprings_) {
-        const int qj = j + s.dj;
-        const int i0 = std::max(0, -s.di), i1 = std::min(nu, nu - s.di);
-        if (qj < 0 || qj >= nv || i1 <= i0) continue;
-        // An upward spring's coefficient is at its own vertex; a downward one's at the far end.
-        const int cj = s.upward ? j : qj, ci = s.upward ? i0 : i0 + s.di;
-        const T* c = band.coefficients.data() + std::size_t(cj % 3) * ringRow +
-                     std::size_t(s.slot) * nu + ci;
-        kernels_->accumulate(f + i0, x_.row(k + i0), x_.row(std::int64_t(qj) * nu + i0 + s.di), c,
-                             i1 - i0);
+    const bool interior = j >= 2 && j < nv - 2 && nu >= 5;
+    const int inner0 = interior ? 2 : nu, inner1 = interior ? nu - 2 : nu;
+    auto springByspring = [&](int a, int b) {  // columns [a, b)
+        std::fill(f.x + a, f.x + b, T(0));
+        std::fill(f.y + a, f.y + b, T(0));
+        std::fill(f.z + a, f.z + b, T(0));
+        for (const RowSpring& s : rowSprings_) {
+            const int qj = j + s.dj;
+            const int i0 = std::max(a, -s.di), i1 = std::min(b, nu - s.di);
+            if (qj < 0 || qj >= nv || i1 <= i0) continue;
+            kernels_->accumulate(f + i0, x_.row(k + i0), x_.row(std::int64_t(qj) * nu + i0 + s.di),
+                                 coefficientAt(band, s, j, i0), i1 - i0);
+        }
+    };
+    springByspring(0, inner0);
+    if (interior) {
+        GatherRow<T> g;
+        g.p = x_.row(k + 2);
+        for (const RowSpring& s : rowSprings_) {
+            g.q[s.table] = x_.row(std::int64_t(j + s.dj) * nu + 2 + s.di);
+            g.c[s.table] = coefficientAt(band, s, j, 2);
+        }
+        kernels_->gather[families_](f + 2, g, nu - 4);
+        springByspring(inner1, nu);
     }
     if (features_.wind) {  // central differences, clamped at the border (DESIGN.md §2)
         const ConstRow3<T> row = x_.row(k), down = x_.row(std::int64_t(std::max(j - 1, 0)) * nu),
@@ -168,12 +189,13 @@ void CpuSolver<T>::computeForcesScalar(std::int64_t begin, std::int64_t end) {
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
-#define CLOTH_INSTANTIATE(T)                                                     \
-    template void CpuSolver<T>::coefficientRow(Band&, int);                      \
-    template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                   \
-    template void CpuSolver<T>::computeForces(Band&);                            \
-    template void CpuSolver<T>::computeForcesScalar(std::int64_t, std::int64_t); \
-    template bool CpuSolver<T>::stepEulerFused(Band&, bool);                     \
+#define CLOTH_INSTANTIATE(T)                                                                      \
+    template void CpuSolver<T>::coefficientRow(Band&, int);                                       \
+    template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int) const; \
+    template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                    \
+    template void CpuSolver<T>::computeForces(Band&);                                             \
+    template void CpuSolver<T>::computeForcesScalar(std::int64_t, std::int64_t);                  \
+    template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                      \
     template bool CpuSolver<T>::reportFirstBad(Band&, std::int64_t, std::int64_t);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

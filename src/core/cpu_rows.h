@@ -46,6 +46,20 @@ struct EulerRow {
     T h, damping, inverseMass, gx, gy, gz;
 };
 
+// Row j's whole 12-neighbour gather over a run of columns where every neighbour exists: p the
+// vertices, q[s] and c[s] the neighbour and the coefficient of spring s of the offset table
+// (core/grid.h kSpringOffsets), all at the run's first column.
+template <typename T>
+struct GatherRow {
+    ConstRow3<T> p{nullptr, nullptr, nullptr};
+    ConstRow3<T> q[12]{
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}};
+    const T* c[12]{};
+};
+
 // Every kernel runs over n elements from the given (already offset) pointers.
 template <typename T>
 struct RowKernels {
@@ -53,6 +67,10 @@ struct RowKernels {
     void (*coefficients)(ConstRow3<T> p, ConstRow3<T> q, T stiffness, T restLength, T* c, int n);
     // f_i += c_i (q_i − p_i): one spring of the 12-neighbour gather.
     void (*accumulate)(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n);
+    // f_i = Σ_s c_s,i (q_s,i − p_i) over the modelled families in table order, f in registers:
+    // the same sums as accumulate spring by spring. Indexed by the families modelled, bit 0
+    // structural, 1 shear, 2 bend.
+    void (*gather[8])(Row3<T> f, const GatherRow<T>& row, int n);
     // f_i += wind on the normal from a = right_i − left_i, b = up_i − down_i.
     void (*wind)(Row3<T> f, ConstRow3<T> left, ConstRow3<T> right, ConstRow3<T> down,
                  ConstRow3<T> up, T wx, T wy, T wz, T strength, int n);

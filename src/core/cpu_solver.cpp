@@ -83,11 +83,14 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     Solver::dt_ = scene.integrator.dt;
     springs_ = activeSprings<T>(scene);
     rowSprings_.clear();
-    upwardSprings_ = 0;
+    upwardSprings_ = families_ = 0;
     for (const Spring& sp : springs_) {
         const bool upward = sp.dj > 0 || (sp.dj == 0 && sp.di > 0);
-        rowSprings_.push_back(
-            {sp.di, sp.dj, sp.stiffness, sp.restLength, upward, upward ? upwardSprings_++ : -1});
+        int table = 0;
+        while (kSpringOffsets[table].di != sp.di || kSpringOffsets[table].dj != sp.dj) ++table;
+        families_ |= 1 << int(kSpringOffsets[table].family);
+        rowSprings_.push_back({sp.di, sp.dj, sp.stiffness, sp.restLength, upward,
+                               upward ? upwardSprings_++ : -1, table});
     }
     for (RowSpring& r : rowSprings_)  // a family's springs come in pairs ±(di, dj)
         for (const RowSpring& u : rowSprings_)

@@ -62,7 +62,8 @@ private:
         int di, dj;
         T stiffness, restLength;
         bool upward;
-        int slot;  // the coefficient array of this spring's upward direction
+        int slot;   // the coefficient array of this spring's upward direction
+        int table;  // its index in kSpringOffsets
     };
     // The threads of one step(n) call: sync() is a barrier between passes (none when serial).
     struct Team {
@@ -87,6 +88,7 @@ private:
     void sweepRows(Band& band, const RowDone& rowDone);
     void coefficientRow(Band& band, int j);
     void forceRow(Band& band, int j, Row3<T> f);
+    const T* coefficientAt(const Band& band, const RowSpring& s, int j, int i) const;
     bool stepEulerFused(Band& band, bool symplectic);
     bool reportFirstBad(Band& band, std::int64_t begin, std::int64_t end);
     // One step of the scene's integrator over this band's vertices; false if it went unstable.
@@ -116,6 +118,7 @@ private:
     std::vector<Spring> springs_;
     std::vector<RowSpring> rowSprings_;
     int upwardSprings_ = 0;
+    int families_ = 0;  // bit f: family f is modelled (RowKernels::gather)
     Method method_;
     CpuIsa isa_;
     const RowKernels<T>* kernels_ = nullptr;  // null on the scalar path

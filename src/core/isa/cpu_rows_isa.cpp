@@ -43,6 +43,29 @@ void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
     accumulateLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, c, n);
 }
 
+template <typename T, int kFamilies>
+void gather(Row3<T> f, const GatherRow<T>& g, int n) {
+    T* __restrict fx = f.x;
+    T* __restrict fy = f.y;
+    T* __restrict fz = f.z;
+#pragma GCC ivdep
+    for (int i = 0; i < n; ++i) {
+        const T px = g.p.x[i], py = g.p.y[i], pz = g.p.z[i];
+        T x = T(0), y = T(0), z = T(0);
+#pragma GCC unroll 12
+        for (int s = 0; s < 12; ++s) {
+            if (!((kFamilies >> (s / 4)) & 1)) continue;  // springs 4f … 4f+3 are family f
+            const T c = g.c[s][i];
+            x += c * (g.q[s].x[i] - px);
+            y += c * (g.q[s].y[i] - py);
+            z += c * (g.q[s].z[i] - pz);
+        }
+        fx[i] = x;
+        fy[i] = y;
+        fz[i] = z;
+    }
+}
+
 template <typename T>
 void windLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict lx,
               const T* __restrict ly, const T* __restrict lz, const T* __restrict rx,
@@ -103,8 +126,14 @@ bool anyBad(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n) {
 
 template <typename T>
 const RowKernels<T>& rowKernels() {
-    static const RowKernels<T> kernels{&coefficients<T>, &accumulate<T>,  &wind<T>,
-                                       &euler<T, false>, &euler<T, true>, &anyBad<T>};
+    static const RowKernels<T> kernels{&coefficients<T>,
+                                       &accumulate<T>,
+                                       {&gather<T, 0>, &gather<T, 1>, &gather<T, 2>, &gather<T, 3>,
+                                        &gather<T, 4>, &gather<T, 5>, &gather<T, 6>, &gather<T, 7>},
+                                       &wind<T>,
+                                       &euler<T, false>,
+                                       &euler<T, true>,
+                                       &anyBad<T>};
     return kernels;
 }
 template const RowKernels<float>& rowKernels();
