@@ -16,18 +16,28 @@
 
 namespace cloth {
 
-// The coefficients of row j's upward springs into ring slot j % 3.
+// The coefficients of row j's upward springs into ring slot j % 3; with gatherLater, those of
+// the springs to the rows above only at the two border columns on each side: forceRow's gather
+// computes the others.
 template <typename T>
-void CpuSolver<T>::coefficientRow(Band& band, int j) {
+void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
     const int nu = grid_.nu, nv = grid_.nv;
     T* ring = band.coefficients.data() + std::size_t(j % 3) * upwardSprings_ * nu;
     const std::int64_t k = std::int64_t(j) * nu;
     for (const RowSpring& s : rowSprings_) {
         if (!s.upward || j + s.dj >= nv) continue;
         const int i0 = std::max(0, -s.di), i1 = std::min(nu, nu - s.di);
-        if (i1 <= i0) continue;
-        kernels_->coefficients(x_.row(k + i0), x_.row(k + s.dj * nu + i0 + s.di), s.stiffness,
-                               s.restLength, ring + std::size_t(s.slot) * nu + i0, i1 - i0);
+        auto columns = [&](int a, int b) {
+            if (b <= a) return;
+            kernels_->coefficients(x_.row(k + a), x_.row(k + s.dj * nu + a + s.di), s.stiffness,
+                                   s.restLength, ring + std::size_t(s.slot) * nu + a, b - a);
+        };
+        if (gatherLater && kComputedInGather[s.table]) {
+            columns(i0, 2);
+            columns(nu - 2, i1);
+        } else {
+            columns(i0, i1);
+        }
     }
 }
 
@@ -47,7 +57,7 @@ template <typename T>
 void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
     const int nu = grid_.nu, nv = grid_.nv;
     const std::int64_t k = std::int64_t(j) * nu;
-    const bool interior = j >= 2 && j < nv - 2 && nu >= 5;
+    const bool interior = interiorRow(j);
     const int inner0 = interior ? 2 : nu, inner1 = interior ? nu - 2 : nu;
     auto springByspring = [&](int a, int b) {  // columns [a, b)
         std::fill(f.x + a, f.x + b, T(0));
@@ -68,6 +78,9 @@ void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
         for (const RowSpring& s : rowSprings_) {
             g.q[s.table] = x_.row(std::int64_t(j + s.dj) * nu + 2 + s.di);
             g.c[s.table] = coefficientAt(band, s, j, 2);
+            g.out[s.table] = const_cast<T*>(g.c[s.table]);  // the band's own ring
+            g.stiffness[s.table] = s.stiffness;
+            g.restLength[s.table] = s.restLength;
         }
         kernels_->gather[families_](f + 2, g, nu - 4);
         springByspring(inner1, nu);
@@ -98,8 +111,9 @@ template <typename T>
 template <typename RowDone>
 void CpuSolver<T>::sweepRows(Band& band, const RowDone& rowDone) {
     for (int j = std::max(0, band.rowBegin - 2); j < band.rowEnd; ++j) {
-        coefficientRow(band, j);
-        if (j >= band.rowBegin) rowDone(j);  // rows j − 2 … j of coefficients are in the ring
+        const bool mine = j >= band.rowBegin;  // rows before are the band above's: no gather
+        coefficientRow(band, j, mine && interiorRow(j));
+        if (mine) rowDone(j);  // rows j − 2 … j of coefficients are in the ring
     }
 }
 
@@ -190,7 +204,7 @@ void CpuSolver<T>::computeForcesScalar(std::int64_t begin, std::int64_t end) {
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
 #define CLOTH_INSTANTIATE(T)                                                                      \
-    template void CpuSolver<T>::coefficientRow(Band&, int);                                       \
+    template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                 \
     template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int) const; \
     template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                    \
     template void CpuSolver<T>::computeForces(Band&);                                             \

@@ -48,7 +48,10 @@ struct EulerRow {
 
 // Row j's whole 12-neighbour gather over a run of columns where every neighbour exists: p the
 // vertices, q[s] and c[s] the neighbour and the coefficient of spring s of the offset table
-// (core/grid.h kSpringOffsets), all at the run's first column.
+// (core/grid.h kSpringOffsets), all at the run's first column. The springs to the rows above
+// (kComputedInGather) have their coefficients computed in the same loop, from stiffness[s] and
+// restLength[s], and stored through out[s] for the rows above: their square roots and divisions
+// then overlap the gather's arithmetic.
 template <typename T>
 struct GatherRow {
     ConstRow3<T> p{nullptr, nullptr, nullptr};
@@ -58,7 +61,12 @@ struct GatherRow {
         {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
         {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}};
     const T* c[12]{};
+    T* out[12]{};
+    T stiffness[12]{}, restLength[12]{};
 };
+// (0, 1), (1, 1), (−1, 1), (0, 2): the upward springs that are not within the row.
+inline constexpr bool kComputedInGather[12] = {false, false, true,  false, true, true,
+                                               false, false, false, false, true, false};
 
 // Every kernel runs over n elements from the given (already offset) pointers.
 template <typename T>

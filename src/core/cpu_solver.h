@@ -86,7 +86,9 @@ private:
     // rowDone(j) after row j's are in; forceRow gathers row j's forces from the ring.
     template <typename RowDone>
     void sweepRows(Band& band, const RowDone& rowDone);
-    void coefficientRow(Band& band, int j);
+    void coefficientRow(Band& band, int j, bool gatherLater);
+    // Rows two or more from the border, wide enough to have columns that are too: one gather.
+    bool interiorRow(int j) const { return j >= 2 && j < grid_.nv - 2 && grid_.nu >= 5; }
     void forceRow(Band& band, int j, Row3<T> f);
     const T* coefficientAt(const Band& band, const RowSpring& s, int j, int i) const;
     bool stepEulerFused(Band& band, bool symplectic);

@@ -55,7 +55,14 @@ void gather(Row3<T> f, const GatherRow<T>& g, int n) {
 #pragma GCC unroll 12
         for (int s = 0; s < 12; ++s) {
             if (!((kFamilies >> (s / 4)) & 1)) continue;  // springs 4f … 4f+3 are family f
-            const T c = g.c[s][i];
+            T c;
+            if (kComputedInGather[s]) {
+                c = springCoefficient(g.q[s].x[i] - px, g.q[s].y[i] - py, g.q[s].z[i] - pz,
+                                      g.stiffness[s], g.restLength[s]);
+                g.out[s][i] = c;
+            } else {
+                c = g.c[s][i];
+            }
             x += c * (g.q[s].x[i] - px);
             y += c * (g.q[s].y[i] - py);
             z += c * (g.q[s].z[i] - pz);
