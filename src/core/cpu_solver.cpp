@@ -370,6 +370,23 @@ SimState CpuSolver<T>::read() const {
 }
 
 template <typename T>
+std::size_t CpuSolver<T>::allocatedBytes() const {
+    std::size_t vectors = 0;
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_}) vectors += std::size_t(a->size());
+    for (const auto* a : {&pinPosition_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
+        vectors += a->size();
+    return vectors * sizeof(Vec3<T>) + pinned_.size();
+}
+
+template <typename T>
+std::size_t CpuSolver<T>::scratchBytes() const {
+    std::size_t bytes = 0;
+    for (const Band& b : bands_)
+        bytes += (b.coefficients.size() + 3 * std::size_t(b.force.size())) * sizeof(T);
+    return bytes;
+}
+
+template <typename T>
 std::string CpuSolver<T>::name() const {
     const int t = int(bands_.size());
     return std::string("cpu ") + (sizeof(T) == 4 ? "float" : "double") + ", " + std::to_string(t) +

@@ -31,6 +31,10 @@ public:
     Features features() const override { return features_; }
     std::string name() const override;
     CpuIsa isa() const { return isa_; }
+    // Bytes of the per-vertex arrays it holds (app/bench_speed_model.h cpuBytesPerVertex models
+    // them), and of the threads' scratch rows.
+    std::size_t allocatedBytes() const;
+    std::size_t scratchBytes() const;
 
     void write(const SimState& state) override;
     void setPinned(int i, int j, bool pinned) override;

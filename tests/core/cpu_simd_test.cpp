@@ -9,6 +9,7 @@
 #include <string>
 #include <tuple>
 
+#include "app/bench_speed_model.h"
 #include "core/cpu_solver.h"
 #include "support/integrator_scenes.h"
 
@@ -141,6 +142,21 @@ TEST(RowBands, ThreadCountsOneTwoThreeGiveTheSameBits) {
                                std::string(methodName(m)) + " " + cpuIsaName(isa) + " " +
                                    std::to_string(t) + " threads");
         }
+}
+
+// bench speed reports app::cpuBytesPerVertex as the CPU's memory: it must be what the solver
+// holds, for every integrator and precision; the threads' scratch rows stay O(side).
+TEST(CpuMemory, BytesPerVertexOfTheBenchModelAreWhatTheSolverAllocates) {
+    for (Method m : kMethods) {
+        const Scene scene = sized(m, 64, 40, false);
+        CpuSolver<float> f(scene, 2);
+        CpuSolver<double> d(scene, 2);
+        EXPECT_EQ(f.allocatedBytes(), 64 * 40 * app::cpuBytesPerVertex(Precision::Float, m))
+            << methodName(m);
+        EXPECT_EQ(d.allocatedBytes(), 64 * 40 * app::cpuBytesPerVertex(Precision::Double, m))
+            << methodName(m);
+        EXPECT_LE(d.scratchBytes(), 2 * (3 * 6 + 3) * 64 * sizeof(double)) << methodName(m);
+    }
 }
 
 TEST(CpuIsaChoice, AutoIsTheWidestSupportedAndAnUnknownNameIsRefused) {
