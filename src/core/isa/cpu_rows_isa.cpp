@@ -1,6 +1,7 @@
 // The row kernels of core/cpu_rows.h for one instruction set: CMake compiles this file once per
 // set with CLOTH_ISA_NS naming the namespace and that set's -m flags, plus -ffp-contract=off (no
-// FMA: the same bits as the scalar path) and -fno-math-errno (sqrt vectorises). Plain loops over
+// FMA: the same bits as the scalar path), -fno-math-errno (sqrt vectorises) and
+// -fno-trapping-math (a conditional division vectorises without AVX-512 masks). Plain loops over
 // restrict-qualified arrays: the compiler vectorises each across the row. No standard-library
 // templates here, so no out-of-line copy compiled for a wider ISA can leak into generic code.
 #include "core/cpu_rows.h"
