@@ -389,8 +389,8 @@ std::size_t CpuSolver<T>::scratchBytes() const {
 template <typename T>
 std::string CpuSolver<T>::name() const {
     const int t = int(bands_.size());
-    return std::string("cpu ") + (sizeof(T) == 4 ? "float" : "double") + ", " + std::to_string(t) +
-           (t == 1 ? " thread" : " threads");
+    return std::string("cpu ") + (sizeof(T) == 4 ? "float" : "double") + " " + cpuIsaName(isa_) +
+           ", " + std::to_string(t) + (t == 1 ? " thread" : " threads");
 }
 
 template class CpuSolver<float>;
