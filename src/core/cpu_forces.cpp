@@ -2,11 +2,11 @@
 //
 // Row by row over structure-of-arrays positions: each "upward" spring's coefficient
 // c = K (|d| − L)/|d| is computed once per spring into a ring of the last three rows, and each
-// vertex then gathers its 12 neighbours in the table's order as f += c d, reading the coefficient
-// of a downward spring from the row below (c is the same for d and −d, so every vertex gets the
-// bits the vertex-by-vertex path gives it). Borders need no separate path: each spring's loop
-// runs over the columns where that spring exists. The scalar path (computeForcesScalar) is the
-// first CPU backend's, kept as the oracle.
+// vertex then gathers its 12 neighbours in the table's order as f += c d, reading a downward
+// spring's coefficient where its far end computed it, in this row or one of the two below (c is
+// the same for d and −d, so every vertex gets the bits the vertex-by-vertex path gives it).
+// Borders need no separate path: each spring's loop runs over the columns where that spring
+// exists. The scalar path (computeForcesScalar) is the first CPU backend's, kept as the oracle.
 #include <algorithm>
 #include <cmath>
 
