@@ -14,9 +14,9 @@ template <typename T>
 template <typename PerVertex>
 double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value) {
     std::vector<double>& partial = partials_[band.reductions++ & 1];
-    for (std::int64_t c = band.begin / kChunk; c * kChunk < band.end; ++c) {
+    for (std::int64_t c = band.begin / chunk_; c * chunk_ < band.end; ++c) {
         double sum = 0;
-        for (std::int64_t k = c * kChunk; k < std::min(band.end, (c + 1) * kChunk); ++k)
+        for (std::int64_t k = c * chunk_; k < std::min(band.end, (c + 1) * chunk_); ++k)
             sum += value(k);
         partial[std::size_t(c)] = sum;
     }
@@ -33,12 +33,12 @@ double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value
 template <typename T>
 void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
                                  std::vector<Vec3<T>>& out) {
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), p.data(), pinned_.data(), out.data(),
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, p.data(), pinned_.data(), out.data(),
                      band.begin, band.end);
     const T h2 = dt_t_ * dt_t_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         if (pinned_[k]) continue;
-        out[k] = (T(1) / inverseMass_[k] + dt_t_ * damping_) * p[k] + h2 * out[k];
+        out[k] = (T(1) / inverseMass_ + dt_t_ * damping_) * p[k] + h2 * out[k];
     }
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
         out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
@@ -48,17 +48,18 @@ void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p
 // h (F − μ v + m g − h H v), by conjugate gradient with pins as constraints (their rows held 0).
 template <typename T>
 bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
-    computeForces(band.begin, band.end);
+    computeForces(band);
     const T h = dt_t_;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_.data(), v_.data(), pinned_.data(), ap_.data(),
-                     band.begin, band.end);
+    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
+                     band.end);
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end)
-        ap_[grab_->vertex] += grab_->stiffness * v_[grab_->vertex];
+        ap_[grab_->vertex] += grab_->stiffness * v_.get(grab_->vertex);
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const Vec3<T> b =
-            pinned_[k] ? Vec3<T>(0)
-                       : h * (f_[k] - damping_ * v_[k] + gravity_ / inverseMass_[k] - h * ap_[k]);
+            pinned_[k]
+                ? Vec3<T>(0)
+                : h * (f_.get(k) - damping_ * v_.get(k) + gravity_ / inverseMass_ - h * ap_[k]);
         dv_[k] = Vec3<T>(0);
         r_[k] = b;
         p_[k] = b;
@@ -89,8 +90,8 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     if (&band == &bands_[0])
         recordSolve(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal);
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> v = v_[k] + dv_[k];
-        if (!finishVertex(band, k, x_[k] + h * v, v)) return false;
+        const Vec3<T> v = v_.get(k) + dv_[k];
+        if (!finishVertex(band, k, x_.get(k) + h * v, v)) return false;
     }
     return true;
 }

@@ -28,34 +28,52 @@ int chooseThreads(int requested, std::int64_t vertices) {
 }  // namespace
 
 template <typename T>
-CpuSolver<T>::CpuSolver(const Scene& scene, int threads)
-    : grid_(scene.grid()), features_(Features::of(scene)) {
+CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
+    : grid_(scene.grid()), features_(Features::of(scene)), isa_(resolveCpuIsa(isa)) {
+    if (isa_ != CpuIsa::Scalar) kernels_ = &rowKernels<T>(isa_);
     const std::int64_t n = grid_.count();
-    x_.resize(n);
-    for (int j = 0; j < grid_.nv; ++j)
-        for (int i = 0; i < grid_.nu; ++i)
-            x_[grid_.index(i, j)] = cast<T>(grid_.restPosition(i, j));
+    const int nu = grid_.nu, nv = grid_.nv;
+    x_.assign(n, Vec3<T>(0));
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) x_.set(grid_.index(i, j), cast<T>(grid_.restPosition(i, j)));
     v_.assign(n, Vec3<T>(0));
-    f_.assign(n, Vec3<T>(0));
     pinned_.assign(n, 0);
-    pinPosition_ = x_;
-    for (const Pin& p : scene.pins) pinned_[grid_.index(p.i, p.j)] = 1;
+    pinPosition_.assign(std::size_t(n), Vec3<T>(0));
+    for (const Pin& p : scene.pins) setPinned(p.i, p.j, true);
     method_ = scene.integrator.method;
     takeParameters(scene);
+    if (fused())
+        xNext_ = x_;
+    else
+        f_.assign(n, Vec3<T>(0));
     if (method_ == Method::Rk4)
         for (auto* a : {&x0_, &v0_, &sumX_, &sumV_}) a->assign(n, Vec3<T>(0));
     if (method_ == Method::ImplicitEuler)
         for (auto* a : {&dv_, &r_, &p_, &ap_}) a->assign(n, Vec3<T>(0));
-    const std::int64_t chunks = (n + kChunk - 1) / kChunk;
+    // Bands of whole rows, on chunk boundaries (reduce()), so each row's sweep is one thread's.
+    const int chunkRows = int(std::max<std::int64_t>(1, kChunk / nu));
+    chunk_ = std::int64_t(chunkRows) * nu;
+    const int chunks = (nv + chunkRows - 1) / chunkRows;
     for (auto& p : partials_) p.assign(std::size_t(chunks), 0.0);
     const int t = int(std::min<std::int64_t>(chooseThreads(threads, n), chunks));
-    for (int b = 0; b < t; ++b)
-        bands_.push_back(Band{std::min(n, chunks * b / t * kChunk),
-                              std::min(n, chunks * (b + 1) / t * kChunk),
-                              -1,
-                              {},
-                              0});
+    bands_.resize(std::size_t(t));
+    for (int b = 0; b < t; ++b) {
+        Band& band = bands_[std::size_t(b)];
+        band.rowBegin = std::min(nv, int(std::int64_t(chunks) * b / t) * chunkRows);
+        band.rowEnd = std::min(nv, int(std::int64_t(chunks) * (b + 1) / t) * chunkRows);
+        band.begin = std::int64_t(band.rowBegin) * nu;
+        band.end = std::int64_t(band.rowEnd) * nu;
+        if (kernels_) {
+            band.coefficients.assign(std::size_t(3) * upwardSprings_ * std::size_t(nu), T(0));
+            if (fused()) band.force.assign(nu, Vec3<T>(0));
+        }
+    }
     pool_ = std::make_unique<WorkerPool>(t);
+}
+
+template <typename T>
+bool CpuSolver<T>::fused() const {
+    return kernels_ && (method_ == Method::ExplicitEuler || method_ == Method::SymplecticEuler);
 }
 
 // Everything a scene sets that leaves the grid, the pins and the features as they are.
@@ -64,10 +82,23 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     grid_ = scene.grid();
     Solver::dt_ = scene.integrator.dt;
     springs_ = activeSprings<T>(scene);
+    rowSprings_.clear();
+    upwardSprings_ = families_ = 0;
+    for (const Spring& sp : springs_) {
+        const bool upward = sp.dj > 0 || (sp.dj == 0 && sp.di > 0);
+        int table = 0;
+        while (kSpringOffsets[table].di != sp.di || kSpringOffsets[table].dj != sp.dj) ++table;
+        families_ |= 1 << int(kSpringOffsets[table].family);
+        rowSprings_.push_back({sp.di, sp.dj, sp.stiffness, sp.restLength, upward,
+                               upward ? upwardSprings_++ : -1, table});
+    }
+    for (RowSpring& r : rowSprings_)  // a family's springs come in pairs ±(di, dj)
+        for (const RowSpring& u : rowSprings_)
+            if (!r.upward && u.upward && u.di == -r.di && u.dj == -r.dj) r.slot = u.slot;
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;
     forcesValid_ = false;
-    inverseMass_.assign(grid_.count(), T(1.0 / scene.cloth.mass));
+    inverseMass_ = T(1.0 / scene.cloth.mass);
     dt_t_ = T(scene.integrator.dt);
     damping_ = T(scene.damping);
     gravity_ = cast<T>(scene.gravity);
@@ -101,13 +132,14 @@ void CpuSolver<T>::setParameters(const Scene& scene) {
 
 template <typename T>
 void CpuSolver<T>::write(const SimState& state) {
-    if (state.nu != grid_.nu || state.nv != grid_.nv || state.positions.size() != x_.size() ||
-        state.velocities.size() != v_.size())
+    if (state.nu != grid_.nu || state.nv != grid_.nv ||
+        std::int64_t(state.positions.size()) != x_.size() ||
+        std::int64_t(state.velocities.size()) != v_.size())
         throw std::invalid_argument("write: the state is for another grid");
-    for (size_t k = 0; k < x_.size(); ++k) {
-        x_[k] = cast<T>(state.positions[k]);
-        v_[k] = cast<T>(state.velocities[k]);
-        if (pinned_[k]) pinPosition_[k] = x_[k];  // a pin holds the vertex where it now is
+    for (std::int64_t k = 0; k < x_.size(); ++k) {
+        x_.set(k, cast<T>(state.positions[std::size_t(k)]));
+        v_.set(k, cast<T>(state.velocities[std::size_t(k)]));
+        if (pinned_[k]) pinPosition_[k] = x_.get(k);  // a pin holds the vertex where it now is
     }
     forcesValid_ = false;
     for (Band& b : bands_) {  // a written state starts afresh, as on the GPU
@@ -121,8 +153,11 @@ void CpuSolver<T>::setPinned(int i, int j, bool pinned) {
     if (!grid_.contains(i, j)) throw std::invalid_argument("setPinned: vertex outside the grid");
     const std::int64_t k = grid_.index(i, j);
     pinned_[k] = pinned ? 1 : 0;
-    pinPosition_[k] = x_[k];
-    if (pinned) v_[k] = Vec3<T>(0);
+    pinPosition_[k] = x_.get(k);
+    if (pinned) v_.set(k, Vec3<T>(0));
+    const auto at = std::lower_bound(pinList_.begin(), pinList_.end(), k);
+    if (pinned && (at == pinList_.end() || *at != k)) pinList_.insert(at, k);
+    if (!pinned && at != pinList_.end() && *at == k) pinList_.erase(at);
     forcesValid_ = false;
 }
 
@@ -135,40 +170,6 @@ void CpuSolver<T>::setGrab(const std::optional<Grab>& grab) {
     else
         grab_.reset();
     forcesValid_ = false;
-}
-
-// Pass 1: each vertex gathers its springs (one loop over the active offsets) and the wind.
-// Vertices two or more away from every border have all their neighbours: they skip the bounds
-// checks and address neighbours by a fixed index offset.
-template <typename T>
-void CpuSolver<T>::computeForces(std::int64_t begin, std::int64_t end) {
-    const int nu = grid_.nu, nv = grid_.nv;
-    auto at = [&](int i, int j) -> const Vec3<T>& { return x_[std::int64_t(j) * nu + i]; };
-    int i = int(begin % nu), j = int(begin / nu);
-    for (std::int64_t k = begin; k < end; ++k) {
-        Vec3<T> f(0);
-        const Vec3<T> p = x_[k];
-        if (i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2) {
-            for (const Spring& s : springs_)
-                f += springForce(p, x_[k + s.indexOffset], s.stiffness, s.restLength);
-        } else {
-            for (const Spring& s : springs_) {
-                const int qi = i + s.di, qj = j + s.dj;
-                if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
-                f += springForce(p, x_[k + s.indexOffset], s.stiffness, s.restLength);
-            }
-        }
-        if (features_.wind)
-            f += windForce(vertexNormal<T>(nu, nv, i, j, at), windDirection_, windStrength_);
-        f_[k] = f;
-        if (++i == nu) {
-            i = 0;
-            ++j;
-        }
-    }
-    // The user's grab spring, F = K (target − x), part of F like any spring.
-    if (grab_ && grab_->vertex >= begin && grab_->vertex < end)
-        f_[grab_->vertex] += grabForce(x_[grab_->vertex], grab_->target, grab_->stiffness);
 }
 
 // Out of the hot loop: the message for the first bad vertex of a band.
@@ -206,11 +207,12 @@ bool CpuSolver<T>::advance(Band& band, const Team& team, long stepNumber, bool& 
 // velocity. symplectic_euler: with the new one.
 template <typename T>
 bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
-    computeForces(band.begin, band.end);
+    if (fused()) return stepEulerFused(band, symplectic);
+    computeForcesScalar(band.begin, band.end);
     team.sync();
     const T h = dt_t_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        Vec3<T> p = x_[k], v = v_[k];
+        Vec3<T> p = x_.get(k), v = v_.get(k);
         const Vec3<T> a = acceleration(k, v);
         if (!symplectic) p += h * v;
         v += h * a;
@@ -225,26 +227,27 @@ bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
 template <typename T>
 bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     if (!haveForces) {
-        computeForces(band.begin, band.end);
+        computeForces(band);
         team.sync();
     }
     const T h = dt_t_, half = T(0.5) * dt_t_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {  // kick and drift
-        Vec3<T> v = v_[k] + half * acceleration(k, v_[k]);
-        Vec3<T> p = x_[k] + h * v;
+        const Vec3<T> v0 = v_.get(k);
+        Vec3<T> v = v0 + half * acceleration(k, v0);
+        Vec3<T> p = x_.get(k) + h * v;
         constrainVertex(k, p, v);
     }
     team.sync();
-    computeForces(band.begin, band.end);  // F(x_{n+1}); the kick reads only its own vertex
+    computeForces(band);  // F(x_{n+1}); the kick reads only its own vertex
     haveForces = true;
     bool ok = true;
+    const T w = inverseMass_;
     for (std::int64_t k = band.begin; k < band.end && ok; ++k) {  // kick
-        const T w = inverseMass_[k];
-        Vec3<T> v = (v_[k] + half * (f_[k] * w + gravity_)) / (T(1) + half * damping_ * w);
+        Vec3<T> v = (v_.get(k) + half * (f_.get(k) * w + gravity_)) / (T(1) + half * damping_ * w);
         if (pinned_[k]) v = Vec3<T>(0);
-        v_[k] = v;
+        v_.set(k, v);
         const T speed2 = glm::dot(v, v);
-        const Vec3<T> p = x_[k];
+        const Vec3<T> p = x_.get(k);
         if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2) || speed2 > maxSpeed2_)
             ok = finishVertex(band, k, p, v);  // reports it (pins and colliders are no-ops now)
     }
@@ -257,13 +260,13 @@ template <typename T>
 bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
     const T h = dt_t_, half = T(0.5) * dt_t_, sixth = dt_t_ / T(6);
     for (int stage = 0; stage < 4; ++stage) {
-        computeForces(band.begin, band.end);
+        computeForces(band);
         team.sync();
         for (std::int64_t k = band.begin; k < band.end; ++k) {
-            const Vec3<T> v = v_[k];
+            const Vec3<T> v = v_.get(k);
             const Vec3<T> a = acceleration(k, v);
             if (stage == 0) {
-                x0_[k] = x_[k];
+                x0_[k] = x_.get(k);
                 v0_[k] = v;
                 sumX_[k] = v;
                 sumV_[k] = a;
@@ -279,11 +282,11 @@ bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
             }
             const T c = stage == 2 ? h : half;  // the next stage's point: y_n + c k
             if (pinned_[k]) {
-                x_[k] = pinPosition_[k];
-                v_[k] = Vec3<T>(0);
+                x_.set(k, pinPosition_[k]);
+                v_.set(k, Vec3<T>(0));
             } else {
-                x_[k] = x0_[k] + c * v;
-                v_[k] = v0_[k] + c * a;
+                x_.set(k, x0_[k] + c * v);
+                v_.set(k, v0_[k] + c * a);
             }
         }
         if (stage < 3) team.sync();
@@ -299,7 +302,9 @@ StepResult CpuSolver<T>::step(long n) {
         bool haveForces = forcesValid_;
         for (long s = 0; s < n; ++s) {
             ++result.stepsTaken;
-            if (!advance(band, Team{}, steps_ + s + 1, haveForces)) break;
+            const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
+            if (fused()) std::swap(x_, xNext_);  // the fused sweep always completes its step
+            if (!ok) break;
         }
     } else {
         result = stepThreaded(n);
@@ -324,6 +329,11 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     // whatever the number of threads.
     std::barrier sync(std::ptrdiff_t(bands_.size()));
     const Team team{&sync};
+    // The end of a step: once every band is done, the fused sweep's new positions become x_.
+    auto swapPositions = [this]() noexcept {
+        if (fused()) std::swap(x_, xNext_);
+    };
+    std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
     std::atomic<bool> bad{false};
     long taken = 0;
     const bool forcesValid = forcesValid_;
@@ -335,7 +345,7 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
             if (!advance(band, team, steps_ + s + 1, haveForces))
                 bad.store(true, std::memory_order_relaxed);
             ++s;
-            sync.arrive_and_wait();
+            stepEnd.arrive_and_wait();
             if (bad.load(std::memory_order_relaxed)) break;
         }
         if (t == 0) taken = s;
@@ -350,16 +360,37 @@ SimState CpuSolver<T>::read() const {
     SimState s;
     s.nu = grid_.nu;
     s.nv = grid_.nv;
-    s.positions.assign(x_.begin(), x_.end());
-    s.velocities.assign(v_.begin(), v_.end());
+    s.positions.resize(std::size_t(x_.size()));
+    s.velocities.resize(std::size_t(v_.size()));
+    for (std::int64_t k = 0; k < x_.size(); ++k) {
+        s.positions[std::size_t(k)] = x_.get(k);
+        s.velocities[std::size_t(k)] = v_.get(k);
+    }
     return s;
+}
+
+template <typename T>
+std::size_t CpuSolver<T>::allocatedBytes() const {
+    std::size_t vectors = 0;
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_}) vectors += std::size_t(a->size());
+    for (const auto* a : {&pinPosition_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
+        vectors += a->size();
+    return vectors * sizeof(Vec3<T>) + pinned_.size();
+}
+
+template <typename T>
+std::size_t CpuSolver<T>::scratchBytes() const {
+    std::size_t bytes = 0;
+    for (const Band& b : bands_)
+        bytes += (b.coefficients.size() + 3 * std::size_t(b.force.size())) * sizeof(T);
+    return bytes;
 }
 
 template <typename T>
 std::string CpuSolver<T>::name() const {
     const int t = int(bands_.size());
-    return std::string("cpu ") + (sizeof(T) == 4 ? "float" : "double") + ", " + std::to_string(t) +
-           (t == 1 ? " thread" : " threads");
+    return std::string("cpu ") + (sizeof(T) == 4 ? "float" : "double") + " " + cpuIsaName(isa_) +
+           ", " + std::to_string(t) + (t == 1 ? " thread" : " threads");
 }
 
 template class CpuSolver<float>;

@@ -12,7 +12,7 @@ namespace cloth {
 
 template <typename T>
 inline Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) const {
-    return (f_[k] - damping_ * v) * inverseMass_[k] + gravity_;
+    return (f_.get(k) - damping_ * v) * inverseMass_ + gravity_;
 }
 
 // Pins, then colliders in scene order (DESIGN.md §2); stores the vertex.
@@ -22,10 +22,15 @@ inline void CpuSolver<T>::constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v
         p = pinPosition_[k];
         v = Vec3<T>(0);
     }
+    collideVertex(p, v);
+    x_.set(k, p);
+    v_.set(k, v);
+}
+
+template <typename T>
+inline void CpuSolver<T>::collideVertex(Vec3<T>& p, Vec3<T>& v) const {
     for (const auto& c : colliders_)
         std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
-    x_[k] = p;
-    v_[k] = v;
 }
 
 // The end of a step: the constraints, then the instability check.

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/grid.h"
+#include "core/spring_math.h"
 
 namespace cloth {
 
@@ -14,9 +15,7 @@ namespace cloth {
 template <typename T>
 Vec3<T> springForce(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLength) {
     const Vec3<T> d = pq - pk;
-    const T len = glm::length(d);
-    if (!(len >= T(1e-12) * restLength)) return Vec3<T>(0);
-    return (stiffness * (len - restLength) / len) * d;
+    return springCoefficient(d.x, d.y, d.z, stiffness, restLength) * d;
 }
 
 // J_s w for the spring from k to q, J_s = ∂F_k/∂x_q its 3×3 Jacobian with the compressive part
@@ -39,16 +38,15 @@ template <typename T, typename PositionAt>
 Vec3<T> vertexNormal(int nu, int nv, int i, int j, const PositionAt& p) {
     const Vec3<T> a = p(std::min(i + 1, nu - 1), j) - p(std::max(i - 1, 0), j);
     const Vec3<T> b = p(i, std::min(j + 1, nv - 1)) - p(i, std::max(j - 1, 0));
-    const Vec3<T> c = glm::cross(a, b);
-    const T len = glm::length(c);
-    if (!(len >= T(1e-12))) return Vec3<T>(0);
-    return c / len;
+    Vec3<T> n;
+    unitNormal(a.x, a.y, a.z, b.x, b.y, b.z, n.x, n.y, n.z);
+    return n;
 }
 
 // Wind (seed §5.3): F_w = K_w ⟨n, û_w⟩ n.
 template <typename T>
 Vec3<T> windForce(const Vec3<T>& normal, const Vec3<T>& direction, T strength) {
-    return (strength * glm::dot(normal, direction)) * normal;
+    return (strength * glm::dot(normal, direction)) * normal;  // spring_math.h addWind, as a value
 }
 
 // The user's grab: a spring of rest length 0 from the vertex to a target point, F = K (t − x).

@@ -36,9 +36,15 @@ std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
 // (springJacobianTimes). Rows of pinned vertices are 0: a pin is a constraint, not a DOF; the
 // caller keeps p = 0 there, which removes the pinned columns too.
 template <typename T>
+Vec3<T> positionAt(const Vec3<T>* x, std::int64_t k) {
+    return x[k];
+}
+
+// x and p: a Vec3<T> array or anything positionAt(x, k) reads (the CPU's Soa3).
+template <typename T, typename Positions, typename Vectors>
 void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
-                      const Vec3<T>* x, const Vec3<T>* p, const std::uint8_t* pinned, Vec3<T>* out,
-                      std::int64_t begin, std::int64_t end) {
+                      const Positions& x, const Vectors& p, const std::uint8_t* pinned,
+                      Vec3<T>* out, std::int64_t begin, std::int64_t end) {
     int i = int(begin % nu), j = int(begin / nu);
     for (std::int64_t k = begin; k < end; ++k) {
         Vec3<T> y(0);
@@ -50,7 +56,8 @@ void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& sprin
                     if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
                 }
                 const std::int64_t q = k + s.indexOffset;
-                y += springJacobianTimes(x[k], x[q], s.stiffness, s.restLength, p[k] - p[q]);
+                y += springJacobianTimes(positionAt(x, k), positionAt(x, q), s.stiffness,
+                                         s.restLength, positionAt(p, k) - positionAt(p, q));
             }
         }
         out[k] = y;

@@ -1,0 +1,150 @@
+// The row kernels of core/cpu_rows.h for one instruction set: CMake compiles this file once per
+// set with CLOTH_ISA_NS naming the namespace and that set's -m flags, plus -ffp-contract=off (no
+// FMA: the same bits as the scalar path), -fno-math-errno (sqrt vectorises) and
+// -fno-trapping-math (a conditional division vectorises without AVX-512 masks). Plain loops over
+// restrict-qualified arrays: the compiler vectorises each across the row. No standard-library
+// templates here, so no out-of-line copy compiled for a wider ISA can leak into generic code.
+#include "core/cpu_rows.h"
+#include "core/spring_math.h"
+
+#ifndef CLOTH_ISA_NS
+#error "CLOTH_ISA_NS names the instruction set this file is compiled for"
+#endif
+
+namespace cloth::CLOTH_ISA_NS {
+namespace {
+
+// Every array a parameter of its own, restrict-qualified: GCC then knows the stores do not
+// alias the loads and vectorises (positions may alias each other: they are only read).
+template <typename T>
+void coefficientLoop(const T* __restrict px, const T* __restrict py, const T* __restrict pz,
+                     const T* __restrict qx, const T* __restrict qy, const T* __restrict qz,
+                     T stiffness, T restLength, T* __restrict c, int n) {
+    for (int i = 0; i < n; ++i)
+        c[i] =
+            springCoefficient(qx[i] - px[i], qy[i] - py[i], qz[i] - pz[i], stiffness, restLength);
+}
+template <typename T>
+void coefficients(ConstRow3<T> p, ConstRow3<T> q, T stiffness, T restLength, T* c, int n) {
+    coefficientLoop(p.x, p.y, p.z, q.x, q.y, q.z, stiffness, restLength, c, n);
+}
+
+template <typename T>
+void accumulateLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict px,
+                    const T* __restrict py, const T* __restrict pz, const T* __restrict qx,
+                    const T* __restrict qy, const T* __restrict qz, const T* __restrict c, int n) {
+    for (int i = 0; i < n; ++i) {
+        fx[i] += c[i] * (qx[i] - px[i]);
+        fy[i] += c[i] * (qy[i] - py[i]);
+        fz[i] += c[i] * (qz[i] - pz[i]);
+    }
+}
+template <typename T>
+void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
+    accumulateLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, c, n);
+}
+
+template <typename T, int kFamilies>
+void gather(Row3<T> f, const GatherRow<T>& g, int n) {
+    T* __restrict fx = f.x;
+    T* __restrict fy = f.y;
+    T* __restrict fz = f.z;
+#pragma GCC ivdep
+    for (int i = 0; i < n; ++i) {
+        const T px = g.p.x[i], py = g.p.y[i], pz = g.p.z[i];
+        T x = T(0), y = T(0), z = T(0);
+#pragma GCC unroll 12
+        for (int s = 0; s < 12; ++s) {
+            if (!((kFamilies >> (s / 4)) & 1)) continue;  // springs 4f … 4f+3 are family f
+            T c;
+            if (kComputedInGather[s]) {
+                c = springCoefficient(g.q[s].x[i] - px, g.q[s].y[i] - py, g.q[s].z[i] - pz,
+                                      g.stiffness[s], g.restLength[s]);
+                g.out[s][i] = c;
+            } else {
+                c = g.c[s][i];
+            }
+            x += c * (g.q[s].x[i] - px);
+            y += c * (g.q[s].y[i] - py);
+            z += c * (g.q[s].z[i] - pz);
+        }
+        fx[i] = x;
+        fy[i] = y;
+        fz[i] = z;
+    }
+}
+
+template <typename T>
+void windLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict lx,
+              const T* __restrict ly, const T* __restrict lz, const T* __restrict rx,
+              const T* __restrict ry, const T* __restrict rz, const T* __restrict dx,
+              const T* __restrict dy, const T* __restrict dz, const T* __restrict ux,
+              const T* __restrict uy, const T* __restrict uz, T wx, T wy, T wz, T strength, int n) {
+    for (int i = 0; i < n; ++i) {
+        T nx, ny, nz;
+        unitNormal(rx[i] - lx[i], ry[i] - ly[i], rz[i] - lz[i], ux[i] - dx[i], uy[i] - dy[i],
+                   uz[i] - dz[i], nx, ny, nz);
+        addWind(nx, ny, nz, wx, wy, wz, strength, fx[i], fy[i], fz[i]);
+    }
+}
+template <typename T>
+void wind(Row3<T> f, ConstRow3<T> left, ConstRow3<T> right, ConstRow3<T> down, ConstRow3<T> up,
+          T wx, T wy, T wz, T strength, int n) {
+    windLoop(f.x, f.y, f.z, left.x, left.y, left.z, right.x, right.y, right.z, down.x, down.y,
+             down.z, up.x, up.y, up.z, wx, wy, wz, strength, n);
+}
+
+template <typename T, bool kSymplectic>
+void eulerLoop(const T* __restrict xx, const T* __restrict xy, const T* __restrict xz,
+               const T* __restrict fx, const T* __restrict fy, const T* __restrict fz,
+               T* __restrict vx, T* __restrict vy, T* __restrict vz, T* __restrict px,
+               T* __restrict py, T* __restrict pz, T h, T mu, T w, T gx, T gy, T gz, int n) {
+    for (int i = 0; i < n; ++i) {
+        T x = xx[i], y = xy[i], z = xz[i];
+        T u = vx[i], v = vy[i], s = vz[i];
+        eulerComponent<T, kSymplectic>(x, u, fx[i], h, mu, w, gx);
+        eulerComponent<T, kSymplectic>(y, v, fy[i], h, mu, w, gy);
+        eulerComponent<T, kSymplectic>(z, s, fz[i], h, mu, w, gz);
+        px[i] = x;
+        py[i] = y;
+        pz[i] = z;
+        vx[i] = u;
+        vy[i] = v;
+        vz[i] = s;
+    }
+}
+template <typename T, bool kSymplectic>
+void euler(const EulerRow<T>& r, int n) {
+    eulerLoop<T, kSymplectic>(r.xIn.x, r.xIn.y, r.xIn.z, r.f.x, r.f.y, r.f.z, r.v.x, r.v.y, r.v.z,
+                              r.xOut.x, r.xOut.y, r.xOut.z, r.h, r.damping, r.inverseMass, r.gx,
+                              r.gy, r.gz, n);
+}
+
+template <typename T>
+bool anyBad(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n) {
+    const T* __restrict px = x.x, * __restrict py = x.y, * __restrict pz = x.z;
+    const T* __restrict vx = v.x, * __restrict vy = v.y, * __restrict vz = v.z;
+    int bad = 0;
+    for (int i = 0; i < n; ++i)
+        bad |= int(badVertex(px[i], py[i], pz[i], vx[i], vy[i], vz[i], maxSpeed2));
+    return bad != 0;
+}
+
+}  // namespace
+
+template <typename T>
+const RowKernels<T>& rowKernels() {
+    static const RowKernels<T> kernels{&coefficients<T>,
+                                       &accumulate<T>,
+                                       {&gather<T, 0>, &gather<T, 1>, &gather<T, 2>, &gather<T, 3>,
+                                        &gather<T, 4>, &gather<T, 5>, &gather<T, 6>, &gather<T, 7>},
+                                       &wind<T>,
+                                       &euler<T, false>,
+                                       &euler<T, true>,
+                                       &anyBad<T>};
+    return kernels;
+}
+template const RowKernels<float>& rowKernels();
+template const RowKernels<double>& rowKernels();
+
+}  // namespace cloth::CLOTH_ISA_NS
