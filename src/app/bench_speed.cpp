@@ -10,6 +10,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -36,8 +37,9 @@ measured in the same run; achieved GB/s counts the bytes a step must move at lea
 write each vertex's position and velocity).
 
 options:
-  --sizes LIST        grid sides, comma-separated (default 32,64,128,256,512,1024); a size that
-                      would not fit in memory is refused
+  --sizes LIST        grid sides, comma-separated (default 32,64,...,4096: the default sizes
+                      that do not fit in memory, or on the GPU, are skipped with the reason;
+                      a listed size that does not fit is refused)
   --backend cpu|gpu|both   where to run (default both; without a GPU, both means cpu)
   --methods LIST      integrators, comma-separated, or all (default the scene's)
   --set KEY.PATH=JSON override a scene key (repeatable)
@@ -72,7 +74,7 @@ options:
 )";
 
 struct Options : BenchCommonOptions {  // methods empty: the scene's
-    std::vector<int> sizes{32, 64, 128, 256, 512, 1024};
+    std::vector<int> sizes{32, 64, 128, 256, 512, 1024, 2048, 4096};
     bool sizesGiven = false, allowDebug = false;
     FeatureSet features = FeatureSet::Declared;
     std::string peer;          // "" or "bullet"
@@ -154,6 +156,9 @@ double median(std::vector<double> v) {
     return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
 }
 
+// Thrown by timeSteps when the run went unstable: that row is reported, not timed.
+struct BecameUnstable {};
+
 // Warm-up, then a batch grown by doubling to `batchSeconds`, then batches until `totalSeconds`
 // and 5 batches. `step(n)` runs n steps and returns false if the run went unstable; `device()`
 // the device's seconds per step of the last call (0 when it has none).
@@ -162,7 +167,7 @@ Timing timeSteps(const std::function<bool(long)>& step, const std::function<doub
     const double batchSeconds = quick ? 0.005 : 0.05, totalSeconds = quick ? 0.03 : 0.3;
     auto clock = [&](long n) {
         const auto t0 = std::chrono::steady_clock::now();
-        if (!step(n)) throw std::runtime_error("the run became unstable");
+        if (!step(n)) throw BecameUnstable{};
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     };
     Timing t;
@@ -212,6 +217,7 @@ struct Sweep {
     std::vector<BenchTarget> targets;
     int cpuThreads = 1;
     MethodSupport support;
+    std::set<int> gpuSkipped;  // default sizes the GPU cannot hold
 };
 
 SpeedRow timeBaseline(const Scene& sized, int side, const Sweep& w) {
@@ -235,9 +241,25 @@ SpeedRow timeTarget(const Scene& scene, int side, const BenchTarget& t, const Ba
                     const std::string& features, const Sweep& w) {
     const Method m = scene.integrator.method;
     auto solver = makeSolver(scene, choice);
-    const Timing st = timeSteps([&](long n) { return !solver->step(n).unstable; },
-                                [&] { return deviceSecondsPerStep(*solver); }, w.o.quick);
     const bool onGpu = t.backend == Backend::Gpu;
+    Timing st;
+    try {
+        st = timeSteps([&](long n) { return !solver->step(n).unstable; },
+                       [&] { return deviceSecondsPerStep(*solver); }, w.o.quick);
+    } catch (const BecameUnstable&) {  // a row without a time, said on stderr; the sweep goes on
+        std::fprintf(stderr,
+                     "clothsim bench speed: %s %s at %dx%d became unstable after %ld steps at "
+                     "dt %g s: not timed (validate prints the stable dt)\n",
+                     t.id().c_str(), methodName(m), side, side, solver->stepsDone(),
+                     scene.integrator.dt);
+        SpeedRow r =
+            makeRow(side, t.id(), methodName(m), onGpu ? 0 : w.cpuThreads, Timing{}, NAN, NAN);
+        r.msPerStep = r.stepsPerSecond = r.vertexStepsPerSecond = NAN;
+        r.features = features;
+        r.dt = scene.integrator.dt;
+        r.status = "unstable";
+        return r;
+    }
     SpeedRow r = makeRow(side, t.id(), methodName(m), onGpu ? 0 : w.cpuThreads, st,
                          double(minStepBytesPerVertex(t.backend, t.precision)),
                          onGpu ? w.meta.copyGBps : w.meta.triadGBps);
@@ -266,6 +288,7 @@ void timeBackends(Scene scene, int side, const std::string& features, Sweep& w,
     for (Method m : w.methods) {
         scene.integrator.method = m;
         for (const BenchTarget& t : w.targets) {
+            if (t.backend == Backend::Gpu && w.gpuSkipped.count(side)) continue;
             if (!w.support.runs(t, scene, m, w.o.threads)) continue;
             if (t.backend != Backend::Gpu) {
                 rows.push_back(timeTarget(scene, side, t, choiceFor(t, w.o.threads), features, w));
@@ -333,15 +356,26 @@ std::vector<std::string> withResolution(std::vector<std::string> sets, int side)
     return sets;
 }
 
-// A GPU size beyond the device's limits is refused before anything runs, naming the limit.
-void refuseGpuSizes(const Options& o) {
+// A GPU size beyond the device's limits, checked before anything runs: refused naming the limit
+// when the user listed it (--sizes), else (the default sizes, "as far as memory allows") its GPU
+// rows are skipped with that reason on stderr. Returns the sizes to skip.
+std::set<int> gpuSizesBeyondDevice(const Options& o) {
+    std::set<int> skipped;
     for (int side : o.sizes) {
         const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
-        for (const GpuOptions& g : o.gpuSweep.variants())
-            if (const auto why = gpuSizeRefusal(sized, g))
-                throw InputError("command line", "--sizes",
-                                 "the GPU cannot hold size " + std::to_string(side) + ": " + *why);
+        for (const GpuOptions& g : o.gpuSweep.variants()) {
+            const auto why = gpuSizeRefusal(sized, g);
+            if (!why) continue;
+            const std::string message =
+                "the GPU cannot hold size " + std::to_string(side) + ": " + *why;
+            if (o.sizesGiven) throw InputError("command line", "--sizes", message);
+            std::fprintf(stderr, "clothsim bench speed: %s; its GPU rows are skipped\n",
+                         message.c_str());
+            skipped.insert(side);
+            break;
+        }
     }
+    return skipped;
 }
 
 }  // namespace
@@ -357,16 +391,23 @@ int benchSpeedCommand(Args& args) {
         return kInvalidInput;
     }
     const std::uint64_t memory = availableMemory();
-    for (int side : o.sizes)
-        if (const auto why = sizeRefusal(side, memory))
-            throw InputError("command line", "--sizes", *why);
+    std::vector<int> fitting;
+    for (int side : o.sizes) {
+        const auto why = sizeRefusal(side, memory);
+        if (why && o.sizesGiven) throw InputError("command line", "--sizes", *why);
+        if (why)
+            std::fprintf(stderr, "clothsim bench speed: %s; skipped\n", why->c_str());
+        else
+            fitting.push_back(side);
+    }
+    o.sizes = fitting;
     const Scene scene = loadScene(o.scenePath, o.sets);
     auto targets = parseTargets("--backend", o.backend, {Precision::Float, Precision::Double});
     targets = availableTargets(targets, scene, o.backend == "gpu", o.threads);
     const bool gpu = std::any_of(targets.begin(), targets.end(),
                                  [](const BenchTarget& t) { return t.backend == Backend::Gpu; });
 
-    if (gpu) refuseGpuSizes(o);
+    const std::set<int> gpuSkipped = gpu ? gpuSizesBeyondDevice(o) : std::set<int>{};
 
     SpeedMeta meta;
     meta.scene = o.scenePath;
@@ -384,7 +425,8 @@ int benchSpeedCommand(Args& args) {
             o.methods.empty() ? std::vector<Method>{scene.integrator.method} : o.methods,
             targets,
             o.threads > 0 ? o.threads : int(std::max(1u, std::thread::hardware_concurrency())),
-            {}};
+            {},
+            gpuSkipped};
     std::vector<SpeedRow> rows;
     for (int side : o.sizes) {
         const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));

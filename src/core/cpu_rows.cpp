@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/errors.h"
+
 namespace cloth {
 
 const char* cpuIsaName(CpuIsa isa) {
@@ -45,16 +47,17 @@ CpuIsa resolveCpuIsa(CpuIsa requested) {
             for (CpuIsa isa : {CpuIsa::Scalar, CpuIsa::Generic, CpuIsa::Avx2, CpuIsa::Avx512})
                 if (name == cpuIsaName(isa)) requested = isa;
             if (requested == CpuIsa::Auto)
-                throw std::invalid_argument("CLOTH_CPU_ISA=" + name +
-                                            ": expected scalar, generic, avx2 or avx512");
+                throw InputError("", "CLOTH_CPU_ISA",
+                                 "expected scalar, generic, avx2 or avx512, got '" + name + "'");
         } else {
             for (CpuIsa isa : {CpuIsa::Avx512, CpuIsa::Avx2, CpuIsa::Generic})
                 if (cpuIsaSupported(isa)) return isa;
         }
     }
     if (!cpuIsaSupported(requested))
-        throw std::invalid_argument(std::string("this CPU lacks the ") + cpuIsaName(requested) +
-                                    " instructions");
+        throw InputError(
+            "", "CLOTH_CPU_ISA",
+            std::string("this CPU lacks the ") + cpuIsaName(requested) + " instructions");
     return requested;
 }
 

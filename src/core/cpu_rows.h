@@ -15,8 +15,8 @@ enum class CpuIsa { Auto, Scalar, Generic, Avx2, Avx512 };
 
 const char* cpuIsaName(CpuIsa isa);
 bool cpuIsaSupported(CpuIsa isa);  // by this CPU (Auto and Scalar always)
-// Auto → CLOTH_CPU_ISA if set, else the widest the CPU supports. Throws std::invalid_argument for
-// an unknown name or an instruction set this CPU lacks.
+// Auto → CLOTH_CPU_ISA if set, else the widest the CPU supports. Throws InputError (key
+// CLOTH_CPU_ISA, exit 2) for an unknown name or an instruction set this CPU lacks.
 CpuIsa resolveCpuIsa(CpuIsa requested);
 
 // Three component arrays of a row, already offset to its first element.

@@ -173,5 +173,31 @@ TEST(BenchSpeed, TrafficModelCountsFourVectors) {
     EXPECT_EQ(app::minStepBytesPerVertex(Backend::Gpu, Precision::Float), 64u);
 }
 
+// Explicit Euler past its stability bound (hanging: dt ≈ 2.9e-5 s, here 1e-3 s) blows up: the
+// row says "unstable" with no time, the sweep and the baseline go on, and the run exits 0.
+TEST(BenchSpeed, AnUnstableRunIsReportedAsARowNotAnError) {
+    const fs::path d = tempDir("unstable");
+    const auto r =
+        runProcess({kExe, "bench", "speed", "--sizes", "16", "--backend", "cpu", "--quick", "--set",
+                    "integrator.dt=1e-3", "--out", d.string(), "--label", "t"},
+                   300);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    EXPECT_NE(r.err.find("became unstable"), std::string::npos) << r.err;
+    std::vector<std::string> columns;
+    const auto rows = readRows(d / "speed_t.csv", columns);
+    int unstable = 0;
+    for (const auto& row : rows) {
+        if (row.at("target") == "baseline") {
+            EXPECT_EQ(row.at("status"), "ok");
+            EXPECT_FALSE(row.at("vertex_steps_per_s").empty());
+            continue;
+        }
+        EXPECT_EQ(row.at("status"), "unstable") << row.at("target");
+        EXPECT_TRUE(row.at("vertex_steps_per_s").empty()) << row.at("target");
+        ++unstable;
+    }
+    EXPECT_EQ(unstable, 2);  // cpu float and cpu double
+}
+
 }  // namespace
 }  // namespace cloth

@@ -11,6 +11,7 @@
 
 #include "app/bench_speed_model.h"
 #include "core/cpu_solver.h"
+#include "core/errors.h"
 #include "support/integrator_scenes.h"
 
 namespace cloth {
@@ -167,6 +168,22 @@ TEST(CpuIsaChoice, AutoIsTheWidestSupportedAndAnUnknownNameIsRefused) {
     }
     EXPECT_EQ(resolveCpuIsa(CpuIsa::Scalar), CpuIsa::Scalar);
     EXPECT_TRUE(cpuIsaSupported(CpuIsa::Generic));
+
+    // A mistyped override is bad input (exit 2 naming the variable), not a silent fallback.
+    const char* before = std::getenv("CLOTH_CPU_ISA");
+    const std::string saved = before ? before : "";
+    ::setenv("CLOTH_CPU_ISA", "avx-512", 1);
+    try {
+        resolveCpuIsa(CpuIsa::Auto);
+        ADD_FAILURE() << "CLOTH_CPU_ISA=avx-512 was accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "CLOTH_CPU_ISA");
+        EXPECT_NE(e.reason().find("avx-512"), std::string::npos) << e.reason();
+    }
+    if (before)
+        ::setenv("CLOTH_CPU_ISA", saved.c_str(), 1);
+    else
+        ::unsetenv("CLOTH_CPU_ISA");
 }
 
 }  // namespace
