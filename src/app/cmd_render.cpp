@@ -1,6 +1,9 @@
 // clothsim render SCENE --png FILE: simulate headless, draw one frame offscreen, write a PNG
 // (DESIGN.md §5). The context is EGL's (src/gpu), so no display is needed.
+#include <unistd.h>
+
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "app/cli.h"
@@ -19,12 +22,17 @@ namespace cloth::app {
 namespace {
 
 constexpr const char* kHelp = R"(usage: clothsim render SCENE --png FILE [options]
+       clothsim render SCENE --frames DIR --every K [options]
 
 Simulates SCENE headless (EGL, no display needed), then draws the final frame offscreen and
-writes it as a PNG.
+writes it as a PNG; or, with --frames, a PNG every K steps (and the initial one), named
+SCENE_<step>.png with the step zero-padded so the names sort, and SCENE.mp4 from them when
+ffmpeg is on PATH.
 
 options:
-  --png FILE                the image to write (required)
+  --png FILE                the image to write
+  --frames DIR --every K    a PNG sequence in DIR, one frame every K steps, camera fixed
+  --fps F                   the MP4's frame rate (default 30)
   --steps N                 number of steps (default: duration / integrator.dt; 0 = none)
   --size WxH                image size in pixels (default 960x720)
   --backend cpu|gpu         solver backend (default cpu)
@@ -39,8 +47,10 @@ exit codes: 0 ok, 1 internal error, 2 invalid input, 3 unstable, 4 no OpenGL con
 )";
 
 struct RenderArgs {
-    std::string scenePath, png;
+    std::string scenePath, png, framesDir;
     long steps = -1;  // −1: the scene's duration
+    long every = 0;   // --frames: a frame every `every` steps
+    double fps = 30;  // --frames: the MP4's frame rate
     int width = 960, height = 720;
     BackendChoice backend;
     std::vector<std::string> sets;
@@ -92,7 +102,12 @@ bool parse(Args& args, RenderArgs& o) {
             args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "render needs a scene file");
-    if (o.png.empty()) throw InputError("command line", "--png", "render needs --png FILE");
+    if (o.png.empty() && o.framesDir.empty())
+        throw InputError("command line", "--png", "render needs --png FILE or --frames DIR");
+    if (!o.framesDir.empty() && o.every == 0)
+        throw InputError("command line", "--every", "--frames DIR needs --every K");
+    if (o.framesDir.empty() && o.every > 0)
+        throw InputError("command line", "--frames", "--every K needs --frames DIR");
     const std::filesystem::path dir = std::filesystem::path(o.png).parent_path();
     if (!dir.empty() && !std::filesystem::is_directory(dir))
         throw InputError("command line", "--png",
@@ -111,6 +126,49 @@ bool simulate(const Scene& scene, Solver& solver, long total) {
     return true;
 }
 
+std::string framePng(const RenderArgs& o, const Scene& scene, long step, long total) {
+    const int digits = std::max<int>(6, int(std::to_string(total).size()));
+    char name[64];
+    std::snprintf(name, sizeof name, "_%0*ld.png", digits, step);
+    return (std::filesystem::path(o.framesDir) / (scene.name + name)).string();
+}
+
+// Whether an executable `name` is on PATH.
+bool onPath(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    if (!path) return false;
+    std::string dirs = path;
+    for (size_t start = 0; start <= dirs.size();) {
+        const size_t end = std::min(dirs.find(':', start), dirs.size());
+        const std::filesystem::path candidate =
+            std::filesystem::path(dirs.substr(start, end - start)) / name;
+        if (access(candidate.c_str(), X_OK) == 0) return true;
+        start = end + 1;
+    }
+    return false;
+}
+
+// SCENE.mp4 from the PNG sequence through ffmpeg, when it is installed; says so when it is not.
+void encodeMp4(const RenderArgs& o, const Scene& scene) {
+    const std::filesystem::path dir(o.framesDir);
+    const std::string mp4 = (dir / (scene.name + ".mp4")).string();
+    if (!onPath("ffmpeg")) {
+        std::printf("ffmpeg is not on PATH: no MP4 was made; the PNG frames are in %s\n",
+                    o.framesDir.c_str());
+        return;
+    }
+    // The glob takes the step-numbered names in order; yuv420p and even sizes play everywhere.
+    const std::string cmd =
+        "ffmpeg -loglevel error -y -framerate " + std::to_string(o.fps) +
+        " -pattern_type glob -i '" + (dir / (scene.name + "_*.png")).string() +
+        "' -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt yuv420p '" + mp4 + "'";
+    if (std::system(cmd.c_str()) == 0)
+        std::printf("wrote %s\n", mp4.c_str());
+    else
+        std::printf("ffmpeg failed (%s): no MP4 was made; the PNG frames are in %s\n", cmd.c_str(),
+                    o.framesDir.c_str());
+}
+
 }  // namespace
 
 int renderCommand(Args& args) {
@@ -123,26 +181,51 @@ int renderCommand(Args& args) {
 #ifdef CLOTH_HAVE_RENDER
     GlContext::instance();  // EGL, before either solver: the GPU one computes in it
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
-    if (!simulate(scene, *solver, o.steps >= 0 ? o.steps : scene.defaultSteps())) return kUnstable;
+    const long total = o.steps >= 0 ? o.steps : scene.defaultSteps();
 
     render::Renderer renderer;
     renderer.setScene(scene);
     std::vector<std::int64_t> pins;
     for (const Pin& p : scene.pins) pins.push_back(scene.grid().index(p.i, p.j));
     renderer.setPins(pins);
-    if (!renderer.updateCloth(*solver))
-        throw std::runtime_error("the final state is not finite; no image was written");
     render::RenderOptions options;
     options.colour = o.strain ? render::ColourMode::Strain : render::ColourMode::Checker;
     options.wireframe = o.wireframe;
     options.springs = o.springs;
     const render::OffscreenTarget target(o.width, o.height);
-    target.bind();
-    const SimState state = solver->read();
-    renderer.draw(render::framedCamera(renderer, &state), options, o.width, o.height);
-    render::writePng(o.png, target.read());
-    std::printf("wrote %s (%dx%d, %ld steps, t = %.4g s, %s)\n", o.png.c_str(), o.width, o.height,
-                solver->stepsDone(), solver->time(), solver->name().c_str());
+    // Draws the solver's current state with `camera` and writes it to `png`.
+    const auto drawTo = [&](const std::string& png, const render::Camera& camera) {
+        if (!renderer.updateCloth(*solver))
+            throw std::runtime_error("the state is not finite; no image was written");
+        target.bind();
+        renderer.draw(camera, options, o.width, o.height);
+        render::writePng(png, target.read());
+    };
+    if (!o.framesDir.empty()) {
+        std::filesystem::create_directories(o.framesDir);
+        const SimState first = solver->read();
+        const render::Camera camera = render::framedCamera(renderer, &first);  // fixed: no jitter
+        long frames = 0;
+        drawTo(framePng(o, scene, 0, total), camera);
+        ++frames;
+        while (solver->stepsDone() < total) {
+            const long next = std::min(total, (solver->stepsDone() / o.every + 1) * o.every);
+            if (!simulate(scene, *solver, next)) return kUnstable;
+            if (solver->stepsDone() % o.every != 0) break;  // a last partial interval: no frame
+            drawTo(framePng(o, scene, solver->stepsDone(), total), camera);
+            ++frames;
+        }
+        std::printf("wrote %ld frames to %s (%dx%d, %ld steps, %s)\n", frames, o.framesDir.c_str(),
+                    o.width, o.height, solver->stepsDone(), solver->name().c_str());
+        encodeMp4(o, scene);
+    }
+    if (!simulate(scene, *solver, total)) return kUnstable;
+    if (!o.png.empty()) {
+        const SimState state = solver->read();
+        drawTo(o.png, render::framedCamera(renderer, &state));
+        std::printf("wrote %s (%dx%d, %ld steps, t = %.4g s, %s)\n", o.png.c_str(), o.width,
+                    o.height, solver->stepsDone(), solver->time(), solver->name().c_str());
+    }
     return kOk;
 #else
     (void)scene;
