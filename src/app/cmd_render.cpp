@@ -1,7 +1,10 @@
 // clothsim render SCENE --png FILE: simulate headless, draw one frame offscreen, write a PNG
 // (DESIGN.md §5). The context is EGL's (src/gpu), so no display is needed.
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +20,8 @@
 #include "render/image.h"
 #include "render/renderer.h"
 #endif
+
+extern char** environ;
 
 namespace cloth::app {
 namespace {
@@ -75,6 +80,14 @@ long parseSteps(const std::string& flag, const std::string& v) {
     return n;
 }
 
+double parseFps(const std::string& flag, const std::string& v) {
+    char* end = nullptr;
+    const double fps = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0' || !(fps >= 1 && fps <= 240))
+        throw InputError("command line", flag, "expected a rate within 1..240, got '" + v + "'");
+    return fps;
+}
+
 bool parse(Args& args, RenderArgs& o) {
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
@@ -94,6 +107,12 @@ bool parse(Args& args, RenderArgs& o) {
             if (c != "checker" && c != "strain")
                 throw InputError("command line", f, "expected checker or strain, got '" + c + "'");
             o.strain = c == "strain";
+        } else if (f == "--frames") {
+            o.framesDir = args.value(f);
+        } else if (f == "--every") {
+            o.every = args.positiveInt(f);
+        } else if (f == "--fps") {
+            o.fps = parseFps(f, args.value(f));
         } else if (f == "--wireframe")
             o.wireframe = true;
         else if (f == "--springs")
@@ -148,6 +167,21 @@ bool onPath(const std::string& name) {
     return false;
 }
 
+// Runs argv (argv[0] looked up on PATH) without a shell, so no path needs quoting; its exit
+// status, or −1 if it could not be started or did not exit normally.
+int runTool(const std::vector<std::string>& argv) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    pid_t pid = 0;
+    if (posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return -1;
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) return -1;
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 // SCENE.mp4 from the PNG sequence through ffmpeg, when it is installed; says so when it is not.
 void encodeMp4(const RenderArgs& o, const Scene& scene) {
     const std::filesystem::path dir(o.framesDir);
@@ -157,15 +191,31 @@ void encodeMp4(const RenderArgs& o, const Scene& scene) {
                     o.framesDir.c_str());
         return;
     }
+    char fps[32];
+    std::snprintf(fps, sizeof fps, "%g", o.fps);
     // The glob takes the step-numbered names in order; yuv420p and even sizes play everywhere.
-    const std::string cmd =
-        "ffmpeg -loglevel error -y -framerate " + std::to_string(o.fps) +
-        " -pattern_type glob -i '" + (dir / (scene.name + "_*.png")).string() +
-        "' -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt yuv420p '" + mp4 + "'";
-    if (std::system(cmd.c_str()) == 0)
+    const std::vector<std::string> argv = {"ffmpeg",
+                                           "-loglevel",
+                                           "error",
+                                           "-y",
+                                           "-framerate",
+                                           fps,
+                                           "-pattern_type",
+                                           "glob",
+                                           "-i",
+                                           (dir / (scene.name + "_*.png")).string(),
+                                           "-vf",
+                                           "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                           "-c:v",
+                                           "libx264",
+                                           "-pix_fmt",
+                                           "yuv420p",
+                                           mp4};
+    const int status = runTool(argv);
+    if (status == 0)
         std::printf("wrote %s\n", mp4.c_str());
     else
-        std::printf("ffmpeg failed (%s): no MP4 was made; the PNG frames are in %s\n", cmd.c_str(),
+        std::printf("ffmpeg failed (exit %d): no MP4 was made; the PNG frames are in %s\n", status,
                     o.framesDir.c_str());
 }
 

@@ -2,10 +2,13 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <map>
 #include <numbers>
+#include <thread>
 #include <unordered_map>
 
 #include "core/errors.h"
@@ -141,6 +144,54 @@ double windingNumber(const TriMesh& mesh, const glm::dvec3& p) {
     return total / (4 * std::numbers::pi);
 }
 
+namespace {
+
+// A bounding sphere per triangle (centroid, farthest corner): a triangle whose sphere is farther
+// than the best distance so far cannot be nearer, so the exact test is skipped.
+struct TriangleBounds {
+    std::vector<glm::dvec3> centre;
+    std::vector<double> radius;
+    explicit TriangleBounds(const TriMesh& m) {
+        for (const auto& t : m.triangles) {
+            const glm::dvec3 c = (m.vertices[t[0]] + m.vertices[t[1]] + m.vertices[t[2]]) / 3.0;
+            double r = 0;
+            for (const std::uint32_t v : t) r = std::max(r, glm::length(m.vertices[v] - c));
+            centre.push_back(c);
+            radius.push_back(r);
+        }
+    }
+};
+
+double unsignedDistance(const TriMesh& m, const TriangleBounds& b, const glm::dvec3& p) {
+    double best = INFINITY;
+    for (size_t t = 0; t < m.triangles.size(); ++t) {
+        if (glm::length(p - b.centre[t]) - b.radius[t] >= best) continue;
+        const auto& tri = m.triangles[t];
+        best = std::min(best, pointTriangleDistance(p, m.vertices[tri[0]], m.vertices[tri[1]],
+                                                    m.vertices[tri[2]]));
+    }
+    return best;
+}
+
+// One row along x of the grid. The sign comes from the winding number only where it must: if
+// the distance d at a sample exceeds the cell, the open ball of radius d holds no surface, so the
+// segment from the previous sample of the row (one cell away, strictly inside that ball, hence
+// not on the surface itself) does not cross it and the sign carries over. The margin keeps a
+// previous sample that lies on the surface (its sign arbitrary) from passing its sign on when
+// rounding makes d a hair larger than an exact cell.
+void bakeRow(const TriMesh& m, const TriangleBounds& b, SdfGrid& g, int row) {
+    const int j = row % g.count.y, k = row / g.count.y;
+    bool inside = false;
+    for (int i = 0; i < g.count.x; ++i) {
+        const glm::dvec3 p = g.origin + g.cell * glm::dvec3(i, j, k);
+        const double d = unsignedDistance(m, b, p);
+        if (i == 0 || !(d > g.cell * (1 + 1e-9))) inside = std::abs(windingNumber(m, p)) > 0.5;
+        g.values[size_t(g.index(i, j, k))] = inside ? -d : d;
+    }
+}
+
+}  // namespace
+
 SdfGrid bakeSdf(const TriMesh& mesh, double cell, double band, const MeshSource& source) {
     if (!(cell > 0) || !std::isfinite(cell))
         throw InputError(source.file, source.key, "the grid cell must be > 0");
@@ -172,18 +223,17 @@ SdfGrid bakeSdf(const TriMesh& mesh, double cell, double band, const MeshSource&
                                  std::to_string(kMaxSdfSamples) + " samples)");
     }
     g.values.resize(size_t(total));
-    for (int k = 0; k < g.count.z; ++k)
-        for (int j = 0; j < g.count.y; ++j)
-            for (int i = 0; i < g.count.x; ++i) {
-                const glm::dvec3 p = g.origin + cell * glm::dvec3(i, j, k);
-                double d = INFINITY;
-                for (const auto& t : mesh.triangles)
-                    d = std::min(d,
-                                 pointTriangleDistance(p, mesh.vertices[t[0]], mesh.vertices[t[1]],
-                                                       mesh.vertices[t[2]]));
-                const bool inside = std::abs(windingNumber(mesh, p)) > 0.5;
-                g.values[size_t(g.index(i, j, k))] = inside ? -d : d;
-            }
+    // Rows along x are independent: share them out over the cores.
+    const int rows = g.count.y * g.count.z;
+    const int threads = std::clamp(int(std::thread::hardware_concurrency()), 1, 16);
+    std::vector<std::thread> pool;
+    std::atomic<int> next{0};
+    const TriangleBounds bounds(mesh);
+    for (int t = 0; t < threads; ++t)
+        pool.emplace_back([&] {
+            for (int row = next++; row < rows; row = next++) bakeRow(mesh, bounds, g, row);
+        });
+    for (std::thread& t : pool) t.join();
     return g;
 }
 

@@ -48,7 +48,10 @@ double windingNumber(const TriMesh& mesh, const glm::dvec3& p);
 
 // Samples every cell size `cell` over the mesh's bounds grown by `band` on each side (and at
 // least two samples per axis): φ = ±(distance to the nearest triangle), negative where
-// |winding number| > ½. InputError when cell ≤ 0, band < 0 or the grid would exceed
+// |winding number| > ½. Rows of samples run on all cores; a triangle whose bounding sphere is
+// farther than the best distance is skipped, and the winding number is evaluated only within
+// one cell of the surface (farther samples take the sign of their row neighbour, which no
+// surface separates from them). InputError when cell ≤ 0, band < 0 or the grid would exceed
 // kMaxSdfSamples.
 SdfGrid bakeSdf(const TriMesh& mesh, double cell, double band, const MeshSource& source = {});
 

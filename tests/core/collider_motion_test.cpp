@@ -8,6 +8,8 @@
 #include <numbers>
 #include <vector>
 
+#include "core/collider_contact.h"
+
 namespace cloth {
 namespace {
 
@@ -92,6 +94,53 @@ TEST(ColliderMotion, MovedShapesCarryTheirDistanceField) {
             EXPECT_NEAR(contact(moved(plane, q), q.apply(x)).phi, contact(plane, x).phi, 1e-13);
         }
     }
+}
+
+// One vertex under gravity on a box that moves (explicit Euler as DESIGN.md §2, then the
+// contact with the box posed at the new time and v_c of the point touched).
+struct Carried {
+    D3 p, v;
+    double minPhi = INFINITY;  // the lowest φ after any step's contact
+};
+Carried ride(const Motion& m, double friction, double seconds) {
+    const BoxT<double> table{{0, -0.1, 0}, {0.5, 0.1, 0.5}, glm::dmat3(1)};
+    const double dt = 1e-3, h = 0.001;
+    Carried c{{0, h, 0}, D3(0)};  // at rest on the box
+    for (int s = 1; s <= int(seconds / dt); ++s) {
+        const D3 vOld = c.v;
+        c.v += dt * D3(0, -9.81, 0);
+        c.p += dt * vOld;
+        const double t = s * dt;
+        const BoxT<double> now = moved(table, poseAt(m, t));
+        collide(now, ContactParamsT<double>{h, friction}, velocityAt(m, t).at(c.p), c.p, c.v);
+        c.minPhi = std::min(c.minPhi, contact(now, c.p).phi);
+    }
+    return c;
+}
+
+// Law: a moving collider carries the cloth instead of punching through it: on a rising box the
+// vertex stays on top (φ ≥ h after every step) and rises with it; on a box that starts sliding
+// sideways, friction (c_f = 1) takes the vertex up to the box's speed within ~v/(c_f g) and then
+// carries it (static: exactly v_c), while without friction the box slides away under it.
+TEST(ColliderMotion, AMovingColliderCarriesTheVertex) {
+    Motion lift;
+    lift.type = MotionType::Linear;
+    lift.velocity = {0, 0.5, 0};
+    const Carried up = ride(lift, 0, 1.0);
+    EXPECT_GE(up.minPhi, 0.001 - 1e-12);
+    EXPECT_NEAR(up.p.y, 0.5 + 0.001, 1e-3);
+    EXPECT_NEAR(up.v.y, 0.5, 1e-2);
+
+    Motion slide;
+    slide.type = MotionType::Linear;
+    slide.velocity = {0.3, 0, 0};
+    const Carried sticky = ride(slide, 1.0, 1.0);
+    EXPECT_NEAR(sticky.p.x, 0.3, 0.3 * 0.3 / 9.81);  // lags by at most v·(v/(c_f g))
+    EXPECT_NEAR(sticky.v.x, 0.3, 1e-12);
+    EXPECT_GE(sticky.minPhi, 0.001 - 1e-12);
+    const Carried slippery = ride(slide, 0.0, 1.0);
+    EXPECT_EQ(slippery.p.x, 0);
+    EXPECT_EQ(slippery.v.x, 0);
 }
 
 }  // namespace

@@ -164,5 +164,33 @@ TEST(ColliderReference, ContactResponseMatchesTheReference) {
     EXPECT_GT(touched, 2000);
 }
 
+// The plane and the sphere through the shared response too: the reference's generic
+// p + (h − φ) n and the sphere's c + (R + h) n are the same point to rounding.
+TEST(ColliderReference, PlaneAndSphereResponsesMatchTheReference) {
+    const PlaneT<double> plane{{0, 0.1, 0}, glm::normalize(D3(0.3, 1, 0.2))};
+    const SphereT<double> sphere{{0.1, 0, -0.1}, 0.45};
+    Sampler s;
+    for (int k = 0; k < 20000; ++k) {
+        const D3 p0 = s.any(0.7), v0 = s.any(2), vc = s.any(0.5);
+        const double h = k % 3 == 0 ? 0 : 0.01, cf = (k % 4) * 0.3;
+        for (const bool isSphere : {false, true}) {
+            ref::V3 rp = toRef(p0), rv = toRef(v0);
+            const ContactT<double> c = isSphere ? contact(sphere, p0) : contact(plane, p0);
+            const ref::Contact want =
+                isSphere ? ref::sphereContact({toRef(sphere.center), sphere.radius}, toRef(p0))
+                         : ref::planeContact({toRef(plane.point), toRef(plane.normal)}, toRef(p0));
+            EXPECT_NEAR(c.phi, want.phi, 1e-15);
+            const bool refTouched = ref::respond(want, h, cf, toRef(vc), rp, rv);
+            D3 p = p0, v = v0;
+            const ContactParamsT<double> params{h, cf};
+            const bool srcTouched =
+                isSphere ? collide(sphere, params, vc, p, v) : collide(plane, params, vc, p, v);
+            ASSERT_EQ(srcTouched, refTouched);
+            EXPECT_NEAR(glm::length(p - fromRef(rp)), 0, 1e-14);
+            EXPECT_NEAR(glm::length(v - fromRef(rv)), 0, 1e-13);
+        }
+    }
+}
+
 }  // namespace
 }  // namespace cloth

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +15,7 @@
 
 #include "core/collider_mesh.h"
 #include "core/errors.h"
+#include "reference/reference_colliders.h"
 
 namespace cloth {
 namespace {
@@ -77,7 +79,10 @@ TEST(MeshSdf, IcosphereAgreesWithTheAnalyticSphereWithinTheGridBound) {
                          std::acos(std::min(1.0, glm::dot(n, glm::normalize(v - sphere.center)))));
     }
     const double cell = 0.05;
+    const auto start = std::chrono::steady_clock::now();
     const SdfGrid g = bakeSdf(mesh, cell, 0.1);
+    const double bakeSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const SdfColliderT<double> sdf{&g};
     const double bound = std::sqrt(3.0) / 2 * cell + epsMesh;
     std::mt19937 rng(1);
@@ -103,6 +108,8 @@ TEST(MeshSdf, IcosphereAgreesWithTheAnalyticSphereWithinTheGridBound) {
         "2 cells of the surface %.4f, normal within %.2f° (facets %.2f°)\n",
         sphere.radius, cell, epsMesh, worst, bound, worstNear, worstAngle * 180 / std::numbers::pi,
         facetAngle * 180 / std::numbers::pi);
+    std::printf("baked %zu triangles into %d x %d x %d samples in %.3f s\n", mesh.triangles.size(),
+                g.count.x, g.count.y, g.count.z, bakeSeconds);
 }
 
 // Law: a box mesh is the box exactly (ε_mesh = 0), so |φ_grid − φ_box| ≤ (√3/2)·cell, and in a
@@ -143,6 +150,40 @@ TEST(MeshSdf, BoxMeshAgreesWithTheAnalyticBoxAndItsFaceNormals) {
         "box mesh, cell %.3f: max |error| %.5f (bound %.5f); face-region normals within "
         "%.2g over %d samples\n",
         cell, worst, std::sqrt(3.0) / 2 * cell, worstNormal, faceCells);
+}
+
+// Every sample of `g` (or `samples` random ones) against brute force over all triangles with
+// the reference's own point–triangle distance, the sign from the winding number at that sample.
+void expectExactSamples(const TriMesh& m, const SdfGrid& g, int samples) {
+    std::mt19937 rng(8);
+    const int all = g.count.x * g.count.y * g.count.z;
+    int inside = 0;
+    for (int n = 0; n < (samples > 0 ? samples : all); ++n) {
+        const int at = samples > 0 ? int(rng() % unsigned(all)) : n;
+        const int i = at % g.count.x, j = at / g.count.x % g.count.y,
+                  k = at / (g.count.x * g.count.y);
+        const D3 p = g.origin + g.cell * D3(i, j, k);
+        double d = INFINITY;
+        const auto r = [&](std::uint32_t v) {
+            return ref::V3{m.vertices[v].x, m.vertices[v].y, m.vertices[v].z};
+        };
+        for (const auto& t : m.triangles)
+            d = std::min(d, ref::triangleDistance({p.x, p.y, p.z}, r(t[0]), r(t[1]), r(t[2])));
+        const bool in = std::abs(windingNumber(m, p)) > 0.5;
+        inside += in && d > 0;
+        ASSERT_NEAR(g.at(i, j, k), in ? -d : d, 1e-12) << i << " " << j << " " << k;
+    }
+    EXPECT_GT(inside, 20);
+}
+
+// Law: every baked sample is the exact signed distance (the bake skips far triangles and carries
+// the sign along rows; this checks both shortcuts). The box's faces lie on grid planes, and rows
+// run along faces exactly one cell away: the adversarial case for carrying signs.
+TEST(MeshSdf, BakedSamplesAreTheExactSignedDistance) {
+    const TriMesh sphere = sphereMesh({{0.05, 0, -0.02}, 0.3}, 2);
+    expectExactSamples(sphere, bakeSdf(sphere, 0.045, 0.07), 400);
+    const TriMesh box = boxMesh({{0.2, 0.1, -0.1}, {0.3, 0.2, 0.4}, glm::dmat3(1)});
+    expectExactSamples(box, bakeSdf(box, 0.04, 0.12), 0);
 }
 
 // Law: the winding number is ±1 inside a closed mesh and 0 outside, whatever its orientation.

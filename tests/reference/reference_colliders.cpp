@@ -15,6 +15,17 @@ V3 rotate(const V3& axis, double degrees, const V3& v) {
                scale(dot(k, v) * (1 - std::cos(t)), k));
 }
 
+Contact planeContact(const Plane& plane, const V3& p) {
+    const V3 n = normalised(plane.normal);
+    return {dot(sub(p, plane.point), n), n};
+}
+
+Contact sphereContact(const Sphere& sphere, const V3& p) {
+    const V3 r = sub(p, sphere.center);
+    const double d = norm(r);
+    return {d - sphere.radius, d > 0 ? scale(1 / d, r) : V3{0, 1, 0}};
+}
+
 Contact boxContact(const Box& box, const V3& p) {
     // The box's axes are the rotated x, y, z; q are p's coordinates along them.
     V3 axes[3];

@@ -18,6 +18,11 @@ struct Contact {
 // Rotation of `degrees` about `axis` (normalised here), Rodrigues' vector formula.
 V3 rotate(const V3& axis, double degrees, const V3& v);
 
+// DESIGN.md §2's two shapes as (φ, n): the plane's normal normalised here; the sphere's n is
+// (0, 1, 0) at its very centre.
+Contact planeContact(const Plane& plane, const V3& p);
+Contact sphereContact(const Sphere& sphere, const V3& p);
+
 struct Box {
     V3 center, half;  // half extents [m]
     V3 axis;          // rotation axis (any length > 0)
