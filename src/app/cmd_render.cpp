@@ -219,6 +219,61 @@ void encodeMp4(const RenderArgs& o, const Scene& scene) {
                     o.framesDir.c_str());
 }
 
+#ifdef CLOTH_HAVE_RENDER
+// The renderer and its offscreen target for one command: draws the solver's current state and
+// writes it as a PNG.
+class Painter {
+public:
+    Painter(const RenderArgs& o, const Scene& scene) : o_(o), target_(o.width, o.height) {
+        renderer_.setScene(scene);
+        std::vector<std::int64_t> pins;
+        for (const Pin& p : scene.pins) pins.push_back(scene.grid().index(p.i, p.j));
+        renderer_.setPins(pins);
+        options_.colour = o.strain ? render::ColourMode::Strain : render::ColourMode::Checker;
+        options_.wireframe = o.wireframe;
+        options_.springs = o.springs;
+    }
+    render::Camera framed(const SimState& state) const {
+        return render::framedCamera(renderer_, &state);
+    }
+    void paint(Solver& solver, const std::string& png, const render::Camera& camera) {
+        if (!renderer_.updateCloth(solver))
+            throw std::runtime_error("the state is not finite; no image was written");
+        target_.bind();
+        renderer_.draw(camera, options_, o_.width, o_.height);
+        render::writePng(png, target_.read());
+    }
+
+private:
+    const RenderArgs& o_;
+    render::Renderer renderer_;
+    render::RenderOptions options_;
+    render::OffscreenTarget target_;
+};
+
+// --frames: a PNG now and every `every` steps up to `total`, all with the first frame's camera
+// (a camera reframed per frame would make the video jitter), then the MP4. False (after saying
+// why) if the run became unstable.
+bool writeFrames(const RenderArgs& o, const Scene& scene, Solver& solver, Painter& painter,
+                 long total) {
+    std::filesystem::create_directories(o.framesDir);
+    const render::Camera camera = painter.framed(solver.read());
+    long frames = 1;
+    painter.paint(solver, framePng(o, scene, solver.stepsDone(), total), camera);
+    while (solver.stepsDone() < total) {
+        const long next = std::min(total, (solver.stepsDone() / o.every + 1) * o.every);
+        if (!simulate(scene, solver, next)) return false;
+        if (solver.stepsDone() % o.every != 0) break;  // a last partial interval: no frame
+        painter.paint(solver, framePng(o, scene, solver.stepsDone(), total), camera);
+        ++frames;
+    }
+    std::printf("wrote %ld frames to %s (%dx%d, %ld steps, %s)\n", frames, o.framesDir.c_str(),
+                o.width, o.height, solver.stepsDone(), solver.name().c_str());
+    encodeMp4(o, scene);
+    return true;
+}
+#endif
+
 }  // namespace
 
 int renderCommand(Args& args) {
@@ -232,47 +287,12 @@ int renderCommand(Args& args) {
     GlContext::instance();  // EGL, before either solver: the GPU one computes in it
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
     const long total = o.steps >= 0 ? o.steps : scene.defaultSteps();
-
-    render::Renderer renderer;
-    renderer.setScene(scene);
-    std::vector<std::int64_t> pins;
-    for (const Pin& p : scene.pins) pins.push_back(scene.grid().index(p.i, p.j));
-    renderer.setPins(pins);
-    render::RenderOptions options;
-    options.colour = o.strain ? render::ColourMode::Strain : render::ColourMode::Checker;
-    options.wireframe = o.wireframe;
-    options.springs = o.springs;
-    const render::OffscreenTarget target(o.width, o.height);
-    // Draws the solver's current state with `camera` and writes it to `png`.
-    const auto drawTo = [&](const std::string& png, const render::Camera& camera) {
-        if (!renderer.updateCloth(*solver))
-            throw std::runtime_error("the state is not finite; no image was written");
-        target.bind();
-        renderer.draw(camera, options, o.width, o.height);
-        render::writePng(png, target.read());
-    };
-    if (!o.framesDir.empty()) {
-        std::filesystem::create_directories(o.framesDir);
-        const SimState first = solver->read();
-        const render::Camera camera = render::framedCamera(renderer, &first);  // fixed: no jitter
-        long frames = 0;
-        drawTo(framePng(o, scene, 0, total), camera);
-        ++frames;
-        while (solver->stepsDone() < total) {
-            const long next = std::min(total, (solver->stepsDone() / o.every + 1) * o.every);
-            if (!simulate(scene, *solver, next)) return kUnstable;
-            if (solver->stepsDone() % o.every != 0) break;  // a last partial interval: no frame
-            drawTo(framePng(o, scene, solver->stepsDone(), total), camera);
-            ++frames;
-        }
-        std::printf("wrote %ld frames to %s (%dx%d, %ld steps, %s)\n", frames, o.framesDir.c_str(),
-                    o.width, o.height, solver->stepsDone(), solver->name().c_str());
-        encodeMp4(o, scene);
-    }
+    Painter painter(o, scene);
+    if (!o.framesDir.empty() && !writeFrames(o, scene, *solver, painter, total)) return kUnstable;
     if (!simulate(scene, *solver, total)) return kUnstable;
     if (!o.png.empty()) {
         const SimState state = solver->read();
-        drawTo(o.png, render::framedCamera(renderer, &state));
+        painter.paint(*solver, o.png, painter.framed(state));
         std::printf("wrote %s (%dx%d, %ld steps, t = %.4g s, %s)\n", o.png.c_str(), o.width,
                     o.height, solver->stepsDone(), solver->time(), solver->name().c_str());
     }
