@@ -66,8 +66,8 @@ glm::dmat3 checkRotation(const KeyRef& at, const glm::dvec3& axis, double degree
     return axisAngle(unit, degrees * std::numbers::pi / 180);
 }
 
-SdfGrid checkMeshCollider(const KeyRef& at, const std::string& objFile, double cell, double band,
-                          double thickness) {
+BakedMesh checkMeshCollider(const KeyRef& at, const std::string& objFile, double cell, double band,
+                            double thickness) {
     namespace fs = std::filesystem;
     const KeyRef fileKey = member(at, "file");
     if (objFile.empty()) fail(fileKey, "the mesh file name is empty");
@@ -77,8 +77,10 @@ SdfGrid checkMeshCollider(const KeyRef& at, const std::string& objFile, double c
     if (!std::isfinite(band) || !(band > 0)) fail(member(at, "band"), "the band must be > 0");
     if (!(thickness < band))
         fail(member(at, "thickness"), "the thickness must be smaller than the mesh's band");
-    const TriMesh mesh = loadObjMesh(path.string(), {fileKey.file, fileKey.key});
-    return bakeSdf(mesh, cell, band, {at.file, member(at, "cell").key});
+    BakedMesh baked;
+    baked.mesh = loadObjMesh(path.string(), {fileKey.file, fileKey.key});
+    baked.grid = bakeSdf(baked.mesh, cell, band, {at.file, member(at, "cell").key});
+    return baked;
 }
 
 Motion checkMotion(const KeyRef& at, const Motion& m) {

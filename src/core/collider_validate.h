@@ -33,8 +33,13 @@ glm::dmat3 checkRotation(const KeyRef& at, const glm::dvec3& axis, double degree
 // read, checked closed and manifold, and baked with grid cell `cell` and `band` (`at` names
 // the collider; messages name its `.file`, `.cell` or `.band`). The thickness must stay inside
 // the band, where the grid is exact to its interpolation error.
-SdfGrid checkMeshCollider(const KeyRef& at, const std::string& objFile, double cell, double band,
-                          double thickness);
+// The mesh comes back with its grid, for the renderer and the export to draw.
+struct BakedMesh {
+    TriMesh mesh;
+    SdfGrid grid;
+};
+BakedMesh checkMeshCollider(const KeyRef& at, const std::string& objFile, double cell, double band,
+                            double thickness);
 
 // A motion's numbers: axis non-zero, frequency ≥ 0, everything finite (`at` names the motion
 // object; messages name its member keys, as docs/colliders.md §5 spells them).

@@ -71,6 +71,8 @@ std::array<double, 3> normalAt(const std::vector<std::array<double, 3>>& p, int 
     return n;
 }
 
+// Law: frame names sort in step order; each frame has one v/vt/vn per vertex equal to the
+// state (CSV), the grid's UVs, DESIGN.md §2 normals and two triangles per cell.
 TEST(Export, ObjFramesSortInStepOrderAndMatchTheSolverState) {
     const fs::path dir = test::freshTempDir("export_test", "frames");
     const int nu = 7, nv = 5, every = 40, steps = 200;
@@ -177,6 +179,7 @@ TEST(Export, CollidersObjReadsBackWithTheRightBounds) {
     }
 }
 
+// Law: --frames without --every is invalid input (exit 2).
 TEST(Export, RunFramesWithoutEveryIsAnInputError) {
     const auto r = runProcess({kExe, "run", kDrape, "--frames", "/tmp/x"}, 30);
     EXPECT_EQ(r.exitCode, 2) << test::describe(r);

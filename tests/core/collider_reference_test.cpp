@@ -63,6 +63,8 @@ bool unambiguous(const BoxT<double>& b, const D3& p, double margin) {
            std::abs(q[2]) > margin;
 }
 
+// Law: src's oriented-box φ equals the reference's to 1e-14 (double) / 2e-6 (float), and n too
+// wherever n is unambiguous (off the medial surface and the region borders).
 TEST(ColliderReference, BoxDistanceAndNormalMatchTheReference) {
     const ref::Box rb{{0.1, -0.3, 0.2}, {0.5, 0.2, 0.35}, {1, -0.5, 2}, 37};
     const D3 axis = glm::normalize(fromRef(rb.axis));
@@ -86,6 +88,7 @@ TEST(ColliderReference, BoxDistanceAndNormalMatchTheReference) {
     EXPECT_GT(checkedNormals, 25000);
 }
 
+// Law: src's capsule φ and n equal the reference's, around the cylinder and both end caps.
 TEST(ColliderReference, CapsuleDistanceAndNormalMatchTheReference) {
     const ref::Capsule rc{{-0.3, 0.1, 0.2}, {0.4, -0.2, -0.1}, 0.25};
     const CapsuleT<double> cd{fromRef(rc.a), fromRef(rc.b), rc.radius};
@@ -101,6 +104,7 @@ TEST(ColliderReference, CapsuleDistanceAndNormalMatchTheReference) {
     }
 }
 
+// Law: src's trilinear value and gradient direction equal the reference's, at grid nodes too.
 TEST(ColliderReference, GridValueAndGradientMatchTheReference) {
     ref::Grid rg{{-0.4, -0.3, -0.5}, 0.07, {11, 9, 13}, {}};
     std::mt19937 rng(9);
@@ -123,6 +127,8 @@ TEST(ColliderReference, GridValueAndGradientMatchTheReference) {
     }
 }
 
+// Law: the bake's point–triangle distance (Voronoi regions) equals the reference's (foot of
+// the perpendicular, else the nearest edge).
 TEST(ColliderReference, TriangleDistanceMatchesTheReference) {
     Sampler s;
     for (int k = 0; k < 20000; ++k) {

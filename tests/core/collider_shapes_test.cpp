@@ -33,6 +33,8 @@ D3 numericGradient(const Shape& s, const D3& p, double h = 1e-6) {
     return g;
 }
 
+// Law: Rodrigues' matrix is orthonormal with determinant 1, fixes its axis and turns
+// right-handed.
 TEST(AxisAngle, IsARotationThatFixesItsAxis) {
     const D3 axis = glm::normalize(D3(0.3, -1, 2));
     const glm::dmat3 r = axisAngle(axis, 1.234);
@@ -46,6 +48,8 @@ TEST(AxisAngle, IsARotationThatFixesItsAxis) {
     EXPECT_NEAR(glm::length(y - D3(0, 1, 0)), 0, 1e-15);
 }
 
+// Law: the box SDF is 0 on a face, the distance along the face normal outside, minus the
+// distance to the nearest face inside, and the distance to the corner beyond a corner.
 TEST(BoxSdf, ZeroOnFacesNegativeInsideAndExactAlongTheNormal) {
     const BoxT<double> box = tiltedBox();
     const D3 ex = box.rotation[0], ey = box.rotation[1];
@@ -92,6 +96,8 @@ TEST(CapsuleSdf, IsASignedDistanceWithItsGradientAsNormal) {
     expectSignedDistance(CapsuleT<double>{{-0.3, 0.1, 0}, {0.4, 0.5, -0.2}, 0.15}, 1.0);
 }
 
+// Law: φ = distance to the segment − R beside the cylinder, beyond an end, inside a cap and on
+// the axis (where n is unit and perpendicular to the axis).
 TEST(CapsuleSdf, DistanceToTheSegmentMinusTheRadius) {
     const CapsuleT<double> cap{{0, 0, 0}, {0, 1, 0}, 0.2};
     EXPECT_NEAR(contact(cap, D3(0.5, 0.5, 0)).phi, 0.3, 1e-15);  // beside the cylinder
@@ -130,6 +136,7 @@ TEST(GridSdf, TrilinearIsExactForAnAffineFieldAndClampsOutside) {
                 contact(c, r * corner + D3(2, 0, 0)).phi + 1, 1e-13);
 }
 
+// Law: sampling in float gives the double value to float rounding (1e-5 on values of order 1).
 TEST(GridSdf, FloatAgreesWithDouble) {
     SdfGrid g;
     g.origin = {0, 0, 0};

@@ -110,8 +110,10 @@ TEST(ColliderValidate, MeshFileProblemsNameTheFileKey) {
               std::string::npos);
     // A good mesh, relative to the scene's folder; then bad grid numbers.
     writeMeshesObj((dir / "box.obj").string(), {{"box", boxMesh({D3(0), D3(0.2), glm::dmat3(1)})}});
-    const SdfGrid g = checkMeshCollider(mesh, "box.obj", 0.05, 0.1, 0.01);
-    EXPECT_NEAR(g.at(0, 0, 0), std::sqrt(3.0) * 0.1, 1e-9);  // the grid corner is a band away
+    const BakedMesh baked = checkMeshCollider(mesh, "box.obj", 0.05, 0.1, 0.01);
+    EXPECT_EQ(baked.mesh.triangles.size(), 12u);
+    // The grid's corner sample is a band away from the box along each axis.
+    EXPECT_NEAR(baked.grid.at(0, 0, 0), std::sqrt(3.0) * 0.1, 1e-9);
     EXPECT_EQ(
         key([&] { checkMeshCollider(mesh, "box.obj", 0, 0.1, 0); }).rfind("colliders[2].cell", 0),
         0u);

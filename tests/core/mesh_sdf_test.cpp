@@ -253,6 +253,8 @@ TEST(MeshSdf, BadMeshesAreReportedWithTheFileAndTheFirstBadEdge) {
     EXPECT_NE(finReason.find("edge ("), std::string::npos) << finReason;
 }
 
+// Law: a grid of more than kMaxSdfSamples, a cell ≤ 0 or a negative band is an InputError
+// naming the key it was given, before anything is allocated.
 TEST(MeshSdf, ACellTooFineForMemoryOrNotPositiveIsAnInputError) {
     const TriMesh m = unitBox();
     EXPECT_THROW(bakeSdf(m, 1e-4, 0.1), InputError);
