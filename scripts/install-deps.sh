@@ -6,6 +6,7 @@ set -euo pipefail
 PACKAGES=(
     cmake make g++ pkg-config                 # build
     nlohmann-json3-dev libglm-dev             # scene files, vector maths
+    libtinyobjloader-dev                      # mesh colliders (OBJ)
     libgtest-dev libgmock-dev                 # tests
     libegl-dev libgl-dev libglew-dev          # GPU backend: headless EGL + OpenGL 4.3 compute
     libegl-mesa0 libgl1-mesa-dri              # Mesa (llvmpipe where there is no GPU)

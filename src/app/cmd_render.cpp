@@ -1,6 +1,12 @@
 // clothsim render SCENE --png FILE: simulate headless, draw one frame offscreen, write a PNG
 // (DESIGN.md §5). The context is EGL's (src/gpu), so no display is needed.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "app/cli.h"
@@ -15,16 +21,23 @@
 #include "render/renderer.h"
 #endif
 
+extern char** environ;
+
 namespace cloth::app {
 namespace {
 
 constexpr const char* kHelp = R"(usage: clothsim render SCENE --png FILE [options]
+       clothsim render SCENE --frames DIR --every K [options]
 
 Simulates SCENE headless (EGL, no display needed), then draws the final frame offscreen and
-writes it as a PNG.
+writes it as a PNG; or, with --frames, a PNG every K steps (and the initial one), named
+SCENE_<step>.png with the step zero-padded so the names sort, and SCENE.mp4 from them when
+ffmpeg is on PATH.
 
 options:
-  --png FILE                the image to write (required)
+  --png FILE                the image to write
+  --frames DIR --every K    a PNG sequence in DIR, one frame every K steps, camera fixed
+  --fps F                   the MP4's frame rate (default 30)
   --steps N                 number of steps (default: duration / integrator.dt; 0 = none)
   --size WxH                image size in pixels (default 960x720)
   --backend cpu|gpu         solver backend (default cpu)
@@ -39,8 +52,10 @@ exit codes: 0 ok, 1 internal error, 2 invalid input, 3 unstable, 4 no OpenGL con
 )";
 
 struct RenderArgs {
-    std::string scenePath, png;
+    std::string scenePath, png, framesDir;
     long steps = -1;  // −1: the scene's duration
+    long every = 0;   // --frames: a frame every `every` steps
+    double fps = 30;  // --frames: the MP4's frame rate
     int width = 960, height = 720;
     BackendChoice backend;
     std::vector<std::string> sets;
@@ -65,6 +80,14 @@ long parseSteps(const std::string& flag, const std::string& v) {
     return n;
 }
 
+double parseFps(const std::string& flag, const std::string& v) {
+    char* end = nullptr;
+    const double fps = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0' || !(fps >= 1 && fps <= 240))
+        throw InputError("command line", flag, "expected a rate within 1..240, got '" + v + "'");
+    return fps;
+}
+
 bool parse(Args& args, RenderArgs& o) {
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
@@ -84,6 +107,12 @@ bool parse(Args& args, RenderArgs& o) {
             if (c != "checker" && c != "strain")
                 throw InputError("command line", f, "expected checker or strain, got '" + c + "'");
             o.strain = c == "strain";
+        } else if (f == "--frames") {
+            o.framesDir = args.value(f);
+        } else if (f == "--every") {
+            o.every = args.positiveInt(f);
+        } else if (f == "--fps") {
+            o.fps = parseFps(f, args.value(f));
         } else if (f == "--wireframe")
             o.wireframe = true;
         else if (f == "--springs")
@@ -92,7 +121,12 @@ bool parse(Args& args, RenderArgs& o) {
             args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "render needs a scene file");
-    if (o.png.empty()) throw InputError("command line", "--png", "render needs --png FILE");
+    if (o.png.empty() && o.framesDir.empty())
+        throw InputError("command line", "--png", "render needs --png FILE or --frames DIR");
+    if (!o.framesDir.empty() && o.every == 0)
+        throw InputError("command line", "--every", "--frames DIR needs --every K");
+    if (o.framesDir.empty() && o.every > 0)
+        throw InputError("command line", "--frames", "--every K needs --frames DIR");
     const std::filesystem::path dir = std::filesystem::path(o.png).parent_path();
     if (!dir.empty() && !std::filesystem::is_directory(dir))
         throw InputError("command line", "--png",
@@ -111,6 +145,135 @@ bool simulate(const Scene& scene, Solver& solver, long total) {
     return true;
 }
 
+std::string framePng(const RenderArgs& o, const Scene& scene, long step, long total) {
+    const int digits = std::max<int>(6, int(std::to_string(total).size()));
+    char name[64];
+    std::snprintf(name, sizeof name, "_%0*ld.png", digits, step);
+    return (std::filesystem::path(o.framesDir) / (scene.name + name)).string();
+}
+
+// Whether an executable `name` is on PATH.
+bool onPath(const std::string& name) {
+    const char* path = std::getenv("PATH");
+    if (!path) return false;
+    std::string dirs = path;
+    for (size_t start = 0; start <= dirs.size();) {
+        const size_t end = std::min(dirs.find(':', start), dirs.size());
+        const std::filesystem::path candidate =
+            std::filesystem::path(dirs.substr(start, end - start)) / name;
+        if (access(candidate.c_str(), X_OK) == 0) return true;
+        start = end + 1;
+    }
+    return false;
+}
+
+// Runs argv (argv[0] looked up on PATH) without a shell, so no path needs quoting; its exit
+// status, or −1 if it could not be started or did not exit normally.
+int runTool(const std::vector<std::string>& argv) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    pid_t pid = 0;
+    if (posix_spawnp(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return -1;
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) return -1;
+    }
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// SCENE.mp4 from the PNG sequence through ffmpeg, when it is installed; says so when it is not.
+void encodeMp4(const RenderArgs& o, const Scene& scene) {
+    const std::filesystem::path dir(o.framesDir);
+    const std::string mp4 = (dir / (scene.name + ".mp4")).string();
+    if (!onPath("ffmpeg")) {
+        std::printf("ffmpeg is not on PATH: no MP4 was made; the PNG frames are in %s\n",
+                    o.framesDir.c_str());
+        return;
+    }
+    char fps[32];
+    std::snprintf(fps, sizeof fps, "%g", o.fps);
+    // The glob takes the step-numbered names in order; yuv420p and even sizes play everywhere.
+    const std::vector<std::string> argv = {"ffmpeg",
+                                           "-loglevel",
+                                           "error",
+                                           "-y",
+                                           "-framerate",
+                                           fps,
+                                           "-pattern_type",
+                                           "glob",
+                                           "-i",
+                                           (dir / (scene.name + "_*.png")).string(),
+                                           "-vf",
+                                           "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                                           "-c:v",
+                                           "libx264",
+                                           "-pix_fmt",
+                                           "yuv420p",
+                                           mp4};
+    const int status = runTool(argv);
+    if (status == 0)
+        std::printf("wrote %s\n", mp4.c_str());
+    else
+        std::printf("ffmpeg failed (exit %d): no MP4 was made; the PNG frames are in %s\n", status,
+                    o.framesDir.c_str());
+}
+
+#ifdef CLOTH_HAVE_RENDER
+// The renderer and its offscreen target for one command: draws the solver's current state and
+// writes it as a PNG.
+class Painter {
+public:
+    Painter(const RenderArgs& o, const Scene& scene) : o_(o), target_(o.width, o.height) {
+        renderer_.setScene(scene);
+        std::vector<std::int64_t> pins;
+        for (const Pin& p : scene.pins) pins.push_back(scene.grid().index(p.i, p.j));
+        renderer_.setPins(pins);
+        options_.colour = o.strain ? render::ColourMode::Strain : render::ColourMode::Checker;
+        options_.wireframe = o.wireframe;
+        options_.springs = o.springs;
+    }
+    render::Camera framed(const SimState& state) const {
+        return render::framedCamera(renderer_, &state);
+    }
+    void paint(Solver& solver, const std::string& png, const render::Camera& camera) {
+        if (!renderer_.updateCloth(solver))
+            throw std::runtime_error("the state is not finite; no image was written");
+        target_.bind();
+        renderer_.draw(camera, options_, o_.width, o_.height);
+        render::writePng(png, target_.read());
+    }
+
+private:
+    const RenderArgs& o_;
+    render::Renderer renderer_;
+    render::RenderOptions options_;
+    render::OffscreenTarget target_;
+};
+
+// --frames: a PNG now and every `every` steps up to `total`, all with the first frame's camera
+// (a camera reframed per frame would make the video jitter), then the MP4. False (after saying
+// why) if the run became unstable.
+bool writeFrames(const RenderArgs& o, const Scene& scene, Solver& solver, Painter& painter,
+                 long total) {
+    std::filesystem::create_directories(o.framesDir);
+    const render::Camera camera = painter.framed(solver.read());
+    long frames = 1;
+    painter.paint(solver, framePng(o, scene, solver.stepsDone(), total), camera);
+    while (solver.stepsDone() < total) {
+        const long next = std::min(total, (solver.stepsDone() / o.every + 1) * o.every);
+        if (!simulate(scene, solver, next)) return false;
+        if (solver.stepsDone() % o.every != 0) break;  // a last partial interval: no frame
+        painter.paint(solver, framePng(o, scene, solver.stepsDone(), total), camera);
+        ++frames;
+    }
+    std::printf("wrote %ld frames to %s (%dx%d, %ld steps, %s)\n", frames, o.framesDir.c_str(),
+                o.width, o.height, solver.stepsDone(), solver.name().c_str());
+    encodeMp4(o, scene);
+    return true;
+}
+#endif
+
 }  // namespace
 
 int renderCommand(Args& args) {
@@ -123,26 +286,16 @@ int renderCommand(Args& args) {
 #ifdef CLOTH_HAVE_RENDER
     GlContext::instance();  // EGL, before either solver: the GPU one computes in it
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
-    if (!simulate(scene, *solver, o.steps >= 0 ? o.steps : scene.defaultSteps())) return kUnstable;
-
-    render::Renderer renderer;
-    renderer.setScene(scene);
-    std::vector<std::int64_t> pins;
-    for (const Pin& p : scene.pins) pins.push_back(scene.grid().index(p.i, p.j));
-    renderer.setPins(pins);
-    if (!renderer.updateCloth(*solver))
-        throw std::runtime_error("the final state is not finite; no image was written");
-    render::RenderOptions options;
-    options.colour = o.strain ? render::ColourMode::Strain : render::ColourMode::Checker;
-    options.wireframe = o.wireframe;
-    options.springs = o.springs;
-    const render::OffscreenTarget target(o.width, o.height);
-    target.bind();
-    const SimState state = solver->read();
-    renderer.draw(render::framedCamera(renderer, &state), options, o.width, o.height);
-    render::writePng(o.png, target.read());
-    std::printf("wrote %s (%dx%d, %ld steps, t = %.4g s, %s)\n", o.png.c_str(), o.width, o.height,
-                solver->stepsDone(), solver->time(), solver->name().c_str());
+    const long total = o.steps >= 0 ? o.steps : scene.defaultSteps();
+    Painter painter(o, scene);
+    if (!o.framesDir.empty() && !writeFrames(o, scene, *solver, painter, total)) return kUnstable;
+    if (!simulate(scene, *solver, total)) return kUnstable;
+    if (!o.png.empty()) {
+        const SimState state = solver->read();
+        painter.paint(*solver, o.png, painter.framed(state));
+        std::printf("wrote %s (%dx%d, %ld steps, t = %.4g s, %s)\n", o.png.c_str(), o.width,
+                    o.height, solver->stepsDone(), solver->time(), solver->name().c_str());
+    }
     return kOk;
 #else
     (void)scene;

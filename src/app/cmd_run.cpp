@@ -8,6 +8,7 @@
 #include "app/cli.h"
 #include "app/progress.h"
 #include "app/solver_factory.h"
+#include "core/collider_mesh.h"
 #include "core/errors.h"
 #include "core/output.h"
 #include "core/scene_loader.h"
@@ -29,7 +30,10 @@ options:
                             e.g. --set integrator.dt=0.002 --set springs.bend=0
   --out-csv FILE            final state: i,j,x,y,z,vx,vy,vz, one row per vertex
   --out-obj FILE            final frame as Wavefront OBJ (positions, normals, UVs, faces)
-  --frames DIR --every K    an OBJ every K steps (and the initial one) into DIR
+  --frames DIR --every K    an OBJ every K steps (and the initial one) into DIR, named
+                            SCENE_<step>.obj with the step zero-padded so the names sort
+  --out-colliders FILE      the colliders as their own OBJ, one object each (a plane as a
+                            square of side 8× the cloth's extent, at least 20 m)
   --quiet                   print nothing but errors
   --help                    this text
 
@@ -41,7 +45,7 @@ struct RunOptions {
     BackendChoice backend;
     long steps = 0;  // 0: the scene's duration
     std::vector<std::string> sets;
-    std::string csv, obj, framesDir;
+    std::string csv, obj, framesDir, colliders;
     long every = 0;
     bool quiet = false;
 };
@@ -63,6 +67,8 @@ bool parse(Args& args, RunOptions& o) {
             o.obj = args.value(f);
         else if (f == "--frames")
             o.framesDir = args.value(f);
+        else if (f == "--out-colliders")
+            o.colliders = args.value(f);
         else if (f == "--every")
             o.every = args.positiveInt(f);
         else if (f == "--quiet")
@@ -111,6 +117,7 @@ int runCommand(Args& args) {
     const Scene scene = loadScene(o.scenePath, o.sets);
     checkWritable("--out-csv", o.csv);
     checkWritable("--out-obj", o.obj);
+    checkWritable("--out-colliders", o.colliders);
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
     if (!o.framesDir.empty()) std::filesystem::create_directories(o.framesDir);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
@@ -146,6 +153,9 @@ int runCommand(Args& args) {
     const SimState state = solver->read();
     if (!o.csv.empty()) writeCsv(o.csv, state, precision);
     if (!o.obj.empty()) writeObj(o.obj, state, scene.name);
+    if (!o.colliders.empty())  // still colliders today: their pose at t = 0 is their pose
+        writeMeshesObj(o.colliders,
+                       colliderMeshes(scene.colliders, std::max(10.0, 4 * scene.grid().extent())));
     if (!o.quiet) {
         const double vertexSteps = double(state.positions.size()) * double(total);
         std::printf("%s: %ld steps, %.4g s simulated, %.3f s wall, %.3g vertex-steps/s (%s)\n",
@@ -159,7 +169,7 @@ int runCommand(Args& args) {
         if (cg.solves > 0)
             std::printf("implicit solve: %ld CG solves, %.1f iterations on average, at most %d\n",
                         cg.solves, double(cg.iterations) / double(cg.solves), cg.mostIterations);
-        for (const std::string* f : {&o.csv, &o.obj})
+        for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
             if (!f->empty()) std::printf("wrote %s\n", f->c_str());
         if (!o.framesDir.empty())
             std::printf("wrote %ld frames to %s\n", total / o.every + 1, o.framesDir.c_str());

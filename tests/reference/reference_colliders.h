@@ -1,0 +1,56 @@
+// The colliders of docs/colliders.md, written from that page alone and sharing no code with
+// src/: the oracle for core/collider_shapes.h and core/collider_contact.h. Plain loops over the
+// six faces, the clamped segment parameter and the eight grid corners, no glm.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "reference/reference.h"
+
+namespace ref {
+
+struct Contact {
+    double phi;  // signed distance [m], negative inside
+    V3 normal;   // outward unit normal
+};
+
+// Rotation of `degrees` about `axis` (normalised here), Rodrigues' vector formula.
+V3 rotate(const V3& axis, double degrees, const V3& v);
+
+// DESIGN.md §2's two shapes as (φ, n): the plane's normal normalised here; the sphere's n is
+// (0, 1, 0) at its very centre.
+Contact planeContact(const Plane& plane, const V3& p);
+Contact sphereContact(const Sphere& sphere, const V3& p);
+
+struct Box {
+    V3 center, half;  // half extents [m]
+    V3 axis;          // rotation axis (any length > 0)
+    double degrees;   // rotation angle
+};
+Contact boxContact(const Box& box, const V3& p);
+
+struct Capsule {
+    V3 a, b;
+    double radius;
+};
+Contact capsuleContact(const Capsule& c, const V3& p);
+
+// Samples at origin + (i, j, k)·cell, index (k·ny + j)·nx + i.
+struct Grid {
+    V3 origin;
+    double cell;
+    std::array<int, 3> count;
+    std::vector<double> values;
+};
+// Trilinear value and the gradient of the trilinear interpolant, for a point inside the grid.
+Contact gridContact(const Grid& g, const V3& p);
+
+// Distance from p to the triangle abc: to its plane when the foot lies inside, else to the
+// nearest of its three edges (each a clamped segment).
+double triangleDistance(const V3& p, const V3& a, const V3& b, const V3& c);
+
+// docs/colliders.md §2: returns whether the vertex was in contact (φ < h) and updates p, v.
+bool respond(const Contact& c, double thickness, double friction, const V3& vc, V3& p, V3& v);
+
+}  // namespace ref
