@@ -5,9 +5,9 @@
 # cpu_double:explicit_euler:all: gpu_float:explicit_euler:declared:16x16/global/per-step'; the
 # variant is the GPU's, empty elsewhere).
 if (format eq 'png') {
-    set terminal pngcairo size 1200,750 enhanced font ',11'
+    set terminal pngcairo size 1100,850 enhanced font ',11'
 } else {
-    set terminal svg size 1200,750 dynamic enhanced font ',11'
+    set terminal svg size 1100,850 dynamic enhanced font ',11'
 }
 set output out
 set datafile separator ','
@@ -18,7 +18,7 @@ set format y '10^{%L}'
 set xlabel 'vertices'
 set ylabel 'vertex-steps per second'
 set title title noenhanced
-set key outside right center vertical noenhanced
+set key outside bottom center horizontal maxcols 2 noenhanced
 set grid
 set pointsize 1.2
 
