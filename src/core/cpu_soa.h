@@ -21,7 +21,8 @@ struct AlignedAllocator {
     template <typename U>
     AlignedAllocator(const AlignedAllocator<U>&) {}  // NOLINT: rebinding
     T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlign)); }
-    void deallocate(T* p, std::size_t n) { ::operator delete(p, n * sizeof(T), kAlign); }
+    // The unsized form: clang enables sized deallocation only with -fsized-deallocation.
+    void deallocate(T* p, std::size_t) { ::operator delete(p, kAlign); }
     template <typename U>
     bool operator==(const AlignedAllocator<U>&) const {
         return true;
