@@ -11,6 +11,7 @@
 #include "core/collider_contact.h"
 #include "core/mesh_sdf.h"
 #include "reference/reference_colliders.h"
+#include "support/box_regions.h"
 
 namespace cloth {
 namespace {
@@ -44,25 +45,6 @@ void compare(const ContactT<T>& got, const ref::Contact& want, double tol, bool 
     }
 }
 
-// Whether p is clear of the box's medial surface and edges, where n is ambiguous or jumps.
-bool unambiguous(const BoxT<double>& b, const D3& p, double margin) {
-    const D3 q = glm::transpose(b.rotation) * (p - b.center);
-    const D3 d = glm::abs(q) - b.halfExtents;
-    if (glm::length(glm::max(d, D3(0))) > 0)
-        return glm::all(glm::greaterThan(glm::abs(d), D3(margin)));
-    double first = -INFINITY, second = -INFINITY;  // inside: the nearest face must be clear
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] > first) {
-            second = first;
-            first = d[a];
-        } else {
-            second = std::max(second, d[a]);
-        }
-    }
-    return first - second > margin && std::abs(q[0]) > margin && std::abs(q[1]) > margin &&
-           std::abs(q[2]) > margin;
-}
-
 // Law: src's oriented-box φ equals the reference's to 1e-14 (double) / 2e-6 (float), and n too
 // wherever n is unambiguous (off the medial surface and the region borders).
 TEST(ColliderReference, BoxDistanceAndNormalMatchTheReference) {
@@ -80,10 +62,11 @@ TEST(ColliderReference, BoxDistanceAndNormalMatchTheReference) {
             p = s.near(bd.center + bd.rotation * (sgn * bd.halfExtents), 1e-3);
         }
         const ref::Contact want = ref::boxContact(rb, toRef(p));
-        const bool normal = unambiguous(bd, p, 1e-9);
+        const bool normal = test::clearOfBoxKinks<double>(bd, p, 1e-9);
         checkedNormals += normal;
         compare(contact(bd, p), want, 1e-14, normal);
-        compare(contact(bf, glm::vec3(p)), want, kFloatTol, unambiguous(bd, p, 1e-2));
+        compare(contact(bf, glm::vec3(p)), want, kFloatTol,
+                test::clearOfBoxKinks<double>(bd, p, 1e-2));
     }
     EXPECT_GT(checkedNormals, 25000);
 }
@@ -161,7 +144,8 @@ TEST(ColliderReference, ContactResponseMatchesTheReference) {
         glm::vec3 pf(p0), vf(v0);
         const BoxT<float> bf{glm::vec3(0), glm::vec3(bd.halfExtents), glm::mat3(bd.rotation)};
         // Float may decide differently at the contact threshold or on the medial surface.
-        if (std::abs(ref::boxContact(rb, toRef(p0)).phi - h) < 1e-5 || !unambiguous(bd, p0, 1e-4))
+        if (std::abs(ref::boxContact(rb, toRef(p0)).phi - h) < 1e-5 ||
+            !test::clearOfBoxKinks<double>(bd, p0, 1e-4))
             continue;
         collide(bf, ContactParamsT<float>{float(h), float(cf)}, glm::vec3(vc), pf, vf);
         EXPECT_NEAR(glm::length(D3(pf) - fromRef(rp)), 0, 1e-5);

@@ -10,6 +10,7 @@
 #include "core/collider_contact.h"
 #include "gpu/shader_loader.h"
 #include "gpu_test_support.h"
+#include "support/box_regions.h"
 
 namespace cloth {
 namespace {
@@ -79,24 +80,6 @@ std::vector<glm::vec4> probe(const Shapes& s, const std::vector<glm::vec4>& in) 
     return out;
 }
 
-// Whether p is clear (by `margin`) of the box's medial surface and region borders.
-bool clearOfKinks(const BoxT<float>& b, const V3& p, float margin) {
-    const V3 q = glm::transpose(b.rotation) * (p - b.center);
-    const V3 d = glm::abs(q) - b.halfExtents;
-    if (glm::length(glm::max(d, V3(0))) > 0)
-        return glm::all(glm::greaterThan(glm::abs(d), V3(margin)));
-    float first = -INFINITY, second = -INFINITY;
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] > first) {
-            second = first;
-            first = d[a];
-        } else {
-            second = std::max(second, d[a]);
-        }
-    }
-    return first - second > margin && glm::all(glm::greaterThan(glm::abs(q), V3(margin)));
-}
-
 void expectContact(const glm::vec4& gpu, const ContactT<float>& cpu, bool normal, const char* what,
                    int k) {
     EXPECT_NEAR(gpu.w, cpu.phi, kPhiTol) << what << " φ, point " << k;
@@ -133,7 +116,7 @@ TEST_F(GpuColliders, GlslShapesAndResponseMatchTheCppHeader) {
         const ContactT<float> sc = contact(s.sphere, p);
         expectContact(o[1], sc, sc.phi + s.sphere.radius > 1e-2f, "sphere", k);
         const ContactT<float> bc = contact(s.box, p);
-        const bool clear = clearOfKinks(s.box, p, 1e-2f);
+        const bool clear = test::clearOfBoxKinks<float>(s.box, p, 1e-2f);
         expectContact(o[2], bc, clear, "box", k);
         const ContactT<float> cc = contact(s.capsule, p);
         expectContact(o[3], cc, cc.phi + s.capsule.radius > 1e-2f, "capsule", k);
