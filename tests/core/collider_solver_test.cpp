@@ -184,7 +184,7 @@ TEST_P(ColliderSolver, MatchesTheReferenceAndEndsNoStepInside) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryShape, ColliderSolver, ::testing::ValuesIn(cases()),
-                         [](const auto& info) { return info.param.name; });
+                         [](const ::testing::TestParamInfo<Case>& p) { return p.param.name; });
 
 // ---- friction at cloth level -----------------------------------------------------------------
 
