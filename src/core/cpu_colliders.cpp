@@ -136,10 +136,52 @@ void CpuColliders<T>::pose(double t) noexcept {
     }
 }
 
+// The row kernel's view of a plane or sphere.
 template <typename T>
-void CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n) const {
+ContactRow<T> contactRow(const CpuCollider<T>& c, Row3<T> x, Row3<T> v) {
+    ContactRow<T> r{x,
+                    v,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    c.params.thickness,
+                    c.params.friction,
+                    c.moving,
+                    c.linear.x,
+                    c.linear.y,
+                    c.linear.z,
+                    c.angular.x,
+                    c.angular.y,
+                    c.angular.z,
+                    c.origin.x,
+                    c.origin.y,
+                    c.origin.z};
+    if (const PlaneT<T>* p = std::get_if<PlaneT<T>>(&c.shape)) {
+        r.cx = p->point.x, r.cy = p->point.y, r.cz = p->point.z;
+        r.nx = p->normal.x, r.ny = p->normal.y, r.nz = p->normal.z;
+    } else if (const SphereT<T>* s = std::get_if<SphereT<T>>(&c.shape)) {
+        r.cx = s->center.x, r.cy = s->center.y, r.cz = s->center.z;
+        r.radius = s->radius;
+    }
+    return r;
+}
+
+template <typename T>
+void CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const {
     for (const CpuCollider<T>& c : posed_) {
         if (!rowMayTouch(c, ConstRow3<T>(x), n)) continue;
+        if (std::holds_alternative<PlaneT<T>>(c.shape)) {
+            kernels.planeContact(contactRow(c, x, v), n);
+            continue;
+        }
+        if (std::holds_alternative<SphereT<T>>(c.shape)) {
+            kernels.sphereContact(contactRow(c, x, v), n);
+            continue;
+        }
         std::visit(
             [&](const auto& s) {
                 for (int i = 0; i < n; ++i) {

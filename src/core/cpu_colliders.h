@@ -52,8 +52,9 @@ public:
         for (const CpuCollider<T>& c : posed_)
             std::visit([&](const auto& s) { applyOne(c, s, p, v); }, c.shape);
     }
-    // The same on the n vertices of a row of positions x and velocities v.
-    void applyRow(Row3<T> x, Row3<T> v, int n) const;
+    // The same on the n vertices of a row of positions x and velocities v; planes and spheres
+    // through the row kernels (the same bits, vectorised).
+    void applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;
 
 private:
     using RestShape = std::variant<PlaneT<double>, SphereT<double>, BoxT<double>, CapsuleT<double>,

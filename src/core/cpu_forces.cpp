@@ -144,7 +144,7 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
             xNext_.set(*pin, pinPosition_[*pin]);
             v_.set(*pin, Vec3<T>(0));
         }
-        if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v_.row(k), nu);
+        if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v_.row(k), nu, *kernels_);
         if (ok && kernels_->anyBad(xNext_.row(k), v_.row(k), maxSpeed2_, nu))
             ok = reportFirstBad(band, k, k + nu);
     });
