@@ -11,19 +11,15 @@
 #include <set>
 #include <sstream>
 
-#include "core/collider_validate.h"
 #include "core/errors.h"
 #include "core/key_path.h"
 #include "core/params.h"
 #include "core/scene_overrides.h"
+#include "core/scene_reader.h"
 #include "core/scene_text.h"
 
 namespace cloth {
-namespace {
-
-using Json = nlohmann::json;
-
-glm::dvec3 unitKeepingBits(const glm::dvec3& d);
+namespace detail {
 
 std::string describe(const Json& j) {
     switch (j.type()) {
@@ -48,48 +44,6 @@ std::string describe(const Json& j) {
             return "a value of another type";
     }
 }
-
-// Reads one JSON document into a Scene, naming the file and key path in every complaint.
-class SceneReader {
-public:
-    explicit SceneReader(std::string source) : source_(std::move(source)) {}
-
-    Scene read(const Json& doc);
-
-private:
-    [[noreturn]] void fail(const std::string& path, const std::string& reason) const {
-        throw InputError(source_, path, reason);
-    }
-
-    void expectObject(const Json& j, const std::string& path,
-                      std::initializer_list<const char*> allowed) const {
-        expectKeys(j, path, std::vector<const char*>(allowed));
-    }
-    void expectKeys(const Json& j, const std::string& path,
-                    const std::vector<const char*>& allowed) const;
-    double number(const Json& j, const std::string& path) const;
-    double param(const Json& obj, const std::string& key, const std::string& path, const char* spec,
-                 double fallback) const;
-    glm::dvec3 vec3(const Json& j, const std::string& path) const;
-    glm::dvec3 direction(const Json& j, const std::string& path) const;
-    int integer(const Json& j, const std::string& path) const;
-    const Json& required(const Json& obj, const std::string& key, const std::string& path) const;
-
-    void readCloth(const Json& j, ClothSpec& cloth) const;
-    void readSprings(const Json& j, SpringStiffness& springs) const;
-    void readIntegrator(const Json& j, IntegratorSpec& integrator) const;
-    std::vector<Pin> readPins(const Json& j, const ClothSpec& cloth) const;
-    Collider readCollider(const Json& j, const std::string& path) const;
-    ColliderShape readShape(const Json& j, const std::string& path, const std::string& type,
-                            double thickness) const;
-    void expectCollider(const Json& j, const std::string& path,
-                        std::initializer_list<const char*> shapeKeys) const;
-    AxisAngle readRotation(const Json& j, const std::string& path) const;
-    ColliderMotion readMotion(const Json& j, const std::string& path) const;
-    Wind readWind(const Json& j) const;
-
-    std::string source_;
-};
 
 void SceneReader::expectKeys(const Json& j, const std::string& path,
                              const std::vector<const char*>& allowed) const {
@@ -251,137 +205,6 @@ std::vector<Pin> SceneReader::readPins(const Json& j, const ClothSpec& cloth) co
     return pins;
 }
 
-// The keys every collider type takes besides its shape's (docs/colliders.md §5).
-constexpr const char* kContactKeys[] = {"type", "thickness", "friction", "motion"};
-
-void SceneReader::expectCollider(const Json& j, const std::string& path,
-                                 std::initializer_list<const char*> shapeKeys) const {
-    std::vector<const char*> allowed(std::begin(kContactKeys), std::end(kContactKeys));
-    allowed.insert(allowed.end(), shapeKeys.begin(), shapeKeys.end());
-    expectKeys(j, path, allowed);
-}
-
-AxisAngle SceneReader::readRotation(const Json& j, const std::string& path) const {
-    expectObject(j, path, {"axis", "degrees"});
-    AxisAngle r;
-    const glm::dvec3 axis = vec3(required(j, "axis", path), child(path, "axis"));
-    r.degrees = number(required(j, "degrees", path), child(path, "degrees"));
-    checkRotation({source_, path}, axis, r.degrees);  // names .axis: zero, NaN, infinite
-    r.axis = unitKeepingBits(axis);
-    return r;
-}
-
-ColliderMotion SceneReader::readMotion(const Json& j, const std::string& path) const {
-    if (!j.is_object()) fail(path, "expected a motion object, got " + describe(j));
-    const Json& type = required(j, "type", path);
-    const std::string t = type.is_string() ? type.get<std::string>() : "";
-    ColliderMotion m;
-    auto num = [&](const char* key) { return number(required(j, key, path), child(path, key)); };
-    auto v3 = [&](const char* key) { return vec3(required(j, key, path), child(path, key)); };
-    if (t == "linear") {
-        expectObject(j, path, {"type", "velocity"});
-        m.type = MotionType::Linear;
-        m.velocity = v3("velocity");
-    } else if (t == "rotation") {
-        expectObject(j, path, {"type", "axis", "pivot", "degrees_per_second"});
-        m.type = MotionType::Rotation;
-        m.axis = v3("axis");
-        if (j.contains("pivot")) m.pivot = v3("pivot");
-        m.degreesPerSecond = num("degrees_per_second");
-    } else if (t == "oscillation") {
-        expectObject(j, path, {"type", "axis", "amplitude", "frequency", "phase_degrees"});
-        m.type = MotionType::Oscillation;
-        m.axis = v3("axis");
-        m.amplitude = num("amplitude");
-        m.frequency = num("frequency");
-        if (j.contains("phase_degrees")) m.phaseDegrees = num("phase_degrees");
-    } else {
-        fail(child(path, "type"),
-             "unknown motion type " + describe(type) + "; known: linear, rotation, oscillation");
-    }
-    checkMotion({source_, path}, m.motion());  // axis non-zero, frequency >= 0, finite
-    m.axis = unitKeepingBits(m.axis);
-    return m;
-}
-
-ColliderShape SceneReader::readShape(const Json& j, const std::string& path, const std::string& t,
-                                     double thickness) const {
-    auto v3 = [&](const char* key) { return vec3(required(j, key, path), child(path, key)); };
-    auto num = [&](const char* key) { return number(required(j, key, path), child(path, key)); };
-    if (t == "plane") {
-        expectCollider(j, path, {"point", "normal"});
-        Plane plane;
-        plane.point = v3("point");
-        plane.normal = direction(required(j, "normal", path), child(path, "normal"));
-        return plane;
-    }
-    if (t == "sphere") {
-        expectCollider(j, path, {"center", "radius"});
-        Sphere sphere;
-        sphere.center = v3("center");
-        required(j, "radius", path);
-        sphere.radius = param(j, "radius", child(path, "radius"), "colliders[].radius", 0);
-        return sphere;
-    }
-    if (t == "box") {
-        expectCollider(j, path, {"center", "half_extents", "rotation"});
-        Box box;
-        box.center = v3("center");
-        box.halfExtents =
-            checkHalfExtents({source_, child(path, "half_extents")}, v3("half_extents"));
-        if (j.contains("rotation"))
-            box.rotation = readRotation(j["rotation"], child(path, "rotation"));
-        return box;
-    }
-    if (t == "capsule") {
-        expectCollider(j, path, {"a", "b", "radius"});
-        Capsule cap;
-        cap.a = v3("a");
-        cap.b = v3("b");
-        cap.radius = checkRadius({source_, child(path, "radius")}, num("radius"));
-        return cap;
-    }
-    if (t == "mesh") {
-        expectCollider(j, path, {"file", "cell", "band", "translation", "rotation"});
-        MeshCollider mesh;
-        const Json& file = required(j, "file", path);
-        if (!file.is_string())
-            fail(child(path, "file"), "expected a string, got " + describe(file));
-        mesh.file = file.get<std::string>();
-        mesh.cell = num("cell");
-        mesh.band = num("band");
-        if (j.contains("translation")) mesh.translation = v3("translation");
-        if (j.contains("rotation"))
-            mesh.rotation = readRotation(j["rotation"], child(path, "rotation"));
-        auto baked = std::make_shared<BakedMesh>(
-            checkMeshCollider({source_, path}, mesh.file, mesh.cell, mesh.band, thickness));
-        mesh.baked = std::move(baked);
-        namespace fs = std::filesystem;
-        fs::path obj(mesh.file);
-        if (obj.is_relative()) obj = fs::path(source_).parent_path() / obj;
-        mesh.path = fs::absolute(obj).lexically_normal().string();
-        return mesh;
-    }
-    fail(child(path, "type"),
-         "unknown collider type \"" + t + "\"; known: plane, sphere, box, capsule, mesh");
-}
-
-Collider SceneReader::readCollider(const Json& j, const std::string& path) const {
-    if (!j.is_object()) fail(path, "expected a collider object, got " + describe(j));
-    const Json& type = required(j, "type", path);
-    if (!type.is_string()) fail(child(path, "type"), "expected a string, got " + describe(type));
-    Collider c;
-    if (j.contains("thickness"))
-        c.thickness = checkThickness({source_, child(path, "thickness")},
-                                     number(j["thickness"], child(path, "thickness")));
-    if (j.contains("friction"))
-        c.friction = checkFriction({source_, child(path, "friction")},
-                                   number(j["friction"], child(path, "friction")));
-    c.shape = readShape(j, path, type.get<std::string>(), c.thickness);
-    if (j.contains("motion")) c.motion = readMotion(j["motion"], child(path, "motion"));
-    return c;
-}
-
 Wind SceneReader::readWind(const Json& j) const {
     expectObject(j, "wind", {"direction", "strength"});
     Wind wind;
@@ -423,15 +246,15 @@ Scene SceneReader::read(const Json& doc) {
     return scene;
 }
 
-}  // namespace
+}  // namespace detail
 
 Scene parseScene(const std::string& text, const std::string& source,
                  const std::vector<std::string>& overrides) {
-    Json doc = parseSceneText(text, source);
+    detail::Json doc = parseSceneText(text, source);
     std::vector<std::string> keys;
     for (const std::string& o : overrides) keys.push_back(applyOverride(doc, o, source));
     try {
-        return SceneReader(source).read(doc);
+        return detail::SceneReader(source).read(doc);
     } catch (const InputError& e) {
         for (const std::string& k : keys)
             if (e.key().rfind(k, 0) == 0 || k.rfind(e.key(), 0) == 0)
