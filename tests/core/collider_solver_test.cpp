@@ -272,5 +272,46 @@ TEST(ColliderMotion, MovingBoxCarriesTheClothRestingOnIt) {
     EXPECT_GT(minY, 0.1 + 0.002 - 1e-6) << "the cloth sank into the box";
 }
 
+// ---- tunnelling at cloth level (docs/colliders.md §7) ------------------------------------------
+
+// A 9×9 cloth, 0.2 m square, level above a thin box (half thickness a = 1 cm, h = 2 mm), thrown
+// down at `speed`; after 0.1 s, the lowest vertex's height relative to the box's midplane [m]
+// (negative: some vertex went through).
+double lowestAfterThrow(double speed) {
+    Json j = Json::parse(R"({
+      "cloth": { "resolution": [9, 9], "size": [0.2, 0.2], "origin": [-0.1, 0.05, -0.1],
+                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
+      "springs": { "structural": 5.0 },
+      "integrator": { "method": "explicit_euler", "dt": 0.001 },
+      "colliders": [ { "type": "box", "center": [0, 0, 0], "half_extents": [0.5, 0.01, 0.5],
+                       "thickness": 0.002 } ]
+    })");
+    const Scene s = parseScene(j.dump(), "thin box (test)");
+    auto solver = makeCpuSolver(s, {Precision::Double, 1});
+    SimState st = solver->read();
+    for (glm::dvec3& v : st.velocities) v = {0, -speed, 0};
+    solver->write(st);
+    solver->step(100);
+    double lowest = 1e300;
+    for (const glm::dvec3& p : solver->read().positions) lowest = std::min(lowest, p.y);
+    return lowest;
+}
+
+// Law (docs/colliders.md §7): a vertex that starts outside the offset surface is held by a slab
+// of half thickness a iff its speed relative to it satisfies s·Δt ≤ a + h: thrown below that
+// limit (12 m/s here) the whole cloth stays on the near side; at 2.5× it passes through.
+TEST(ColliderTunnelling, ClothThrownAtAThinBoxStaysOnItBelowTheLimit) {
+    const double limit = (0.01 + 0.002) / 0.001;  // (a + h)/Δt [m/s]
+    for (double fraction : {0.1, 0.3, 0.6, 0.9}) {
+        const double lowest = lowestAfterThrow(fraction * limit);
+        std::printf(
+            "thrown at %.1f m/s (%.0f%% of the limit): lowest vertex %.4f m above the "
+            "midplane\n",
+            fraction * limit, 100 * fraction, lowest);
+        EXPECT_GT(lowest, 0.01 + 0.002 - 1e-9) << fraction * limit << " m/s";
+    }
+    EXPECT_LT(lowestAfterThrow(2.5 * limit), -0.01) << "the test would not see a tunnel";
+}
+
 }  // namespace
 }  // namespace cloth
