@@ -153,7 +153,7 @@ int runCommand(Args& args) {
     const SimState state = solver->read();
     if (!o.csv.empty()) writeCsv(o.csv, state, precision);
     if (!o.obj.empty()) writeObj(o.obj, state, scene.name);
-    if (!o.colliders.empty())  // still colliders today: their pose at t = 0 is their pose
+    if (!o.colliders.empty())  // at their pose at t = 0 (a moving collider where it starts)
         writeMeshesObj(o.colliders,
                        colliderMeshes(scene.colliders, std::max(10.0, 4 * scene.grid().extent())));
     if (!o.quiet) {

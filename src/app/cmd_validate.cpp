@@ -4,6 +4,7 @@
 
 #include "app/cli.h"
 #include "app/solver_factory.h"
+#include "core/collider_validate.h"
 #include "core/errors.h"
 #include "core/scene_loader.h"
 #include "core/stability.h"
@@ -22,6 +23,64 @@ std::string vec(const glm::dvec3& v) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "(%g, %g, %g)", v.x, v.y, v.z);
     return buf;
+}
+
+std::string axisAngle(const AxisAngle& r) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf, "%g° about %s", r.degrees, vec(r.axis).c_str());
+    return buf;
+}
+
+std::string motionText(const ColliderMotion& m) {
+    char buf[200];
+    switch (m.type) {
+        case MotionType::Rotation:
+            std::snprintf(buf, sizeof buf, "turning %g °/s about %s through %s", m.degreesPerSecond,
+                          vec(m.axis).c_str(), vec(m.pivot).c_str());
+            break;
+        case MotionType::Oscillation:
+            std::snprintf(buf, sizeof buf, "oscillating %g m at %g Hz along %s (phase %g°)",
+                          m.amplitude, m.frequency, vec(m.axis).c_str(), m.phaseDegrees);
+            break;
+        default:
+            std::snprintf(buf, sizeof buf, "moving at %s m/s", vec(m.velocity).c_str());
+    }
+    return buf;
+}
+
+// One line per collider: its shape, then what docs/colliders.md §2–3 add to it.
+void printCollider(size_t n, const Collider& c) {
+    std::string text;
+    char buf[400];
+    if (const Plane* p = c.as<Plane>()) {
+        text = "plane through " + vec(p->point) + ", normal " + vec(p->normal);
+    } else if (const Sphere* sp = c.as<Sphere>()) {
+        std::snprintf(buf, sizeof buf, "sphere at %s, radius %g m", vec(sp->center).c_str(),
+                      sp->radius);
+        text = buf;
+    } else if (const Box* b = c.as<Box>()) {
+        text = "box at " + vec(b->center) + ", half extents " + vec(b->halfExtents) + " m, " +
+               axisAngle(b->rotation);
+    } else if (const Capsule* cap = c.as<Capsule>()) {
+        std::snprintf(buf, sizeof buf, "capsule from %s to %s, radius %g m", vec(cap->a).c_str(),
+                      vec(cap->b).c_str(), cap->radius);
+        text = buf;
+    } else if (const MeshCollider* m = c.as<MeshCollider>()) {
+        const SdfGrid& g = m->baked->grid;
+        std::snprintf(buf, sizeof buf,
+                      "mesh %s (%zu triangles), SDF grid %d x %d x %d of %g m, band %g m, moved "
+                      "by %s, %s",
+                      m->file.c_str(), m->baked->mesh.triangles.size(), g.count.x, g.count.y,
+                      g.count.z, g.cell, g.band, vec(m->translation).c_str(),
+                      axisAngle(m->rotation).c_str());
+        text = buf;
+    }
+    if (c.thickness != 0 || c.friction != 0) {
+        std::snprintf(buf, sizeof buf, "; thickness %g m, friction %g", c.thickness, c.friction);
+        text += buf;
+    }
+    if (c.motion) text += "; " + motionText(*c.motion);
+    std::printf("collider %zu   %s\n", n, text.c_str());
 }
 
 void printModel(const Scene& s) {
@@ -52,14 +111,7 @@ void printModel(const Scene& s) {
     for (const Pin& p : s.pins) std::printf(" (%d, %d)", p.i, p.j);
     std::printf("\n");
     if (s.colliders.empty()) std::printf("colliders    none\n");
-    for (size_t n = 0; n < s.colliders.size(); ++n) {
-        if (const Plane* p = std::get_if<Plane>(&s.colliders[n]))
-            std::printf("collider %zu   plane through %s, normal %s\n", n, vec(p->point).c_str(),
-                        vec(p->normal).c_str());
-        else if (const Sphere* sp = std::get_if<Sphere>(&s.colliders[n]))
-            std::printf("collider %zu   sphere at %s, radius %g m\n", n, vec(sp->center).c_str(),
-                        sp->radius);
-    }
+    for (size_t n = 0; n < s.colliders.size(); ++n) printCollider(n, s.colliders[n]);
     std::printf("integrator   %s, dt = %g s, %d substeps per frame, duration %g s = %ld steps\n",
                 methodName(s.integrator.method), s.integrator.dt, s.integrator.substeps, s.duration,
                 s.defaultSteps());

@@ -143,7 +143,8 @@ bool collidersSection(ViewerParams& p) {
             changed = true;
         }
         ImGui::SameLine();
-        if (Plane* pl = std::get_if<Plane>(&p.scene.colliders[c])) {
+        Collider& col = p.scene.colliders[c];
+        if (Plane* pl = col.as<Plane>()) {
             ImGui::Text("plane %zu", c);
             changed |= dragVec3("point", pl->point, 0.01f);
             glm::dvec3 n = pl->normal;
@@ -151,11 +152,12 @@ bool collidersSection(ViewerParams& p) {
                 pl->normal = unitOr(n, pl->normal);
                 changed = true;
             }
-        } else {
-            Sphere& sp = std::get<Sphere>(p.scene.colliders[c]);
+        } else if (Sphere* sp = col.as<Sphere>()) {
             ImGui::Text("sphere %zu", c);
-            changed |= dragVec3("centre", sp.center, 0.01f);
-            changed |= dragDouble("radius [m]", sp.radius, 0.005f, 1e-3, 100);
+            changed |= dragVec3("centre", sp->center, 0.01f);
+            changed |= dragDouble("radius [m]", sp->radius, 0.005f, 1e-3, 100);
+        } else {  // box, capsule, mesh: edited in the scene file for now
+            ImGui::Text("%s %zu", colliderTypeName(col.shape), c);
         }
         ImGui::PopID();
     }

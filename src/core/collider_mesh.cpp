@@ -8,6 +8,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/collider_validate.h"
+
 namespace cloth {
 namespace {
 
@@ -126,10 +128,23 @@ std::vector<std::pair<std::string, TriMesh>> colliderMeshes(const std::vector<Co
     std::vector<std::pair<std::string, TriMesh>> out;
     for (size_t k = 0; k < colliders.size(); ++k) {
         const std::string name = "collider" + std::to_string(k);
-        if (const auto* p = std::get_if<Plane>(&colliders[k]))
-            out.emplace_back(name + "_plane", planeQuad({p->point, p->normal}, planeHalfSize));
-        else if (const auto* s = std::get_if<Sphere>(&colliders[k]))
-            out.emplace_back(name + "_sphere", sphereMesh({s->center, s->radius}, 3));
+        const Collider& c = colliders[k];
+        const std::string type = colliderTypeName(c.shape);
+        if (const Plane* p = c.as<Plane>())
+            out.emplace_back(name + "_" + type, planeQuad({p->point, p->normal}, planeHalfSize));
+        else if (const Sphere* s = c.as<Sphere>())
+            out.emplace_back(name + "_" + type, sphereMesh({s->center, s->radius}, 3));
+        else if (const Box* b = c.as<Box>())
+            out.emplace_back(name + "_" + type,
+                             boxMesh({b->center, b->halfExtents, b->rotation.matrix()}));
+        else if (const Capsule* cap = c.as<Capsule>())
+            out.emplace_back(name + "_" + type, capsuleMesh({cap->a, cap->b, cap->radius}, 32, 8));
+        else if (const MeshCollider* m = c.as<MeshCollider>()) {
+            TriMesh posed = m->baked->mesh;  // the OBJ rotated about its origin, then moved
+            const glm::dmat3 r = m->rotation.matrix();
+            for (glm::dvec3& v : posed.vertices) v = r * v + m->translation;
+            out.emplace_back(name + "_" + type, std::move(posed));
+        }
     }
     return out;
 }

@@ -144,13 +144,7 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
             xNext_.set(*pin, pinPosition_[*pin]);
             v_.set(*pin, Vec3<T>(0));
         }
-        if (!colliders_.empty())
-            for (std::int64_t q = k; q < k + nu; ++q) {
-                Vec3<T> p = xNext_.get(q), v = v_.get(q);
-                collideVertex(p, v);
-                xNext_.set(q, p);
-                v_.set(q, v);
-            }
+        if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v_.row(k), nu, *kernels_);
         if (ok && kernels_->anyBad(xNext_.row(k), v_.row(k), maxSpeed2_, nu))
             ok = reportFirstBad(band, k, k + nu);
     });

@@ -68,6 +68,20 @@ struct GatherRow {
 inline constexpr bool kComputedInGather[12] = {false, false, true,  false, true, true,
                                                false, false, false, false, true, false};
 
+// A plane or sphere collider on a row of positions x and velocities v (core/cpu_colliders.h),
+// with the response of core/collider_contact.h lane by lane: thickness h, friction c_f, and
+// when `moving`, the collider's velocity v_c = linear + angular × (p − origin) at each vertex.
+template <typename T>
+struct ContactRow {
+    Row3<T> x, v;
+    T cx, cy, cz;  // the plane's point or the sphere's centre [m]
+    T nx, ny, nz;  // the plane's unit normal
+    T radius;      // the sphere's [m]
+    T thickness, friction;
+    bool moving;
+    T lx, ly, lz, ax, ay, az, ox, oy, oz;  // linear [m/s], angular [rad/s], origin [m]
+};
+
 // Every kernel runs over n elements from the given (already offset) pointers.
 template <typename T>
 struct RowKernels {
@@ -86,6 +100,9 @@ struct RowKernels {
     void (*symplecticEuler)(const EulerRow<T>& row, int n);
     // Whether any element is unstable (spring_math.h badVertex).
     bool (*anyBad)(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n);
+    // collide() of core/collider_contact.h for a plane or a sphere, branch-free: the same bits.
+    void (*planeContact)(const ContactRow<T>& row, int n);
+    void (*sphereContact)(const ContactRow<T>& row, int n);
 };
 
 template <typename T>

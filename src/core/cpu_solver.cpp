@@ -106,13 +106,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
     windStrength_ = scene.wind ? T(scene.wind->strength) : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
-    colliders_.clear();
-    for (const Collider& c : scene.colliders) {
-        if (const Plane* p = std::get_if<Plane>(&c))
-            colliders_.push_back(PlaneT<T>{cast<T>(p->point), cast<T>(p->normal)});
-        else if (const Sphere* s = std::get_if<Sphere>(&c))
-            colliders_.push_back(SphereT<T>{cast<T>(s->center), T(s->radius)});
-    }
+    colliders_.take(scene);
 }
 
 template <typename T>
@@ -302,6 +296,7 @@ StepResult CpuSolver<T>::step(long n) {
         bool haveForces = forcesValid_;
         for (long s = 0; s < n; ++s) {
             ++result.stepsTaken;
+            poseColliders(steps_ + s + 1);
             const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
             if (fused()) std::swap(x_, xNext_);  // the fused sweep always completes its step
             if (!ok) break;
@@ -330,8 +325,12 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     std::barrier sync(std::ptrdiff_t(bands_.size()));
     const Team team{&sync};
     // The end of a step: once every band is done, the fused sweep's new positions become x_.
-    auto swapPositions = [this]() noexcept {
+    // The moving colliders are posed for the next step there too, while every thread waits.
+    long posed = steps_ + 1;
+    poseColliders(posed);
+    auto swapPositions = [this, &posed]() noexcept {
         if (fused()) std::swap(x_, xNext_);
+        poseColliders(++posed);
     };
     std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
     std::atomic<bool> bad{false};

@@ -11,7 +11,7 @@
 #include <variant>
 #include <vector>
 
-#include "core/colliders.h"
+#include "core/cpu_colliders.h"
 #include "core/cpu_rows.h"
 #include "core/cpu_soa.h"
 #include "core/solver.h"
@@ -144,7 +144,11 @@ private:
     std::vector<std::uint8_t> pinned_;
     T dt_t_, damping_, maxSpeed2_, windStrength_;
     Vec3<T> gravity_, windDirection_;
-    std::vector<std::variant<PlaneT<T>, SphereT<T>>> colliders_;
+    CpuColliders<T> colliders_;
+    // Poses the moving colliders at the end of step `stepNumber` (1-based), before it is taken.
+    void poseColliders(long stepNumber) noexcept {
+        if (colliders_.anyMoving()) colliders_.pose(double(stepNumber) * Solver::dt_);
+    }
     double maxSpeed_;
     std::optional<GrabT> grab_;
     std::vector<Band> bands_;

@@ -29,8 +29,7 @@ inline void CpuSolver<T>::constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v
 
 template <typename T>
 inline void CpuSolver<T>::collideVertex(Vec3<T>& p, Vec3<T>& v) const {
-    for (const auto& c : colliders_)
-        std::visit([&](const auto& shape) { collide(shape, p, v); }, c);
+    colliders_.apply(p, v);
 }
 
 // The end of a step: the constraints, then the instability check.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace cloth {
 
@@ -75,13 +76,33 @@ long Scene::defaultSteps() const {
 }
 
 int Scene::planeCount() const {
-    return int(std::count_if(colliders.begin(), colliders.end(),
-                             [](const Collider& c) { return std::holds_alternative<Plane>(c); }));
+    return count<Plane>();
 }
 
 int Scene::sphereCount() const {
-    return int(std::count_if(colliders.begin(), colliders.end(),
-                             [](const Collider& c) { return std::holds_alternative<Sphere>(c); }));
+    return count<Sphere>();
+}
+
+glm::dmat3 AxisAngle::matrix() const {
+    return axisAngle(axis, degrees * std::numbers::pi / 180);
+}
+
+Motion ColliderMotion::motion() const {
+    Motion m;
+    m.type = type;
+    m.velocity = velocity;
+    m.axis = axis;
+    m.pivot = pivot;
+    m.angularSpeed = degreesPerSecond * std::numbers::pi / 180;
+    m.amplitude = amplitude;
+    m.frequency = frequency;
+    m.phase = phaseDegrees * std::numbers::pi / 180;
+    return m;
+}
+
+const char* colliderTypeName(const ColliderShape& shape) {
+    static constexpr const char* kNames[] = {"plane", "sphere", "box", "capsule", "mesh"};
+    return kNames[shape.index()];
 }
 
 }  // namespace cloth

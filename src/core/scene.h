@@ -4,11 +4,14 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
+#include "core/collider_motion.h"
 #include "core/grid.h"
 
 namespace cloth {
@@ -54,7 +57,75 @@ struct Sphere {
     glm::dvec3 center{0};
     double radius = 1;  // [m]
 };
-using Collider = std::variant<Plane, Sphere>;
+
+// {"axis": [x, y, z], "degrees": a} (docs/colliders.md §1): kept as written (the axis
+// normalised) so that a saved scene loads back bit for bit; matrix() is local → world.
+struct AxisAngle {
+    glm::dvec3 axis{0, 0, 1};  // unit length
+    double degrees = 0;
+    glm::dmat3 matrix() const;
+};
+
+// docs/colliders.md §1: an oriented box and a capsule.
+struct Box {
+    glm::dvec3 center{0};
+    glm::dvec3 halfExtents{0.5};  // > 0 [m]
+    AxisAngle rotation;
+};
+struct Capsule {
+    glm::dvec3 a{0}, b{0, 1, 0};  // end points of the axis [m]
+    double radius = 0.1;          // [m]
+};
+
+// A closed OBJ baked once at load into a signed-distance grid (docs/colliders.md §4). The bake
+// is shared, so copying a Scene stays cheap.
+struct BakedMesh;
+struct MeshCollider {
+    std::string file;  // the OBJ as the scene names it (relative to the scene's folder)
+    std::string path;  // the OBJ's absolute path, which a saved scene writes
+    double cell = 0.01, band = 0.05;  // grid spacing and margin [m]
+    glm::dvec3 translation{0};
+    AxisAngle rotation;  // about the OBJ's origin, before the translation
+    std::shared_ptr<const BakedMesh> baked;
+};
+
+// A motion in the scene's units (docs/colliders.md §3); motion() gives collider_motion.h's.
+struct ColliderMotion {
+    MotionType type = MotionType::Linear;
+    glm::dvec3 velocity{0};    // linear [m/s]
+    glm::dvec3 axis{0, 1, 0};  // rotation, oscillation (unit)
+    glm::dvec3 pivot{0};       // rotation [m]
+    double degreesPerSecond = 0;
+    double amplitude = 0, frequency = 0, phaseDegrees = 0;  // oscillation [m], [Hz], [°]
+    Motion motion() const;
+};
+
+using ColliderShape = std::variant<Plane, Sphere, Box, Capsule, MeshCollider>;
+
+// One collider: its shape at t = 0, the contact parameters of docs/colliders.md §2, and how it
+// moves. A plane or sphere with thickness 0, friction 0 and no motion is DESIGN.md §2's.
+struct Collider {
+    ColliderShape shape;
+    double thickness = 0;  // h [m]
+    double friction = 0;   // c_f
+    std::optional<ColliderMotion> motion;
+
+    Collider() = default;
+    template <typename S>
+    requires std::is_constructible_v<ColliderShape, S> Collider(S s)
+        : shape(std::move(s)) {}  // NOLINT: a bare shape is a collider
+    template <typename S>
+    const S* as() const {
+        return std::get_if<S>(&shape);
+    }
+    template <typename S>
+    S* as() {
+        return std::get_if<S>(&shape);
+    }
+    bool plain() const { return thickness == 0 && friction == 0 && !motion; }
+};
+
+const char* colliderTypeName(const ColliderShape& shape);  // "plane", "sphere", "box", ...
 
 struct Wind {
     glm::dvec3 direction{1, 0, 0};  // unit length
@@ -83,6 +154,12 @@ struct Scene {
     long defaultSteps() const;  // round(duration / dt), at least 1
     int planeCount() const;
     int sphereCount() const;
+    template <typename S>
+    int count() const {
+        int n = 0;
+        for (const Collider& c : colliders) n += c.as<S>() != nullptr;
+        return n;
+    }
 };
 
 }  // namespace cloth

@@ -11,11 +11,59 @@ Json vec(const glm::dvec3& v) {
     return Json::array({v.x, v.y, v.z});
 }
 
-Json collider(const Collider& c) {
-    if (const Plane* p = std::get_if<Plane>(&c))
+Json rotation(const AxisAngle& r) {
+    return {{"axis", vec(r.axis)}, {"degrees", r.degrees}};
+}
+
+Json shape(const ColliderShape& shape) {
+    if (const Plane* p = std::get_if<Plane>(&shape))
         return {{"type", "plane"}, {"point", vec(p->point)}, {"normal", vec(p->normal)}};
-    const Sphere& s = std::get<Sphere>(c);
-    return {{"type", "sphere"}, {"center", vec(s.center)}, {"radius", s.radius}};
+    if (const Sphere* s = std::get_if<Sphere>(&shape))
+        return {{"type", "sphere"}, {"center", vec(s->center)}, {"radius", s->radius}};
+    if (const Box* b = std::get_if<Box>(&shape))
+        return {{"type", "box"},
+                {"center", vec(b->center)},
+                {"half_extents", vec(b->halfExtents)},
+                {"rotation", rotation(b->rotation)}};
+    if (const Capsule* c = std::get_if<Capsule>(&shape))
+        return {{"type", "capsule"}, {"a", vec(c->a)}, {"b", vec(c->b)}, {"radius", c->radius}};
+    const MeshCollider& m = std::get<MeshCollider>(shape);
+    // The absolute path: a saved scene may live in another folder than the one it came from.
+    return {{"type", "mesh"},
+            {"file", m.path},
+            {"cell", m.cell},
+            {"band", m.band},
+            {"translation", vec(m.translation)},
+            {"rotation", rotation(m.rotation)}};
+}
+
+Json motion(const ColliderMotion& m) {
+    switch (m.type) {
+        case MotionType::Linear:
+        case MotionType::Still:
+            return {{"type", "linear"}, {"velocity", vec(m.velocity)}};
+        case MotionType::Rotation:
+            return {{"type", "rotation"},
+                    {"axis", vec(m.axis)},
+                    {"pivot", vec(m.pivot)},
+                    {"degrees_per_second", m.degreesPerSecond}};
+        case MotionType::Oscillation:
+            return {{"type", "oscillation"},
+                    {"axis", vec(m.axis)},
+                    {"amplitude", m.amplitude},
+                    {"frequency", m.frequency},
+                    {"phase_degrees", m.phaseDegrees}};
+    }
+    return {};
+}
+
+// Keys at their defaults stay absent, so a scene without them saves as it did before.
+Json collider(const Collider& c) {
+    Json j = shape(c.shape);
+    if (c.thickness != 0) j["thickness"] = c.thickness;
+    if (c.friction != 0) j["friction"] = c.friction;
+    if (c.motion) j["motion"] = motion(*c.motion);
+    return j;
 }
 
 }  // namespace

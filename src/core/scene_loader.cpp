@@ -15,12 +15,11 @@
 #include "core/key_path.h"
 #include "core/params.h"
 #include "core/scene_overrides.h"
+#include "core/scene_reader.h"
 #include "core/scene_text.h"
 
 namespace cloth {
-namespace {
-
-using Json = nlohmann::json;
+namespace detail {
 
 std::string describe(const Json& j) {
     switch (j.type()) {
@@ -46,40 +45,8 @@ std::string describe(const Json& j) {
     }
 }
 
-// Reads one JSON document into a Scene, naming the file and key path in every complaint.
-class SceneReader {
-public:
-    explicit SceneReader(std::string source) : source_(std::move(source)) {}
-
-    Scene read(const Json& doc);
-
-private:
-    [[noreturn]] void fail(const std::string& path, const std::string& reason) const {
-        throw InputError(source_, path, reason);
-    }
-
-    void expectObject(const Json& j, const std::string& path,
-                      std::initializer_list<const char*> allowed) const;
-    double number(const Json& j, const std::string& path) const;
-    double param(const Json& obj, const std::string& key, const std::string& path, const char* spec,
-                 double fallback) const;
-    glm::dvec3 vec3(const Json& j, const std::string& path) const;
-    glm::dvec3 direction(const Json& j, const std::string& path) const;
-    int integer(const Json& j, const std::string& path) const;
-    const Json& required(const Json& obj, const std::string& key, const std::string& path) const;
-
-    void readCloth(const Json& j, ClothSpec& cloth) const;
-    void readSprings(const Json& j, SpringStiffness& springs) const;
-    void readIntegrator(const Json& j, IntegratorSpec& integrator) const;
-    std::vector<Pin> readPins(const Json& j, const ClothSpec& cloth) const;
-    Collider readCollider(const Json& j, const std::string& path) const;
-    Wind readWind(const Json& j) const;
-
-    std::string source_;
-};
-
-void SceneReader::expectObject(const Json& j, const std::string& path,
-                               std::initializer_list<const char*> allowed) const {
+void SceneReader::expectKeys(const Json& j, const std::string& path,
+                             const std::vector<const char*>& allowed) const {
     if (!j.is_object()) fail(path, "expected an object, got " + describe(j));
     for (const auto& [key, value] : j.items()) {
         bool known = false;
@@ -126,14 +93,19 @@ glm::dvec3 SceneReader::vec3(const Json& j, const std::string& path) const {
             number(j[2], element(path, 2))};
 }
 
+// A vector already unit to rounding is kept as it is, so a saved scene loads back bit for bit
+// (dividing by a length of 1 − 1e-16 would move the last bit each time). d is finite, non-zero.
+glm::dvec3 unitKeepingBits(const glm::dvec3& d) {
+    const double len = glm::length(d);
+    if (std::abs(len - 1) <= 4 * std::numeric_limits<double>::epsilon()) return d;
+    return d / len;
+}
+
 glm::dvec3 SceneReader::direction(const Json& j, const std::string& path) const {
     const glm::dvec3 d = vec3(j, path);
     const double len = glm::length(d);
     if (!(len > 1e-12) || !std::isfinite(len)) fail(path, "must be a non-zero direction");
-    // A vector already unit to rounding is kept as it is, so a saved scene loads back bit for
-    // bit (dividing by a length of 1 − 1e-16 would move the last bit each time).
-    if (std::abs(len - 1) <= 4 * std::numeric_limits<double>::epsilon()) return d;
-    return d / len;
+    return unitKeepingBits(d);
 }
 
 const Json& SceneReader::required(const Json& obj, const std::string& key,
@@ -233,29 +205,6 @@ std::vector<Pin> SceneReader::readPins(const Json& j, const ClothSpec& cloth) co
     return pins;
 }
 
-Collider SceneReader::readCollider(const Json& j, const std::string& path) const {
-    if (!j.is_object()) fail(path, "expected a collider object, got " + describe(j));
-    const Json& type = required(j, "type", path);
-    if (!type.is_string()) fail(child(path, "type"), "expected a string, got " + describe(type));
-    const std::string t = type.get<std::string>();
-    if (t == "plane") {
-        expectObject(j, path, {"type", "point", "normal"});
-        Plane plane;
-        plane.point = vec3(required(j, "point", path), child(path, "point"));
-        plane.normal = direction(required(j, "normal", path), child(path, "normal"));
-        return plane;
-    }
-    if (t == "sphere") {
-        expectObject(j, path, {"type", "center", "radius"});
-        Sphere sphere;
-        sphere.center = vec3(required(j, "center", path), child(path, "center"));
-        required(j, "radius", path);
-        sphere.radius = param(j, "radius", child(path, "radius"), "colliders[].radius", 0);
-        return sphere;
-    }
-    fail(child(path, "type"), "unknown collider type \"" + t + "\"; known: plane, sphere");
-}
-
 Wind SceneReader::readWind(const Json& j) const {
     expectObject(j, "wind", {"direction", "strength"});
     Wind wind;
@@ -297,15 +246,15 @@ Scene SceneReader::read(const Json& doc) {
     return scene;
 }
 
-}  // namespace
+}  // namespace detail
 
 Scene parseScene(const std::string& text, const std::string& source,
                  const std::vector<std::string>& overrides) {
-    Json doc = parseSceneText(text, source);
+    detail::Json doc = parseSceneText(text, source);
     std::vector<std::string> keys;
     for (const std::string& o : overrides) keys.push_back(applyOverride(doc, o, source));
     try {
-        return SceneReader(source).read(doc);
+        return detail::SceneReader(source).read(doc);
     } catch (const InputError& e) {
         for (const std::string& k : keys)
             if (e.key().rfind(k, 0) == 0 || k.rfind(e.key(), 0) == 0)

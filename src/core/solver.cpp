@@ -1,5 +1,7 @@
 #include "core/solver.h"
 
+#include <tuple>
+
 #include "core/cpu_solver.h"
 
 namespace cloth {
@@ -19,6 +21,10 @@ Features Features::of(const Scene& scene) {
     f.wind = scene.wind.has_value() && scene.wind->strength != 0;
     f.planes = scene.planeCount();
     f.spheres = scene.sphereCount();
+    f.boxes = scene.count<Box>();
+    f.capsules = scene.count<Capsule>();
+    f.meshes = scene.count<MeshCollider>();
+    for (const Collider& c : scene.colliders) f.contactExtras += !c.plain();
     return f;
 }
 
@@ -31,8 +37,14 @@ std::string Features::describe() const {
         }
     std::string s = springs.empty() ? "no springs" : springs;
     if (wind) s += ", wind";
-    if (planes) s += ", " + std::to_string(planes) + (planes == 1 ? " plane" : " planes");
-    if (spheres) s += ", " + std::to_string(spheres) + (spheres == 1 ? " sphere" : " spheres");
+    for (auto [n, one, many] : {std::tuple{planes, "plane", "planes"},
+                                {spheres, "sphere", "spheres"},
+                                {boxes, "box", "boxes"},
+                                {capsules, "capsule", "capsules"},
+                                {meshes, "mesh", "meshes"}})
+        if (n) s += ", " + std::to_string(n) + " " + (n == 1 ? one : many);
+    if (contactExtras)
+        s += ", " + std::to_string(contactExtras) + " with thickness, friction or motion";
     return s;
 }
 

@@ -38,10 +38,12 @@ struct StepResult {
 // The features a scene declares, which decide what a solver computes (and on the GPU, compiles).
 struct Features {
     bool structural = false, shear = false, bend = false, wind = false;
-    int planes = 0, spheres = 0;
+    int planes = 0, spheres = 0, boxes = 0, capsules = 0, meshes = 0;
+    // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
+    int contactExtras = 0;
     static Features of(const Scene& scene);
     bool operator==(const Features&) const = default;
-    std::string describe() const;  // "structural+shear+bend, wind, 1 plane, 1 sphere"
+    std::string describe() const;  // "structural+shear+bend, wind, 1 plane, 1 sphere, 2 boxes"
 };
 
 // A spring from one vertex to a point the user drags (the viewer's grab): F = K (target − x).
@@ -56,11 +58,11 @@ struct Grab {
 // iterate, and callers report the misses.
 struct SolveStats {
     long solves = 0;
-    long iterations = 0;        // summed over solves
-    int mostIterations = 0;     // in one solve
-    long misses = 0;            // solves that stopped at max_iterations
-    long firstMissStep = 0;     // 1-based step of the first miss
-    double worstResidual = 0;   // largest final |r|/|b| of a miss
+    long iterations = 0;       // summed over solves
+    int mostIterations = 0;    // in one solve
+    long misses = 0;           // solves that stopped at max_iterations
+    long firstMissStep = 0;    // 1-based step of the first miss
+    double worstResidual = 0;  // largest final |r|/|b| of a miss
 };
 
 class Solver {

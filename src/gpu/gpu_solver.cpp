@@ -194,10 +194,10 @@ void GpuSolver::uploadParams(const Scene& scene) {
     // Planes first (point, normal), then spheres (centre, radius): layout.glsl's Colliders.
     std::vector<glm::vec4> planes, spheres;
     for (const Collider& c : scene.colliders) {
-        if (const Plane* pl = std::get_if<Plane>(&c)) {
+        if (const Plane* pl = c.as<Plane>()) {
             planes.push_back(vec4(pl->point, 0));
             planes.push_back(vec4(pl->normal, 0));
-        } else if (const Sphere* s = std::get_if<Sphere>(&c)) {
+        } else if (const Sphere* s = c.as<Sphere>()) {
             spheres.push_back(vec4(s->center, s->radius));
         }
     }

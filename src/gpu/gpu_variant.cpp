@@ -59,8 +59,8 @@ std::string colliderOrder(const Scene& scene) {
     int planes = 0, spheres = 0;
     for (const Collider& c : scene.colliders) {
         if (!order.empty()) order += " ";
-        order += std::holds_alternative<Plane>(c) ? "PLANE(" + std::to_string(planes++) + ")"
-                                                  : "SPHERE(" + std::to_string(spheres++) + ")";
+        order += c.as<Plane>() ? "PLANE(" + std::to_string(planes++) + ")"
+                               : "SPHERE(" + std::to_string(spheres++) + ")";
     }
     return order;
 }
@@ -126,7 +126,27 @@ void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
                              " vertices)");
 }
 
+void refuseUnmodelledColliders(const Scene& scene) {
+    for (size_t n = 0; n < scene.colliders.size(); ++n) {
+        const Collider& c = scene.colliders[n];
+        const std::string at = "colliders[" + std::to_string(n) + "]";
+        if (!c.as<Plane>() && !c.as<Sphere>())
+            throw InputError(scene.source, at + ".type",
+                             std::string("the GPU backend does not model ") +
+                                 colliderTypeName(c.shape) +
+                                 " colliders yet (the CPU backend does: --backend cpu)");
+        for (auto [set, key] : {std::pair{c.thickness != 0, "thickness"},
+                                {c.friction != 0, "friction"},
+                                {c.motion.has_value(), "motion"}})
+            if (set)
+                throw InputError(scene.source, at + "." + key,
+                                 std::string("the GPU backend does not model a collider's ") + key +
+                                     " yet (the CPU backend does: --backend cpu)");
+    }
+}
+
 Defines gpuDefines(const Scene& scene, WorkGroup wg) {
+    refuseUnmodelledColliders(scene);
     const Features f = Features::of(scene);
     Defines d;
     if (f.structural) d.push_back({"HAS_STRUCTURAL", ""});

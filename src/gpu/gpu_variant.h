@@ -34,6 +34,10 @@ void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info);
 // features: the viewer changes them at run time, so their (one-compare) code is always there.
 Defines gpuDefines(const Scene& scene, WorkGroup wg);
 
+// InputError naming the first collider key the shaders do not model yet (a box, capsule or mesh,
+// a thickness, friction or motion; docs/colliders.md, status), e.g. `colliders[1].type`.
+void refuseUnmodelledColliders(const Scene& scene);
+
 // The compute kernels of the backend. A scene compiles the forces pass and its integrator's
 // kernels only (kernelsOf); docs/integrators.md gives each scheme's passes.
 enum class Kernel {

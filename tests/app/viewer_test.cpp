@@ -123,6 +123,27 @@ TEST(ViewerSession, BackendSwitchCarriesTheState) {
     EXPECT_EQ(s.totalSteps(), 6 * 50);
 }
 
+// A collider the GPU does not model yet (docs/colliders.md, status): the switch is refused with
+// the key named, and the session goes on on the CPU with its state.
+TEST(ViewerSession, BackendSwitchRefusesCollidersTheGpuDoesNotModel) {
+    ViewerSession s(
+        loadScene(kScenes + "hanging.json", {"cloth.resolution=[8,6]", "integrator.substeps=50",
+                                             R"(colliders=[{"type":"box","center":[0,0,0],)"
+                                             R"("half_extents":[1,0.1,1]}])"}),
+        {});
+    const SimState before = afterFrames(s, 2);
+    try {
+        s.setBackend({Backend::Gpu, Precision::Float, 0});
+        FAIL() << "the GPU backend accepted a box collider";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "colliders[0].type") << e.what();
+    }
+    EXPECT_EQ(s.backend().backend, Backend::Cpu);
+    EXPECT_EQ(maxDifference(before, s.solver().read()), 0);
+    afterFrames(s, 1);
+    EXPECT_EQ(s.totalSteps(), 3 * 50);
+}
+
 TEST(ViewerSession, InstabilityStopsTheRunUntilReset) {
     ViewerSession s(smallScene("hanging"), {});
     ViewerParams p = s.params();

@@ -12,6 +12,7 @@
 #include "app/bench_speed_model.h"
 #include "core/cpu_solver.h"
 #include "core/errors.h"
+#include "core/scene_loader.h"
 #include "support/integrator_scenes.h"
 
 namespace cloth {
@@ -127,6 +128,53 @@ TEST(FusedSweep, EqualsTheTwoPassUpdateBitForBit) {
             fused.step(7);
             twoPass.step(7);
             expectSameBits(fused.read(), twoPass.read(), methodName(m));
+        }
+    }
+}
+
+// docs/colliders.md's shapes, thickness, friction and motion, all touching the cloth from the
+// first step: the row loops with their vectorised "can this row touch it?" test give the
+// vertex-by-vertex path's bits on every instruction set, and the poses taken in the barrier's
+// completion give the serial bits for any thread count.
+Scene withEveryColliderKind(Method m) {
+    Scene s = sized(m, 70, 50, false);
+    const Scene c = parseScene(R"({"cloth": {"resolution": [2, 2], "size": [1, 1]},
+      "integrator": {"dt": 0.001}, "colliders": [
+      { "type": "box", "center": [0, 1.0, 0], "half_extents": [0.3, 0.05, 0.3],
+        "rotation": { "axis": [1, 0, 1], "degrees": 10 }, "thickness": 0.01, "friction": 0.5,
+        "motion": { "type": "linear", "velocity": [0.2, 1, 0] } },
+      { "type": "capsule", "a": [-0.5, 1.05, 0.5], "b": [0.5, 1.0, 0.5], "radius": 0.06,
+        "friction": 0.3, "motion": { "type": "rotation", "axis": [0, 1, 0],
+        "pivot": [0, 0, 0.2], "degrees_per_second": 120 } },
+      { "type": "sphere", "center": [0.3, 1.1, -0.4], "radius": 0.15, "friction": 1.0,
+        "motion": { "type": "oscillation", "axis": [0, 1, 0], "amplitude": 0.1,
+                    "frequency": 3 } },
+      { "type": "plane", "point": [0, 0.98, 0], "normal": [0, 1, 0.1], "thickness": 0.01 } ]})",
+                               "every collider kind (test)");
+    s.colliders = c.colliders;
+    return s;
+}
+
+TEST(RowColliders, EveryKindGivesTheScalarPathsBitsOnEveryIsaAndThreadCount) {
+    for (Method m : kMethods) {
+        const Scene scene = withEveryColliderKind(m);
+        const SimState f = run<float>(scene, CpuIsa::Scalar, 1, 40);
+        const SimState d = run<double>(scene, CpuIsa::Scalar, 1, 40);
+        Scene free = scene;
+        free.colliders.clear();
+        const SimState none = run<double>(free, CpuIsa::Scalar, 1, 40);
+        int touched = 0;  // vertices the colliders moved: they act from the start
+        for (std::size_t k = 0; k < d.positions.size(); ++k)
+            touched += glm::length(d.positions[k] - none.positions[k]) > 1e-3;
+        EXPECT_GT(touched, 100) << methodName(m);
+        for (CpuIsa isa : {CpuIsa::Generic, CpuIsa::Avx2, CpuIsa::Avx512, CpuIsa::Scalar}) {
+            if (!cpuIsaSupported(isa)) continue;
+            for (int t : {1, 3}) {
+                const std::string what = std::string(methodName(m)) + " " + cpuIsaName(isa) + " " +
+                                         std::to_string(t) + " threads";
+                expectSameBits(run<float>(scene, isa, t, 40), f, what + " float");
+                expectSameBits(run<double>(scene, isa, t, 40), d, what + " double");
+            }
         }
     }
 }

@@ -132,9 +132,9 @@ double deepestPenetration(const Scene& scene, const SimState& s) {
     for (const glm::dvec3& p : s.positions) {
         for (const Collider& c : scene.colliders) {
             double outside = 0;
-            if (const Plane* plane = std::get_if<Plane>(&c))
+            if (const Plane* plane = c.as<Plane>())
                 outside = glm::dot(p - plane->point, plane->normal);
-            else if (const Sphere* sphere = std::get_if<Sphere>(&c))
+            else if (const Sphere* sphere = c.as<Sphere>())
                 outside = glm::length(p - sphere->center) - sphere->radius;
             deepest = std::min(deepest, outside);
         }

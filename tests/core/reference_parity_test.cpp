@@ -80,9 +80,8 @@ ref::Simulation runReference(const Scene& scene, long steps) {
 // Signed distance of `p` outside collider `c` [m]: §2's rules leave it ≥ 0 (up to rounding).
 double outside(const Collider& c, const ref::V3& p) {
     const glm::dvec3 q(p[0], p[1], p[2]);
-    if (const Plane* plane = std::get_if<Plane>(&c))
-        return glm::dot(q - plane->point, plane->normal);
-    const Sphere& sphere = std::get<Sphere>(c);
+    if (const Plane* plane = c.as<Plane>()) return glm::dot(q - plane->point, plane->normal);
+    const Sphere& sphere = *c.as<Sphere>();
     return glm::length(q - sphere.center) - sphere.radius;
 }
 

@@ -57,7 +57,7 @@ TEST(SceneJson, EditedParametersSurviveTheRoundTrip) {
     a.springs.bend = 0;  // not modelled: must stay absent, not come back as 0-stiffness springs
     a.damping = 0.1234567890123;
     a.pins.push_back({3, 5});
-    std::get<Sphere>(a.colliders[1]).radius = 0.41;
+    a.colliders[1].as<Sphere>()->radius = 0.41;
     a.wind = Wind{{0, 0, 1}, 0.5};
     const Scene b = parseScene(sceneToJson(a), "saved");
     expectSameScene(a, b);

@@ -39,7 +39,7 @@ TEST(SceneLoader, AxesAndDirectionsAreNormalised) {
     EXPECT_NEAR(s.cloth.uAxis.x, 0.6, 1e-15);
     EXPECT_EQ(s.cloth.vAxis, glm::dvec3(0, -1, 0));
     EXPECT_EQ(s.wind->direction, glm::dvec3(0, 0, 1));
-    EXPECT_EQ(std::get<Plane>(s.colliders[0]).normal, glm::dvec3(0, 1, 0));
+    EXPECT_EQ(s.colliders[0].as<Plane>()->normal, glm::dvec3(0, 1, 0));
 }
 
 TEST(SceneLoader, NegativePinIndicesCountFromTheEnd) {
@@ -62,9 +62,9 @@ TEST(SceneLoader, ColliderOrderIsKept) {
         {"type": "sphere", "center": [1, 0, 0], "radius": 2}]})",
                                "order");
     ASSERT_EQ(s.colliders.size(), 3u);
-    EXPECT_TRUE(std::holds_alternative<Sphere>(s.colliders[0]));
-    EXPECT_TRUE(std::holds_alternative<Plane>(s.colliders[1]));
-    EXPECT_EQ(std::get<Sphere>(s.colliders[2]).radius, 2.0);
+    EXPECT_TRUE(s.colliders[0].as<Sphere>() != nullptr);
+    EXPECT_TRUE(s.colliders[1].as<Plane>() != nullptr);
+    EXPECT_EQ(s.colliders[2].as<Sphere>()->radius, 2.0);
     EXPECT_EQ(s.planeCount(), 1);
     EXPECT_EQ(s.sphereCount(), 2);
 }
@@ -85,12 +85,10 @@ TEST(Overrides, ListEntriesAreReachedByIndexInEitherSpelling) {
         "integrator": {"dt": 0.01}, "colliders": [
         {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]},
         {"type": "sphere", "center": [0, 0, 0], "radius": 1}]})";
-    EXPECT_EQ(
-        std::get<Sphere>(parseScene(text, "o", {"colliders.1.radius=0.5"}).colliders[1]).radius,
-        0.5);
-    EXPECT_EQ(
-        std::get<Sphere>(parseScene(text, "o", {"colliders[1].radius=0.25"}).colliders[1]).radius,
-        0.25);
+    EXPECT_EQ(parseScene(text, "o", {"colliders.1.radius=0.5"}).colliders[1].as<Sphere>()->radius,
+              0.5);
+    EXPECT_EQ(parseScene(text, "o", {"colliders[1].radius=0.25"}).colliders[1].as<Sphere>()->radius,
+              0.25);
 }
 
 TEST(Overrides, BadOverrideIsRejectedLikeTheFileWouldBe) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "reference/reference_colliders.h"
 #include "reference/vector_ops.h"
 
 namespace ref {
@@ -136,7 +137,9 @@ V3 Simulation::windForce(const std::vector<V3>& p, int i, int j) const {
 // and cancel the radial velocity. In the order the scene lists them.
 void Simulation::applyColliders(V3& p, V3& v) const {
     for (const Collider& c : prm_.colliders) {
-        if (!c.isSphere) {
+        if (c.extended) {
+            collideMoving(c, colliderTime_, p, v);
+        } else if (!c.isSphere) {
             const V3& n = c.plane.normal;
             const double s = dot(sub(p, c.plane.point), n);
             if (s < 0) {
@@ -194,6 +197,7 @@ void Simulation::pinAndCollide(std::vector<V3>& x, std::vector<V3>& v) const {
 }
 
 void Simulation::step() {
+    colliderTime_ = double(steps_ + 1) * prm_.dt;
     switch (prm_.method) {
         case Method::ExplicitEuler:
             stepExplicitEuler();

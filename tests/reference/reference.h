@@ -18,10 +18,49 @@ struct Sphere {
     V3 center;
     double radius;  // [m]
 };
+// docs/colliders.md §1 (reference_colliders.cpp).
+struct Box {
+    V3 center, half;  // half extents [m]
+    V3 axis;          // rotation axis (any length > 0)
+    double degrees;   // rotation angle
+};
+struct Capsule {
+    V3 a, b;
+    double radius;
+};
+// Samples at origin + (i, j, k)·cell, index (k·ny + j)·nx + i.
+struct Grid {
+    V3 origin;
+    double cell;
+    std::array<int, 3> count;
+    std::vector<double> values;
+};
+
+// docs/colliders.md §3: none, or a linear path, a rotation or an oscillation.
+struct Motion {
+    enum class Type { None, Linear, Rotation, Oscillation } type = Type::None;
+    V3 velocity{0, 0, 0};                 // linear [m/s]
+    V3 axis{0, 1, 0}, pivot{0, 0, 0};     // rotation, oscillation
+    double degreesPerSecond = 0;          // rotation
+    double amplitude = 0, frequency = 0;  // oscillation [m], [Hz]
+    double phaseDegrees = 0;              // oscillation
+};
+
 struct Collider {
-    bool isSphere = false;
+    enum class Shape { Plane, Sphere, Box, Capsule, Grid };
+    bool isSphere = false;  // DESIGN.md §2's two shapes: isSphere picks between plane, sphere
     Plane plane{};
     Sphere sphere{};
+    // docs/colliders.md: another shape (then `shape` says which), thickness, friction, motion.
+    Shape shape = Shape::Plane;  // read only when `extended`
+    bool extended = false;
+    Box box{};
+    Capsule capsule{};
+    Grid grid{};
+    V3 gridAxis{0, 0, 1}, gridTranslation{0, 0, 0};
+    double gridDegrees = 0;
+    double thickness = 0, friction = 0;
+    Motion motion{};
 };
 
 // docs/integrators.md; ExplicitEuler is the seed's scheme of DESIGN.md §2.
@@ -92,6 +131,7 @@ private:
     V3 springForces(const std::vector<V3>& p, int i, int j) const;
     V3 windForce(const std::vector<V3>& p, int i, int j) const;
     void applyColliders(V3& p, V3& v) const;
+    double colliderTime_ = 0;  // the end of the step being taken [s]: where colliders are
     // a(x, v) = (F(x) − μ v)/m + g on free vertices, 0 on pinned ones.
     std::vector<V3> accelerations(const std::vector<V3>& x, const std::vector<V3>& v) const;
     // Pins (x ← x_pin, v ← 0), then every collider in scene order, on every vertex.

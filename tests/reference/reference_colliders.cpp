@@ -140,4 +140,94 @@ bool respond(const Contact& c, double thickness, double friction, const V3& vc, 
     return true;
 }
 
+namespace {
+
+// The motion's turn [degrees] and shift [m] at time t: x(t) = pivot + rot(x₀ − pivot) + shift.
+void motionAt(const Motion& m, double t, double& degrees, V3& shift) {
+    const double pi = std::acos(-1.0);
+    degrees = 0;
+    shift = {0, 0, 0};
+    switch (m.type) {
+        case Motion::Type::None:
+            break;
+        case Motion::Type::Linear:
+            shift = scale(t, m.velocity);
+            break;
+        case Motion::Type::Rotation:
+            degrees = m.degreesPerSecond * t;
+            break;
+        case Motion::Type::Oscillation:
+            shift =
+                scale(m.amplitude * std::sin(2 * pi * m.frequency * t + m.phaseDegrees * pi / 180),
+                      normalised(m.axis));
+            break;
+    }
+}
+
+// d/dt of the motion at the point p (which moves with the collider).
+V3 motionVelocity(const Motion& m, double t, const V3& p) {
+    const double pi = std::acos(-1.0);
+    switch (m.type) {
+        case Motion::Type::None:
+            return {0, 0, 0};
+        case Motion::Type::Linear:
+            return m.velocity;
+        case Motion::Type::Rotation:
+            return cross(scale(m.degreesPerSecond * pi / 180, normalised(m.axis)), sub(p, m.pivot));
+        case Motion::Type::Oscillation: {
+            const double w = 2 * pi * m.frequency;
+            return scale(w * m.amplitude * std::cos(w * t + m.phaseDegrees * pi / 180),
+                         normalised(m.axis));
+        }
+    }
+    return {0, 0, 0};
+}
+
+// The grid posed by a rotation about its origin and a translation; outside the grid the
+// clamped point's value plus the distance to it.
+Contact posedGridContact(const Collider& c, const V3& p) {
+    const V3 local = rotate(c.gridAxis, -c.gridDegrees, sub(p, c.gridTranslation));
+    const Grid& g = c.grid;
+    V3 q = local;
+    for (int a = 0; a < 3; ++a) {
+        const double lo = g.origin[a], hi = g.origin[a] + (g.count[a] - 1) * g.cell;
+        q[a] = std::min(std::max(local[a], lo), hi);
+    }
+    Contact k = gridContact(g, q);
+    k.phi += norm(sub(local, q));
+    k.normal = rotate(c.gridAxis, c.gridDegrees, k.normal);
+    return k;
+}
+
+Contact restContact(const Collider& c, const V3& p) {
+    switch (c.shape) {
+        case Collider::Shape::Plane:
+            return planeContact(c.plane, p);
+        case Collider::Shape::Sphere:
+            return sphereContact(c.sphere, p);
+        case Collider::Shape::Box:
+            return boxContact(c.box, p);
+        case Collider::Shape::Capsule:
+            return capsuleContact(c.capsule, p);
+        case Collider::Shape::Grid:
+            return posedGridContact(c, p);
+    }
+    return {1, {0, 1, 0}};
+}
+
+}  // namespace
+
+void collideMoving(const Collider& c, double t, V3& p, V3& v) {
+    double degrees;
+    V3 shift;
+    motionAt(c.motion, t, degrees, shift);
+    const V3 axis = c.motion.type == Motion::Type::Rotation ? c.motion.axis : V3{0, 1, 0};
+    const V3 pivot = c.motion.pivot;
+    // Back to the collider's rest frame: undo the shift, then the turn about the pivot.
+    const V3 rest = add(pivot, rotate(axis, -degrees, sub(sub(p, shift), pivot)));
+    Contact k = restContact(c, rest);
+    k.normal = rotate(axis, degrees, k.normal);
+    respond(k, c.thickness, c.friction, motionVelocity(c.motion, t, p), p, v);
+}
+
 }  // namespace ref

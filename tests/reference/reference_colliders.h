@@ -23,32 +23,22 @@ V3 rotate(const V3& axis, double degrees, const V3& v);
 Contact planeContact(const Plane& plane, const V3& p);
 Contact sphereContact(const Sphere& sphere, const V3& p);
 
-struct Box {
-    V3 center, half;  // half extents [m]
-    V3 axis;          // rotation axis (any length > 0)
-    double degrees;   // rotation angle
-};
 Contact boxContact(const Box& box, const V3& p);
 
-struct Capsule {
-    V3 a, b;
-    double radius;
-};
 Contact capsuleContact(const Capsule& c, const V3& p);
 
-// Samples at origin + (i, j, k)·cell, index (k·ny + j)·nx + i.
-struct Grid {
-    V3 origin;
-    double cell;
-    std::array<int, 3> count;
-    std::vector<double> values;
-};
 // Trilinear value and the gradient of the trilinear interpolant, for a point inside the grid.
 Contact gridContact(const Grid& g, const V3& p);
 
 // Distance from p to the triangle abc: to its plane when the foot lies inside, else to the
 // nearest of its three edges (each a clamped segment).
 double triangleDistance(const V3& p, const V3& a, const V3& b, const V3& c);
+
+// A collider of docs/colliders.md at time t (its motion applied, §3) on one vertex: the shape's
+// contact evaluated in its rest frame (p moved back by the inverse motion, the normal turned
+// forward), then respond() with the collider's velocity at p. The grid is posed by gridAxis,
+// gridDegrees and gridTranslation; outside it φ = φ(clamped point) + the distance to it.
+void collideMoving(const Collider& c, double t, V3& p, V3& v);
 
 // docs/colliders.md §2: returns whether the vertex was in contact (φ < h) and updates p, v.
 bool respond(const Contact& c, double thickness, double friction, const V3& vc, V3& p, V3& v);

@@ -66,11 +66,10 @@ long firstContactStep(const Scene& scene, long steps) {
             const glm::dvec3 q(x[0], x[1], x[2]);
             for (const Collider& c : scene.colliders) {
                 double outside;
-                if (const Plane* p = std::get_if<Plane>(&c))
+                if (const Plane* p = c.as<Plane>())
                     outside = glm::dot(q - p->point, p->normal);
                 else
-                    outside =
-                        glm::length(q - std::get<Sphere>(c).center) - std::get<Sphere>(c).radius;
+                    outside = glm::length(q - c.as<Sphere>()->center) - c.as<Sphere>()->radius;
                 if (outside < 1e-9) return n;
             }
         }

@@ -5,6 +5,7 @@
 #include <type_traits>
 #include <variant>
 
+#include "core/collider_validate.h"
 #include "core/scene_loader.h"
 
 namespace cloth {
@@ -14,19 +15,61 @@ ref::V3 toV3(const glm::dvec3& v) {
     return {v.x, v.y, v.z};
 }
 
+ref::Motion toReference(const ColliderMotion& m) {
+    ref::Motion r;
+    switch (m.type) {
+        case MotionType::Still:
+            break;
+        case MotionType::Linear:
+            r.type = ref::Motion::Type::Linear;
+            break;
+        case MotionType::Rotation:
+            r.type = ref::Motion::Type::Rotation;
+            break;
+        case MotionType::Oscillation:
+            r.type = ref::Motion::Type::Oscillation;
+            break;
+    }
+    r.velocity = toV3(m.velocity);
+    r.axis = toV3(m.axis);
+    r.pivot = toV3(m.pivot);
+    r.degreesPerSecond = m.degreesPerSecond;
+    r.amplitude = m.amplitude;
+    r.frequency = m.frequency;
+    r.phaseDegrees = m.phaseDegrees;
+    return r;
+}
+
+// DESIGN.md §2's plane and sphere stay the reference's own §2 code; anything docs/colliders.md
+// adds goes through ref::collideMoving. The mesh's baked grid is data, handed over as numbers.
 ref::Collider toReference(const Collider& c) {
     ref::Collider out;
-    std::visit(
-        [&out](const auto& shape) {
-            using T = std::decay_t<decltype(shape)>;
-            if constexpr (std::is_same_v<T, Plane>) {
-                out.plane = {toV3(shape.point), toV3(shape.normal)};
-            } else {
-                out.isSphere = true;
-                out.sphere = {toV3(shape.center), shape.radius};
-            }
-        },
-        c);
+    out.extended = !c.plain() || !(c.as<Plane>() || c.as<Sphere>());
+    out.thickness = c.thickness;
+    out.friction = c.friction;
+    if (c.motion) out.motion = toReference(*c.motion);
+    if (const Plane* p = c.as<Plane>()) {
+        out.plane = {toV3(p->point), toV3(p->normal)};
+        out.shape = ref::Collider::Shape::Plane;
+    } else if (const Sphere* s = c.as<Sphere>()) {
+        out.isSphere = true;
+        out.sphere = {toV3(s->center), s->radius};
+        out.shape = ref::Collider::Shape::Sphere;
+    } else if (const Box* b = c.as<Box>()) {
+        out.box = {toV3(b->center), toV3(b->halfExtents), toV3(b->rotation.axis),
+                   b->rotation.degrees};
+        out.shape = ref::Collider::Shape::Box;
+    } else if (const Capsule* cap = c.as<Capsule>()) {
+        out.capsule = {toV3(cap->a), toV3(cap->b), cap->radius};
+        out.shape = ref::Collider::Shape::Capsule;
+    } else if (const MeshCollider* m = c.as<MeshCollider>()) {
+        const SdfGrid& g = m->baked->grid;
+        out.grid = {toV3(g.origin), g.cell, {g.count.x, g.count.y, g.count.z}, g.values};
+        out.gridAxis = toV3(m->rotation.axis);
+        out.gridDegrees = m->rotation.degrees;
+        out.gridTranslation = toV3(m->translation);
+        out.shape = ref::Collider::Shape::Grid;
+    }
     return out;
 }
 

@@ -4,6 +4,9 @@
 // -fno-trapping-math (a conditional division vectorises without AVX-512 masks). Plain loops over
 // restrict-qualified arrays: the compiler vectorises each across the row. No standard-library
 // templates here, so no out-of-line copy compiled for a wider ISA can leak into generic code.
+#include <cmath>
+#include <type_traits>
+
 #include "core/cpu_rows.h"
 #include "core/spring_math.h"
 
@@ -138,6 +141,96 @@ bool anyBad(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n) {
     return bad != 0;
 }
 
+// core/collider_contact.h's collide() for a plane (kSphere false) or a sphere, every lane
+// computed and the result selected, in the same operations and order as the scalar code
+// (glm's dot is (x + y) + z, its cross a.y·b.z − b.y·a.z, ...): the same bits.
+template <typename T, bool kSphere, bool kFriction, bool kMoving>
+void contactLoop(T* __restrict px, T* __restrict py, T* __restrict pz, T* __restrict vx,
+                 T* __restrict vy, T* __restrict vz, const ContactRow<T>& r, int n) {
+    // Every parameter in a local: loads through r inside the loop would stop the vectoriser.
+    const T cx = r.cx, cy = r.cy, cz = r.cz, h = r.thickness, cf = r.friction, radius = r.radius;
+    const T mx = r.nx, my = r.ny, mz = r.nz;
+    const T lx = r.lx, ly = r.ly, lz = r.lz, ax = r.ax, ay = r.ay, az = r.az;
+    const T ox0 = r.ox, oy0 = r.oy, oz0 = r.oz;
+    const T shell = radius + h;
+    // The six arrays are distinct (restrict); say so to GCC, which otherwise versions the loop
+    // for aliasing and gives up past ten checks.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC ivdep
+#endif
+    for (int i = 0; i < n; ++i) {
+        const T x = px[i], y = py[i], z = pz[i];
+        T phi, nx, ny, nz;
+        if constexpr (kSphere) {
+            const T rx = x - cx, ry = y - cy, rz = z - cz;
+            const T len = std::sqrt((rx * rx + ry * ry) + rz * rz);
+            phi = len - radius;
+            const bool away = len > T(0);
+            nx = away ? rx / len : T(0);
+            ny = away ? ry / len : T(1);
+            nz = away ? rz / len : T(0);
+        } else {
+            nx = mx;
+            ny = my;
+            nz = mz;
+            phi = ((x - cx) * nx + (y - cy) * ny) + (z - cz) * nz;
+        }
+        T ux = T(0), uy = T(0), uz = T(0);  // v_c at the vertex, before its projection
+        if constexpr (kMoving) {
+            const T dx = x - ox0, dy = y - oy0, dz = z - oz0;
+            ux = lx + (ay * dz - dy * az);
+            uy = ly + (az * dx - dz * ax);
+            uz = lz + (ax * dy - dx * ay);
+        }
+        const bool touch = phi < h;
+        T qx, qy, qz;
+        if constexpr (kSphere) {
+            qx = cx + shell * nx;
+            qy = cy + shell * ny;
+            qz = cz + shell * nz;
+        } else {
+            const T push = h - phi;
+            qx = x + push * nx;
+            qy = y + push * ny;
+            qz = z + push * nz;
+        }
+        const T v0x = vx[i], v0y = vy[i], v0z = vz[i];
+        const T wx = v0x - ux, wy = v0y - uy, wz = v0z - uz;
+        const T wn = (wx * nx + wy * ny) + wz * nz;
+        T ox = v0x - wn * nx, oy = v0y - wn * ny, oz = v0z - wn * nz;
+        if constexpr (kFriction) {
+            const T tx = wx - wn * nx, ty = wy - wn * ny, tz = wz - wn * nz;
+            const T slide = std::sqrt((tx * tx + ty * ty) + tz * tz);
+            const T budget = cf * std::fabs(wn);
+            const bool stick = slide <= budget;
+            const T k = budget / slide;
+            ox = stick ? ux : ox - k * tx;
+            oy = stick ? uy : oy - k * ty;
+            oz = stick ? uz : oz - k * tz;
+        }
+        px[i] = touch ? qx : x;
+        py[i] = touch ? qy : y;
+        pz[i] = touch ? qz : z;
+        vx[i] = touch ? ox : v0x;
+        vy[i] = touch ? oy : v0y;
+        vz[i] = touch ? oz : v0z;
+    }
+}
+template <typename T, bool kSphere>
+void contact(const ContactRow<T>& r, int n) {
+    const bool friction = r.friction > T(0);
+    auto run = [&](auto kFriction, auto kMoving) {
+        contactLoop<T, kSphere, decltype(kFriction)::value, decltype(kMoving)::value>(
+            r.x.x, r.x.y, r.x.z, r.v.x, r.v.y, r.v.z, r, n);
+    };
+    using Yes = std::true_type;
+    using No = std::false_type;
+    if (friction && r.moving) return run(Yes{}, Yes{});
+    if (friction) return run(Yes{}, No{});
+    if (r.moving) return run(No{}, Yes{});
+    run(No{}, No{});
+}
+
 }  // namespace
 
 template <typename T>
@@ -149,7 +242,9 @@ const RowKernels<T>& rowKernels() {
                                        &wind<T>,
                                        &euler<T, false>,
                                        &euler<T, true>,
-                                       &anyBad<T>};
+                                       &anyBad<T>,
+                                       &contact<T, false>,
+                                       &contact<T, true>};
     return kernels;
 }
 template const RowKernels<float>& rowKernels();
