@@ -155,9 +155,7 @@ void contactLoop(T* __restrict px, T* __restrict py, T* __restrict pz, T* __rest
     const T shell = radius + h;
     // The six arrays are distinct (restrict); say so to GCC, which otherwise versions the loop
     // for aliasing and gives up past ten checks.
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC ivdep
-#endif
+    CLOTH_IVDEP
     for (int i = 0; i < n; ++i) {
         const T x = px[i], y = py[i], z = pz[i];
         T phi, nx, ny, nz;
