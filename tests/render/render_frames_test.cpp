@@ -48,7 +48,19 @@ TEST(RenderFrames, PngSequenceSortsInStepOrderAndSaysWhetherAnMp4WasMade) {
         EXPECT_EQ(p.height, 48);
     }
     if (ffmpegOnPath()) {
-        EXPECT_TRUE(fs::exists(dir / "drape.mp4")) << r.out;
+        ASSERT_TRUE(fs::exists(dir / "drape.mp4")) << r.out;
+        // A real encoder (Debian's ffmpeg package ships ffprobe): one video frame per PNG, at their
+        // size.
+        const auto probe = runProcess(
+            {"/bin/sh", "-c",
+             "ffprobe -v error -count_frames -show_entries stream=width,height,nb_read_frames "
+             "-of default=nw=1 '" +
+                 (dir / "drape.mp4").string() + "'"},
+            60);
+        ASSERT_EQ(probe.exitCode, 0) << test::describe(probe);
+        EXPECT_NE(probe.out.find("width=64"), std::string::npos) << probe.out;
+        EXPECT_NE(probe.out.find("height=48"), std::string::npos) << probe.out;
+        EXPECT_NE(probe.out.find("nb_read_frames=4"), std::string::npos) << probe.out;
     } else {
         EXPECT_NE(r.out.find("ffmpeg is not on PATH: no MP4 was made"), std::string::npos) << r.out;
         EXPECT_FALSE(fs::exists(dir / "drape.mp4"));
