@@ -108,7 +108,10 @@ void printModel(const Scene& s) {
     else
         std::printf("             wind not modelled\n");
     std::printf("pins         %zu:", s.pins.size());
-    for (const Pin& p : s.pins) std::printf(" (%d, %d)", p.i, p.j);
+    for (const Pin& p : s.pins) {
+        std::printf(" (%d, %d)", p.i, p.j);
+        if (p.follow >= 0) std::printf(" following colliders[%d]", p.follow);
+    }
     std::printf("\n");
     if (s.colliders.empty()) std::printf("colliders    none\n");
     for (size_t n = 0; n < s.colliders.size(); ++n) printCollider(n, s.colliders[n]);

@@ -142,7 +142,7 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
                nu);
         for (; pin != pinList_.end() && *pin < k + nu; ++pin) {  // pins, then colliders (§2)
             xNext_.set(*pin, pinPosition_[*pin]);
-            v_.set(*pin, Vec3<T>(0));
+            v_.set(*pin, pinVelocity(*pin));
         }
         if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v_.row(k), nu, *kernels_);
         if (ok && kernels_->anyBad(xNext_.row(k), v_.row(k), maxSpeed2_, nu))

@@ -40,6 +40,7 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     pinned_.assign(n, 0);
     pinPosition_.assign(std::size_t(n), Vec3<T>(0));
     for (const Pin& p : scene.pins) setPinned(p.i, p.j, true);
+    takeFollowPins(scene);
     method_ = scene.integrator.method;
     takeParameters(scene);
     if (fused())
@@ -117,11 +118,10 @@ void CpuSolver<T>::setParameters(const Scene& scene) {
         throw std::invalid_argument("setParameters: the features differ; build a new solver");
     if (scene.integrator.method != method_)
         throw std::invalid_argument("setParameters: the integrator differs; build a new solver");
-    std::vector<std::uint8_t> pinned(grid_.count(), 0);
-    for (const Pin& p : scene.pins) pinned[grid_.index(p.i, p.j)] = 1;
-    if (pinned != pinned_)
+    if (!samePins(scene))
         throw std::invalid_argument("setParameters: the pins differ; use setPinned");
     takeParameters(scene);
+    follows_ = followPins(scene);  // the same vertices and colliders, the motions may differ
 }
 
 template <typename T>
@@ -140,19 +140,6 @@ void CpuSolver<T>::write(const SimState& state) {
         b.badVertex = -1;
         b.reason.clear();
     }
-}
-
-template <typename T>
-void CpuSolver<T>::setPinned(int i, int j, bool pinned) {
-    if (!grid_.contains(i, j)) throw std::invalid_argument("setPinned: vertex outside the grid");
-    const std::int64_t k = grid_.index(i, j);
-    pinned_[k] = pinned ? 1 : 0;
-    pinPosition_[k] = x_.get(k);
-    if (pinned) v_.set(k, Vec3<T>(0));
-    const auto at = std::lower_bound(pinList_.begin(), pinList_.end(), k);
-    if (pinned && (at == pinList_.end() || *at != k)) pinList_.insert(at, k);
-    if (!pinned && at != pinList_.end() && *at == k) pinList_.erase(at);
-    forcesValid_ = false;
 }
 
 template <typename T>
@@ -238,7 +225,7 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     const T w = inverseMass_;
     for (std::int64_t k = band.begin; k < band.end && ok; ++k) {  // kick
         Vec3<T> v = (v_.get(k) + half * (f_.get(k) * w + gravity_)) / (T(1) + half * damping_ * w);
-        if (pinned_[k]) v = Vec3<T>(0);
+        if (pinned_[k]) v = pinVelocity(k);
         v_.set(k, v);
         const T speed2 = glm::dot(v, v);
         const Vec3<T> p = x_.get(k);
@@ -275,9 +262,9 @@ bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
                 continue;
             }
             const T c = stage == 2 ? h : half;  // the next stage's point: y_n + c k
-            if (pinned_[k]) {
+            if (pinned_[k]) {  // at the end of the step's pose (follow pins) in every stage
                 x_.set(k, pinPosition_[k]);
-                v_.set(k, Vec3<T>(0));
+                v_.set(k, pinVelocity(k));
             } else {
                 x_.set(k, x0_[k] + c * v);
                 v_.set(k, v0_[k] + c * a);
@@ -372,7 +359,8 @@ template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
     for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_}) vectors += std::size_t(a->size());
-    for (const auto* a : {&pinPosition_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
+    for (const auto* a :
+         {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + pinned_.size();
 }

@@ -14,6 +14,7 @@
 #include "core/cpu_colliders.h"
 #include "core/cpu_rows.h"
 #include "core/cpu_soa.h"
+#include "core/pin_follow.h"
 #include "core/solver.h"
 #include "core/stiffness.h"
 #include "core/worker_pool.h"
@@ -132,7 +133,17 @@ private:
     // still read the old ones) and the two swap at the end of the step; it needs no f_.
     Soa3<T> x_, v_, f_, xNext_;
     std::vector<Vec3<T>> pinPosition_;
-    std::vector<std::int64_t> pinList_;           // the pinned vertices, ascending
+    std::vector<std::int64_t> pinList_;  // the pinned vertices, ascending
+    // Pins that follow a collider (core/pin_follow.h), posed with the colliders; their velocity
+    // per vertex, sized only when there are any (every other pin's is 0).
+    std::vector<FollowPin> follows_;
+    std::vector<Vec3<T>> pinVelocity_;
+    Vec3<T> pinVelocity(std::int64_t k) const {
+        return pinVelocity_.empty() ? Vec3<T>(0) : pinVelocity_[std::size_t(k)];
+    }
+    void takeFollowPins(const Scene& scene);      // (cpu_pins.cpp)
+    bool samePins(const Scene& scene) const;      // the grid's pins and follows equal the scene's
+    void poseFollowPins(double t) noexcept;       // at time t [s]; allocates nothing
     std::vector<Vec3<T>> x0_, v0_, sumX_, sumV_;  // rk4: the step's start and Σ k_i
     std::vector<Vec3<T>> dv_, r_, p_, ap_;        // implicit_euler: CG vectors
     std::vector<double> partials_[2];             // per chunk, for reduce()
@@ -145,9 +156,12 @@ private:
     T dt_t_, damping_, maxSpeed2_, windStrength_;
     Vec3<T> gravity_, windDirection_;
     CpuColliders<T> colliders_;
-    // Poses the moving colliders at the end of step `stepNumber` (1-based), before it is taken.
+    // Poses the moving colliders and the pins that follow them at the end of step `stepNumber`
+    // (1-based), before it is taken.
     void poseColliders(long stepNumber) noexcept {
-        if (colliders_.anyMoving()) colliders_.pose(double(stepNumber) * Solver::dt_);
+        const double t = double(stepNumber) * Solver::dt_;
+        if (colliders_.anyMoving()) colliders_.pose(t);
+        if (!follows_.empty()) poseFollowPins(t);
     }
     double maxSpeed_;
     std::optional<GrabT> grab_;

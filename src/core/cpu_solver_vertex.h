@@ -20,7 +20,7 @@ template <typename T>
 inline void CpuSolver<T>::constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v) {
     if (pinned_[k]) {
         p = pinPosition_[k];
-        v = Vec3<T>(0);
+        v = pinVelocity(k);
     }
     collideVertex(p, v);
     x_.set(k, p);

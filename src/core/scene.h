@@ -132,8 +132,11 @@ struct Wind {
     double strength = 0;            // K_w [N]
 };
 
+// A pinned vertex: held where it is, or, with `follow` ≥ 0, carried by that collider's motion
+// (the collider's pose at t applied to the vertex's grid position; docs/colliders.md §5).
 struct Pin {
-    int i, j;  // resolved grid indices (negative ones in the file count from the end)
+    int i, j;         // resolved grid indices (negative ones in the file count from the end)
+    int follow = -1;  // index in Scene::colliders of a collider with a motion, or -1: still
 };
 
 struct Scene {

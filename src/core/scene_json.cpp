@@ -82,7 +82,12 @@ std::string sceneToJson(const Scene& s) {
     j["damping"] = s.damping;
     j["gravity"] = vec(s.gravity);
     Json pins = Json::array();
-    for (const Pin& p : s.pins) pins.push_back({p.i, p.j});
+    for (const Pin& p : s.pins) {
+        if (p.follow < 0)
+            pins.push_back({p.i, p.j});
+        else
+            pins.push_back({{"at", {p.i, p.j}}, {"follow", p.follow}});
+    }
     j["pins"] = pins;
     j["integrator"] = {{"method", methodName(s.integrator.method)},
                        {"dt", s.integrator.dt},

@@ -14,6 +14,7 @@
 #include "core/errors.h"
 #include "core/key_path.h"
 #include "core/params.h"
+#include "core/pin_follow.h"
 #include "core/scene_overrides.h"
 #include "core/scene_reader.h"
 #include "core/scene_text.h"
@@ -181,16 +182,30 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
         int(param(j, "substeps", "integrator.substeps", "integrator.substeps", 1));
 }
 
+// A pin is [i, j], or {"at": [i, j], "follow": n} to follow colliders[n] (checked once the
+// colliders are read: checkFollowPins).
 std::vector<Pin> SceneReader::readPins(const Json& j, const ClothSpec& cloth) const {
-    if (!j.is_array()) fail("pins", "expected an array of [i, j] pairs, got " + describe(j));
+    if (!j.is_array())
+        fail("pins", "expected an array of [i, j] pairs or {\"at\": [i, j], \"follow\": n}, got " +
+                         describe(j));
     std::vector<Pin> pins;
     std::set<std::pair<int, int>> seen;
     for (size_t n = 0; n < j.size(); ++n) {
-        const std::string path = element("pins", n);
-        const Json& p = j[n];
-        if (!p.is_array() || p.size() != 2)
-            fail(path, "expected a pair [i, j] of grid indices, got " + describe(p));
-        int i = integer(p[0], element(path, 0)), jj = integer(p[1], element(path, 1));
+        std::string path = element("pins", n);
+        const Json* p = &j[n];
+        int follow = -1;
+        if (p->is_object()) {
+            expectObject(*p, path, {"at", "follow"});
+            if (p->contains("follow")) {
+                follow = integer((*p)["follow"], child(path, "follow"));
+                if (follow < 0) fail(child(path, "follow"), "must be a collider index >= 0");
+            }
+            p = &required(*p, "at", path);
+            path = child(path, "at");
+        }
+        if (!p->is_array() || p->size() != 2)
+            fail(path, "expected a pair [i, j] of grid indices, got " + describe(*p));
+        int i = integer((*p)[0], element(path, 0)), jj = integer((*p)[1], element(path, 1));
         const int ri = i < 0 ? i + cloth.nu : i, rj = jj < 0 ? jj + cloth.nv : jj;
         if (ri < 0 || ri >= cloth.nu || rj < 0 || rj >= cloth.nv) {
             fail(path, "[" + std::to_string(i) + ", " + std::to_string(jj) + "] is outside the " +
@@ -200,7 +215,7 @@ std::vector<Pin> SceneReader::readPins(const Json& j, const ClothSpec& cloth) co
         if (!seen.insert({ri, rj}).second)
             fail(path, "pins vertex (" + std::to_string(ri) + ", " + std::to_string(rj) +
                            ") a second time");
-        pins.push_back({ri, rj});
+        pins.push_back({ri, rj, follow});
     }
     return pins;
 }
@@ -238,6 +253,7 @@ Scene SceneReader::read(const Json& doc) {
         for (size_t n = 0; n < list.size(); ++n)
             scene.colliders.push_back(readCollider(list[n], element("colliders", n)));
     }
+    checkFollowPins(scene);
     if (doc.contains("wind")) scene.wind = readWind(doc["wind"]);
     scene.maxSpeed = param(doc, "max_speed", "max_speed", "max_speed", scene.maxSpeed);
     scene.duration = param(doc, "duration", "duration", "duration", scene.duration);

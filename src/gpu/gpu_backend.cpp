@@ -1,6 +1,7 @@
 #include "gpu/gpu_backend.h"
 
 #include "core/errors.h"
+#include "core/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_solver.h"
 #include "gpu/gpu_variant.h"
@@ -8,6 +9,7 @@
 namespace cloth {
 
 std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& options) {
+    refuseFollowPinsOnGpu(scene);
     refuseUnmodelledColliders(scene);  // bad input (exit 2) before any context is made
     return std::make_unique<GpuSolver>(scene, options);
 }
@@ -18,6 +20,7 @@ std::string describeGpu() {
 
 std::string describeGpuVariant(const Scene& scene) {
     try {
+        refuseFollowPinsOnGpu(scene);
         refuseUnmodelledColliders(scene);
     } catch (const InputError& e) {
         return "none: " + e.key() + ": " + e.reason();

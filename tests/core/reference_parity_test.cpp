@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/collider_motion.h"
 #include "core/scene_loader.h"
 #include "core/solver.h"
 #include "reference/reference.h"
@@ -77,12 +78,22 @@ ref::Simulation runReference(const Scene& scene, long steps) {
     return sim;
 }
 
-// Signed distance of `p` outside collider `c` [m]: §2's rules leave it ≥ 0 (up to rounding).
-double outside(const Collider& c, const ref::V3& p) {
+// Signed distance of `p` outside the offset surface of collider `c` at time t [m] (φ − h of
+// docs/colliders.md §1–3): §2's rules leave it ≥ 0 (up to rounding).
+double outside(const Collider& c, double t, const ref::V3& p) {
     const glm::dvec3 q(p[0], p[1], p[2]);
-    if (const Plane* plane = c.as<Plane>()) return glm::dot(q - plane->point, plane->normal);
-    const Sphere& sphere = *c.as<Sphere>();
-    return glm::length(q - sphere.center) - sphere.radius;
+    const Pose pose = c.motion ? poseAt(c.motion->motion(), t) : Pose{};
+    double phi = 0;
+    if (const Plane* s = c.as<Plane>())
+        phi = contact(moved(PlaneT<double>{s->point, s->normal}, pose), q).phi;
+    if (const Sphere* s = c.as<Sphere>())
+        phi = contact(moved(SphereT<double>{s->center, s->radius}, pose), q).phi;
+    if (const Capsule* s = c.as<Capsule>())
+        phi = contact(moved(CapsuleT<double>{s->a, s->b, s->radius}, pose), q).phi;
+    if (const Box* s = c.as<Box>())
+        phi = contact(moved(BoxT<double>{s->center, s->halfExtents, s->rotation.matrix()}, pose), q)
+                  .phi;
+    return phi - c.thickness;
 }
 
 // The first step (1-based) after which some vertex of the reference lies on a collider, for
@@ -94,7 +105,9 @@ std::vector<long> firstContactSteps(const Scene& scene, long steps) {
         sim.step();
         for (std::size_t c = 0; c < first.size(); ++c) {
             for (const ref::V3& p : sim.positions()) {
-                if (first[c] == 0 && outside(scene.colliders[c], p) < 1e-9) first[c] = s;
+                if (first[c] == 0 &&
+                    outside(scene.colliders[c], double(s) * scene.integrator.dt, p) < 1e-9)
+                    first[c] = s;
             }
         }
     }

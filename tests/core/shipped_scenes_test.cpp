@@ -1,12 +1,18 @@
 // Every shipped scene sits inside its integrator's predicted stability bound (DESIGN.md §2) and
-// stays stable, on the CPU in double and in float, for its whole duration.
+// stays stable, on the CPU in double and in float, for its whole duration. The collider scenes
+// (docs/colliders.md §10) keep their moving colliders far inside the tunnelling limit and end
+// with the outcome they show: the cape on the turning figure's back, the tablecloth on the table,
+// the windsock blown along the wind.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
+#include "core/collider_motion.h"
+#include "core/collider_speed.h"
 #include "core/diagnostics.h"
 #include "core/scene_loader.h"
 #include "core/stability.h"
+#include "support/reference_bridge.h"
 
 namespace cloth {
 namespace {
@@ -45,11 +51,167 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, testing::ValuesIn(shippedScenes()
                              return std::filesystem::path(param.param).stem().string();
                          });
 
-TEST(ShippedScenes, AllFiveExist) {
-    for (const char* name : {"spring", "chain", "hanging", "drape", "flag"})
+TEST(ShippedScenes, AllExist) {
+    for (const char* name :
+         {"spring", "chain", "hanging", "drape", "flag", "cape", "table", "windsock"})
         EXPECT_TRUE(
             std::filesystem::exists(std::string(CLOTH_SOURCE_DIR "/scenes/") + name + ".json"))
             << name;
+}
+
+}  // namespace
+}  // namespace cloth
+
+namespace cloth {
+namespace {
+
+// φ − h of collider c at time t at p (docs/colliders.md §1–3): ≥ 0 outside the offset surface.
+double clearance(const Collider& c, double t, const glm::dvec3& p) {
+    const Pose q = c.motion ? poseAt(c.motion->motion(), t) : Pose{};
+    double phi = 0;
+    if (const Plane* s = c.as<Plane>())
+        phi = contact(moved(PlaneT<double>{s->point, s->normal}, q), p).phi;
+    if (const Sphere* s = c.as<Sphere>())
+        phi = contact(moved(SphereT<double>{s->center, s->radius}, q), p).phi;
+    if (const Capsule* s = c.as<Capsule>())
+        phi = contact(moved(CapsuleT<double>{s->a, s->b, s->radius}, q), p).phi;
+    if (const Box* s = c.as<Box>())
+        phi =
+            contact(moved(BoxT<double>{s->center, s->halfExtents, s->rotation.matrix()}, q), p).phi;
+    return phi - c.thickness;
+}
+
+// The smallest clearance of any vertex from any collider at the solver's time.
+double worstClearance(const Scene& scene, const Solver& solver) {
+    double worst = 1e300;
+    const SimState s = solver.read();
+    for (const Collider& c : scene.colliders)
+        for (const glm::dvec3& p : s.positions)
+            worst = std::min(worst, clearance(c, solver.time(), p));
+    return worst;
+}
+
+// docs/colliders.md §7: every moving collider's surface speed times Δt, against the smallest
+// thickness the cloth could pass (a capsule's or sphere's radius, a box's smallest half extent,
+// plus h). The shipped scenes stay 100 times inside it.
+double tunnellingMargin(const Scene& scene) {
+    double margin = 1e300;
+    for (const Collider& c : scene.colliders) {
+        const double travel = maxMotionSpeed(c) * scene.integrator.dt;
+        if (travel == 0) continue;
+        double thin = c.thickness;
+        if (const Capsule* k = c.as<Capsule>()) thin += k->radius;
+        if (const Sphere* k = c.as<Sphere>()) thin += k->radius;
+        if (const Box* k = c.as<Box>())
+            thin += std::min({k->halfExtents.x, k->halfExtents.y, k->halfExtents.z});
+        margin = std::min(margin, thin / travel);
+    }
+    return margin;
+}
+
+std::unique_ptr<Solver> runToEnd(const Scene& scene) {
+    auto solver = makeCpuSolver(scene, {Precision::Double, 2});
+    const StepResult r = solver->step(scene.defaultSteps());
+    EXPECT_FALSE(r.unstable) << r.reason;
+    return solver;
+}
+
+// The cape drapes over the turning figure's back: no vertex inside the body, the follow-pinned
+// top edge exactly where the shoulders' pose puts it, the hem behind the torso (in the figure's
+// turning frame) and below the shoulders.
+TEST(ShippedSceneOutcome, CapeDrapesOverTheTurningFiguresBack) {
+    const Scene scene = loadShippedScene("cape");
+    const double margin = tunnellingMargin(scene);
+    EXPECT_GT(margin, 100.0);
+    auto solver = runToEnd(scene);
+    const double t = solver->time();
+    const SimState s = solver->read();
+    const double clear = worstClearance(scene, *solver);
+    EXPECT_GT(clear, -1e-9);
+    const Grid g = scene.grid();
+    double pinError = 0;
+    for (const Pin& p : scene.pins) {
+        ASSERT_GE(p.follow, 0);
+        const Motion m = scene.colliders[size_t(p.follow)].motion->motion();
+        const glm::dvec3 want = poseAt(m, t).apply(g.restPosition(p.i, p.j));
+        pinError = std::max(pinError, glm::length(s.positions[size_t(g.index(p.i, p.j))] - want));
+    }
+    EXPECT_LT(pinError, 1e-12);
+    // The hem's middle, turned back into the figure's rest frame: behind the torso, hanging.
+    const Motion turn = scene.colliders[0].motion->motion();
+    const glm::dvec3 hem = s.positions[size_t(g.index(g.nu / 2, g.nv - 1))];
+    const glm::dvec3 local = glm::transpose(poseAt(turn, t).rotation) * hem;
+    std::printf(
+        "cape: tunnelling margin %.0fx, worst clearance %.3g m, pins off by %.3g m, hem "
+        "at (%.3f, %.3f, %.3f) in the figure's frame\n",
+        margin, clear, pinError, local.x, local.y, local.z);
+    EXPECT_LT(local.z, -0.14);
+    EXPECT_LT(local.y, 1.0);
+}
+
+// The tablecloth falls onto the table top and friction keeps it there although it hangs further
+// over one edge: its centre ends on the top, its edges hang below it, no vertex is inside; with
+// the top's friction set to 0 the same cloth slides off.
+TEST(ShippedSceneOutcome, TableclothStaysOnTheTable) {
+    const Scene scene = loadShippedScene("table");
+    auto solver = runToEnd(scene);
+    const SimState s = solver->read();
+    const Grid g = scene.grid();
+    const Box& top = *scene.colliders[0].as<Box>();
+    const double topY = top.center.y + top.halfExtents.y;
+    const glm::dvec3 centre = s.positions[size_t(g.index(g.nu / 2, g.nv / 2))];
+    double lowest = 1e300;
+    for (const glm::dvec3& p : s.positions) lowest = std::min(lowest, p.y);
+    const double clear = worstClearance(scene, *solver);
+    std::printf(
+        "table: centre at (%.4f, %.4f, %.4f), top at y = %.3f, lowest vertex %.3f m, "
+        "worst clearance %.3g m\n",
+        centre.x, centre.y, centre.z, topY, lowest, clear);
+    EXPECT_LT(std::abs(centre.x - top.center.x), top.halfExtents.x - 0.2);
+    EXPECT_LT(std::abs(centre.z - top.center.z), top.halfExtents.z - 0.2);
+    EXPECT_NEAR(centre.y, topY + scene.colliders[0].thickness, 2e-3);
+    EXPECT_LT(lowest, topY - 0.1);
+    EXPECT_GT(clear, -1e-9);
+    // Without friction the longer overhang pulls it off the table.
+    Scene slippery = scene;
+    slippery.colliders[0].friction = 0;
+    const glm::dvec3 slid =
+        runToEnd(slippery)->read().positions[size_t(g.index(g.nu / 2, g.nv / 2))];
+    std::printf("table without friction: centre at (%.3f, %.3f, %.3f)\n", slid.x, slid.y, slid.z);
+    EXPECT_LT(slid.y, topY - 0.1);
+}
+
+// The windsock on its swinging pole: stable, nothing inside the pole or the ground, the tunnelling
+// margin kept, and blown along the wind (its mean displacement along the wind's direction,
+// against the same run without wind).
+TEST(ShippedSceneOutcome, WindsockIsBlownAlongTheWind) {
+    const Scene scene = loadShippedScene("windsock");
+    const double margin = tunnellingMargin(scene);
+    EXPECT_GT(margin, 100.0);
+    Scene calm = scene;
+    calm.wind.reset();
+    auto windy = runToEnd(scene), still = runToEnd(calm);
+    const glm::dvec3 w = scene.wind->direction;
+    auto meanAlong = [&](const Solver& solver) {
+        double sum = 0;
+        const SimState s = solver.read();
+        for (const glm::dvec3& p : s.positions) sum += glm::dot(p, w);
+        return sum / double(s.positions.size());
+    };
+    double rest = 0;
+    const Grid g = scene.grid();
+    for (int j = 0; j < g.nv; ++j)
+        for (int i = 0; i < g.nu; ++i) rest += glm::dot(g.restPosition(i, j), w);
+    rest /= double(g.count());
+    const double blown = meanAlong(*windy) - rest, calmShift = meanAlong(*still) - rest;
+    const double clear = worstClearance(scene, *windy);
+    std::printf(
+        "windsock: tunnelling margin %.0fx, mean shift along the wind %.3f m (without "
+        "wind %.3f m), worst clearance %.3g m\n",
+        margin, blown, calmShift, clear);
+    EXPECT_GT(blown, 0.05);
+    EXPECT_GT(blown, calmShift + 0.3);
+    EXPECT_GT(clear, -1e-9);
 }
 
 }  // namespace

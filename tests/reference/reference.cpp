@@ -41,9 +41,12 @@ Simulation::Simulation(const Params& p) : prm_(p) {
     }
     const int n = prm_.nu * prm_.nv;
     pinned_.assign(n, false);
-    for (const auto& pin : prm_.pins) {
+    follow_.assign(n, -1);
+    for (std::size_t k = 0; k < prm_.pins.size(); ++k) {
+        const auto& pin = prm_.pins[k];
         const int i = resolve(pin[0], prm_.nu), j = resolve(pin[1], prm_.nv);
         pinned_[j * prm_.nu + i] = true;
+        if (k < prm_.pinFollow.size()) follow_[j * prm_.nu + i] = prm_.pinFollow[k];
     }
     rest_.resize(n);
     for (int j = 0; j < prm_.nv; ++j) {
@@ -51,6 +54,7 @@ Simulation::Simulation(const Params& p) : prm_(p) {
     }
     p_ = rest_;
     v_.assign(n, V3{0, 0, 0});
+    pin(p_, v_);  // follow pins start at their pose at t = 0
 }
 
 void Simulation::setState(const std::vector<V3>& p, const std::vector<V3>& v) {
@@ -91,8 +95,8 @@ V3 Simulation::springForces(const std::vector<V3>& p, int i, int j) const {
 
 // docs/integrators.md, implicit_euler: per spring J_s = K (d̂ d̂ᵀ + max(0, 1 − L/l) (I − d̂ d̂ᵀ)),
 // 0 when l < 1e-12 L; (H w)_k = Σ_springs of k J_s (w_k − w_q), pinned rows and columns removed.
-std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x,
-                                           const std::vector<V3>& w) const {
+std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x, const std::vector<V3>& w,
+                                           bool pinnedColumns) const {
     const V3 zero{0, 0, 0};
     std::vector<V3> y(x.size(), zero);
     for (int j = 0; j < prm_.nv; ++j) {
@@ -110,7 +114,7 @@ std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x,
                 if (dist < 1e-12 * len) continue;
                 const V3 dhat = scale(1.0 / dist, d);
                 const double transverse = std::fmax(0.0, 1.0 - len / dist);
-                const V3 e = sub(w[k], pinned_[q] ? zero : w[q]);
+                const V3 e = sub(w[k], pinned_[q] && !pinnedColumns ? zero : w[q]);
                 const V3 along = scale(dot(dhat, e), dhat);  // d̂ d̂ᵀ e
                 y[k] = add(y[k], scale(stiff, add(along, scale(transverse, sub(e, along)))));
             }
@@ -185,8 +189,14 @@ std::vector<V3> Simulation::accelerations(const std::vector<V3>& x,
 void Simulation::pin(std::vector<V3>& x, std::vector<V3>& v) const {
     for (std::size_t k = 0; k < x.size(); ++k) {
         if (!pinned_[k]) continue;
-        x[k] = rest_[k];
-        v[k] = {0, 0, 0};
+        if (follow_[k] < 0) {
+            x[k] = rest_[k];
+            v[k] = {0, 0, 0};
+            continue;
+        }
+        const Motion& m = prm_.colliders[follow_[k]].motion;
+        x[k] = motionPoint(m, colliderTime_, rest_[k]);
+        v[k] = motionVelocity(m, colliderTime_, x[k]);
     }
 }
 

@@ -75,6 +75,10 @@ struct Params {
     double damping = 0;                                  // μ [N·s/m]
     V3 gravity{0, -9.81, 0};                             // [m/s²]
     std::vector<std::array<int, 2>> pins;                // may be negative: -1 = last index
+    // Per pin (missing entries: -1): the index in `colliders` of the moving collider the pin
+    // follows (docs/colliders.md §5: the collider's pose at t applied to the rest position), or
+    // -1 for a pin held at its rest position.
+    std::vector<int> pinFollow;
     bool wind = false;
     V3 windDirection{1, 0, 0};
     double windStrength = 0;          // K_w [N]
@@ -116,8 +120,11 @@ public:
     bool isPinned(int k) const { return pinned_[k]; }
     // y = H w at positions x, H = −∂F/∂x of the springs with implicit_euler's clamp (docs/
     // integrators.md): (H w)_k = Σ_springs of k J_s (w_k − w_q), pinned rows and columns removed
-    // (w is read as 0 at pinned vertices, y is 0 there).
-    std::vector<V3> hessianProduct(const std::vector<V3>& x, const std::vector<V3>& w) const;
+    // (w is read as 0 at pinned vertices, y is 0 there). With `pinnedColumns`, w is read at
+    // pinned vertices too: implicit Euler's right-hand side h H v_n, where a follow pin's
+    // velocity moves its neighbours' springs (docs/colliders.md §5).
+    std::vector<V3> hessianProduct(const std::vector<V3>& x, const std::vector<V3>& w,
+                                   bool pinnedColumns = false) const;
 
     // Energies of an arbitrary state on this cloth (e.g. a solver's), same formulas as above.
     double kineticEnergy(const std::vector<V3>& v) const;
@@ -134,7 +141,8 @@ private:
     double colliderTime_ = 0;  // the end of the step being taken [s]: where colliders are
     // a(x, v) = (F(x) − μ v)/m + g on free vertices, 0 on pinned ones.
     std::vector<V3> accelerations(const std::vector<V3>& x, const std::vector<V3>& v) const;
-    // Pins (x ← x_pin, v ← 0), then every collider in scene order, on every vertex.
+    // Pins (x ← x_pin, v ← 0; a follow pin at its pose at colliderTime_, v ← v_c there), then
+    // every collider in scene order, on every vertex.
     void pinAndCollide(std::vector<V3>& x, std::vector<V3>& v) const;
     void pin(std::vector<V3>& x, std::vector<V3>& v) const;
 
@@ -151,7 +159,9 @@ private:
     double du_ = 0, dv_ = 0;
     V3 u_{}, vAxis_{}, wind_{};
     std::vector<bool> pinned_;
-    std::vector<V3> rest_;  // pinned vertices are held at their rest position
+    std::vector<int> follow_;  // per vertex: the collider a pinned vertex follows, or -1
+    std::vector<V3> rest_;     // pinned vertices are held at their rest position (moved by
+                               // the followed collider's motion for a follow pin)
     std::vector<V3> p_, v_;
     long steps_ = 0;
     CgStats cg_;

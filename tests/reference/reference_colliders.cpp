@@ -164,25 +164,6 @@ void motionAt(const Motion& m, double t, double& degrees, V3& shift) {
     }
 }
 
-// d/dt of the motion at the point p (which moves with the collider).
-V3 motionVelocity(const Motion& m, double t, const V3& p) {
-    const double pi = std::acos(-1.0);
-    switch (m.type) {
-        case Motion::Type::None:
-            return {0, 0, 0};
-        case Motion::Type::Linear:
-            return m.velocity;
-        case Motion::Type::Rotation:
-            return cross(scale(m.degreesPerSecond * pi / 180, normalised(m.axis)), sub(p, m.pivot));
-        case Motion::Type::Oscillation: {
-            const double w = 2 * pi * m.frequency;
-            return scale(w * m.amplitude * std::cos(w * t + m.phaseDegrees * pi / 180),
-                         normalised(m.axis));
-        }
-    }
-    return {0, 0, 0};
-}
-
 // The grid posed by a rotation about its origin and a translation; outside the grid the
 // clamped point's value plus the distance to it.
 Contact posedGridContact(const Collider& c, const V3& p) {
@@ -216,6 +197,33 @@ Contact restContact(const Collider& c, const V3& p) {
 }
 
 }  // namespace
+
+// d/dt of the motion at the point p (which moves with the collider).
+V3 motionVelocity(const Motion& m, double t, const V3& p) {
+    const double pi = std::acos(-1.0);
+    switch (m.type) {
+        case Motion::Type::None:
+            return {0, 0, 0};
+        case Motion::Type::Linear:
+            return m.velocity;
+        case Motion::Type::Rotation:
+            return cross(scale(m.degreesPerSecond * pi / 180, normalised(m.axis)), sub(p, m.pivot));
+        case Motion::Type::Oscillation: {
+            const double w = 2 * pi * m.frequency;
+            return scale(w * m.amplitude * std::cos(w * t + m.phaseDegrees * pi / 180),
+                         normalised(m.axis));
+        }
+    }
+    return {0, 0, 0};
+}
+
+V3 motionPoint(const Motion& m, double t, const V3& x0) {
+    double degrees;
+    V3 shift;
+    motionAt(m, t, degrees, shift);
+    const V3 axis = m.type == Motion::Type::Rotation ? m.axis : V3{0, 1, 0};
+    return add(add(m.pivot, rotate(axis, degrees, sub(x0, m.pivot))), shift);
+}
 
 void collideMoving(const Collider& c, double t, V3& p, V3& v) {
     double degrees;

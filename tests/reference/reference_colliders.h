@@ -40,6 +40,11 @@ double triangleDistance(const V3& p, const V3& a, const V3& b, const V3& c);
 // gridDegrees and gridTranslation; outside it φ = φ(clamped point) + the distance to it.
 void collideMoving(const Collider& c, double t, V3& p, V3& v);
 
+// docs/colliders.md §3: where the point x0 of a collider at rest is at time t under motion m,
+// and the velocity of the point p moving with the collider at time t.
+V3 motionPoint(const Motion& m, double t, const V3& x0);
+V3 motionVelocity(const Motion& m, double t, const V3& p);
+
 // docs/colliders.md §2: returns whether the vertex was in contact (φ < h) and updates p, v.
 bool respond(const Contact& c, double thickness, double friction, const V3& vc, V3& p, V3& v);
 

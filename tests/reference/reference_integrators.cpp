@@ -85,7 +85,7 @@ void Simulation::stepRk4() {
 void Simulation::stepImplicitEuler() {
     const double h = prm_.dt, m = prm_.mass, mu = prm_.damping;
     const std::vector<V3> f = forces(p_);
-    const std::vector<V3> hv = hessianProduct(p_, v_);
+    const std::vector<V3> hv = hessianProduct(p_, v_, true);  // a follow pin's v_n counts
     std::vector<V3> b(p_.size(), V3{0, 0, 0});
     for (std::size_t k = 0; k < p_.size(); ++k) {
         if (pinned_[k]) continue;  // the pinned rows are removed: Δv = 0 there

@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "core/collider_validate.h"
+#include "core/pin_follow.h"
 #include "core/scene_loader.h"
 
 namespace cloth {
@@ -106,7 +107,10 @@ ref::Params toReference(const Scene& scene) {
     p.kBend = scene.springs.bend;
     p.damping = scene.damping;
     p.gravity = toV3(scene.gravity);
-    for (const Pin& pin : scene.pins) p.pins.push_back({pin.i, pin.j});
+    for (const Pin& pin : scene.pins) {
+        p.pins.push_back({pin.i, pin.j});
+        p.pinFollow.push_back(follows(scene, pin) ? pin.follow : -1);  // as the solvers do
+    }
     if (scene.wind) {
         p.wind = true;
         p.windDirection = toV3(scene.wind->direction);
