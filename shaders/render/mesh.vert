@@ -1,8 +1,9 @@
-// A collider mesh (the unit sphere) placed by uModel.
+// A collider's triangles (render/collider_draw.cpp) placed by its rigid pose uModel.
 layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
 
 uniform mat4 uViewProj;
-uniform mat4 uModel;
+uniform mat4 uModel;  // rotation and translation only
 
 out vec3 vWorld;
 out vec3 vNormal;
@@ -10,6 +11,6 @@ out vec3 vNormal;
 void main() {
     vec4 world = uModel * vec4(aPosition, 1.0);
     vWorld = world.xyz;
-    vNormal = aPosition;  // unit sphere: position = normal (uniform scale)
+    vNormal = mat3(uModel) * aNormal;
     gl_Position = uViewProj * world;
 }

@@ -233,7 +233,10 @@ public:
         options_.wireframe = o.wireframe;
         options_.springs = o.springs;
     }
-    render::Camera framed(const SimState& state) const {
+    // Frames the cloth as it is now and the colliders where the solver has them now.
+    render::Camera framed(const Solver& solver) {
+        renderer_.updateCloth(solver);
+        const SimState state = solver.read();
         return render::framedCamera(renderer_, &state);
     }
     void paint(Solver& solver, const std::string& png, const render::Camera& camera) {
@@ -257,7 +260,7 @@ private:
 bool writeFrames(const RenderArgs& o, const Scene& scene, Solver& solver, Painter& painter,
                  long total) {
     std::filesystem::create_directories(o.framesDir);
-    const render::Camera camera = painter.framed(solver.read());
+    const render::Camera camera = painter.framed(solver);
     long frames = 1;
     painter.paint(solver, framePng(o, scene, solver.stepsDone(), total), camera);
     while (solver.stepsDone() < total) {
@@ -291,8 +294,7 @@ int renderCommand(Args& args) {
     if (!o.framesDir.empty() && !writeFrames(o, scene, *solver, painter, total)) return kUnstable;
     if (!simulate(scene, *solver, total)) return kUnstable;
     if (!o.png.empty()) {
-        const SimState state = solver->read();
-        painter.paint(*solver, o.png, painter.framed(state));
+        painter.paint(*solver, o.png, painter.framed(*solver));
         std::printf("wrote %s (%dx%d, %ld steps, t = %.4g s, %s)\n", o.png.c_str(), o.width,
                     o.height, solver->stepsDone(), solver->time(), solver->name().c_str());
     }

@@ -1,11 +1,15 @@
 // Mouse and keyboard: left-drag orbits (or, on a vertex, grabs it with a spring to the cursor on
 // the plane facing the camera through the grabbed point), Ctrl+click pins or unpins a vertex,
-// right/middle or Shift+left drag pans, the wheel zooms. Input ImGui wants is left to ImGui.
+// Shift+left drag on a collider drags it on the plane facing the camera (docs/viewer.md), right/
+// middle or Shift+left drag elsewhere pans, the wheel zooms. Input ImGui wants is left to ImGui.
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <stdexcept>
+
 #include "app/viewer_session.h"
 #include "app/viewer_ui.h"
+#include "render/collider_pick.h"
 
 namespace cloth::app {
 namespace {
@@ -30,6 +34,42 @@ std::optional<std::int64_t> pickVertex(GLFWwindow* window, const ViewerSession& 
     return k;
 }
 
+// Shift + left press: the collider under the cursor, if any, starts a drag (planes are not
+// picked: render/collider_pick.h). False when nothing was picked.
+bool startColliderDrag(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
+    if (session.unstable()) return false;
+    const auto hit =
+        render::pickCollider(cursorRay(window, ui), session.params().effective().colliders,
+                             session.solver().time(), session.effectiveDrags());
+    if (!hit) return false;
+    ViewerUi::ColliderDrag& d = ui.colliderDrag;
+    d.collider = session.paramsIndex(hit->index);
+    d.picked = hit->point;
+    d.normal = glm::dvec3(ui.camera.forward());
+    d.startOffset = session.colliderOffset(d.collider);
+    try {
+        session.dragCollider(d.collider, d.startOffset);
+        ui.drag = ViewerUi::Drag::Collider;
+    } catch (const std::invalid_argument& e) {  // the GPU backend cannot drag yet
+        ui.message = e.what();
+        ui.drag = ViewerUi::Drag::None;
+    }
+    return true;
+}
+
+void moveCollider(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
+    const ViewerUi::ColliderDrag& d = ui.colliderDrag;
+    const auto target =
+        render::dragTarget(cursorRay(window, ui), d.picked, d.normal, d.startOffset);
+    if (!target) return;
+    try {
+        session.dragCollider(d.collider, *target);
+    } catch (const std::invalid_argument& e) {
+        ui.message = e.what();
+        ui.drag = ViewerUi::Drag::None;
+    }
+}
+
 void keyboard(ViewerSession& session, ViewerUi& ui) {
     if (ImGui::GetIO().WantCaptureKeyboard) return;
     if (ImGui::IsKeyPressed(GLFW_KEY_SPACE)) session.setPaused(!session.paused());
@@ -48,9 +88,10 @@ void keyboard(ViewerSession& session, ViewerUi& ui) {
 
 void press(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
     const ImGuiIO& io = ImGui::GetIO();
+    const bool shiftLeft = ImGui::IsMouseClicked(ImGuiMouseButton_Left) && io.KeyShift;
+    if (shiftLeft && startColliderDrag(window, session, ui)) return;
     if (ImGui::IsMouseClicked(ImGuiMouseButton_Right) ||
-        ImGui::IsMouseClicked(ImGuiMouseButton_Middle) ||
-        (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && io.KeyShift)) {
+        ImGui::IsMouseClicked(ImGuiMouseButton_Middle) || shiftLeft) {
         ui.drag = ViewerUi::Drag::Pan;
         return;
     }
@@ -85,6 +126,9 @@ void drag(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
                 if (hit) session.grab(g->vertex, glm::dvec3(*hit));
             }
             break;
+        case ViewerUi::Drag::Collider:
+            moveCollider(window, session, ui);
+            break;
         case ViewerUi::Drag::None:
             break;
     }
@@ -98,6 +142,7 @@ void handleInput(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
     const bool anyDown = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];
     if (!anyDown) {
         if (ui.drag == ViewerUi::Drag::Grab) session.release();
+        if (ui.drag == ViewerUi::Drag::Collider) session.releaseCollider(ui.colliderDrag.collider);
         ui.drag = ViewerUi::Drag::None;
     }
     if (ui.drag != ViewerUi::Drag::None) {

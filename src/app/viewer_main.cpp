@@ -96,7 +96,11 @@ void layoutView(GLFWwindow* window, ViewerUi& ui) {
 void drawScene(ViewerSession& session, render::Renderer& renderer, ViewerUi& ui) {
     renderer.setScene(session.params().effective());
     renderer.setPins(session.pinnedVertices());
+    renderer.setColliderDrags(session.effectiveDrags());
     if (session.unstable() || !renderer.updateCloth(session.solver())) renderer.clearCloth();
+    ui.render.highlightCollider.reset();
+    if (ui.drag == ViewerUi::Drag::Collider)
+        ui.render.highlightCollider = session.effectiveIndex(ui.colliderDrag.collider);
     ui.render.grabVertex.reset();
     if (const auto& g = session.grabbed()) {
         ui.render.grabVertex = g->vertex;

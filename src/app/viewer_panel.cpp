@@ -8,33 +8,13 @@
 
 #include "app/viewer_session.h"
 #include "app/viewer_ui.h"
+#include "app/viewer_widgets.h"
 #include "core/stability.h"
 
 namespace cloth::app {
 namespace {
 
 const ImVec4 kWarn{1.0f, 0.8f, 0.2f, 1.0f}, kError{1.0f, 0.35f, 0.3f, 1.0f};
-
-bool dragDouble(const char* label, double& v, float speed, double lo, double hi,
-                const char* format = "%.4g", ImGuiSliderFlags flags = 0) {
-    return ImGui::DragScalar(label, ImGuiDataType_Double, &v, speed, &lo, &hi, format,
-                             flags | ImGuiSliderFlags_AlwaysClamp);
-}
-
-bool dragVec3(const char* label, glm::dvec3& v, float speed, double lo = -1e3, double hi = 1e3) {
-    return ImGui::DragScalarN(label, ImGuiDataType_Double, &v.x, 3, speed, &lo, &hi, "%.3f",
-                              ImGuiSliderFlags_AlwaysClamp);
-}
-
-bool logSlider(const char* label, double& v, double lo, double hi, const char* format = "%.3g") {
-    return ImGui::SliderScalar(label, ImGuiDataType_Double, &v, &lo, &hi, format,
-                               ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
-}
-
-glm::dvec3 unitOr(const glm::dvec3& v, const glm::dvec3& fallback) {
-    const double n = glm::length(v);
-    return n > 1e-9 && std::isfinite(n) ? v / n : fallback;
-}
 
 void sceneSection(ViewerSession& session, ViewerUi& ui) {
     const std::string current = session.params().scene.name + ".json";
@@ -133,38 +113,6 @@ bool forcesSection(ViewerParams& p) {
     return changed;
 }
 
-bool collidersSection(ViewerParams& p) {
-    bool changed = false;
-    for (std::size_t c = 0; c < p.scene.colliders.size(); ++c) {
-        ImGui::PushID(int(c));
-        bool on = p.colliderOn[c];
-        if (ImGui::Checkbox("##on", &on)) {
-            p.colliderOn[c] = on;
-            changed = true;
-        }
-        ImGui::SameLine();
-        Collider& col = p.scene.colliders[c];
-        if (Plane* pl = col.as<Plane>()) {
-            ImGui::Text("plane %zu", c);
-            changed |= dragVec3("point", pl->point, 0.01f);
-            glm::dvec3 n = pl->normal;
-            if (dragVec3("normal", n, 0.01f, -1, 1)) {
-                pl->normal = unitOr(n, pl->normal);
-                changed = true;
-            }
-        } else if (Sphere* sp = col.as<Sphere>()) {
-            ImGui::Text("sphere %zu", c);
-            changed |= dragVec3("centre", sp->center, 0.01f);
-            changed |= dragDouble("radius [m]", sp->radius, 0.005f, 1e-3, 100);
-        } else {  // box, capsule, mesh: edited in the scene file for now
-            ImGui::Text("%s %zu", colliderTypeName(col.shape), c);
-        }
-        ImGui::PopID();
-    }
-    if (p.scene.colliders.empty()) ImGui::TextDisabled("none in this scene");
-    return changed;
-}
-
 bool clothSection(ViewerParams& p, ViewerSession& session, ViewerUi& ui) {
     ClothSpec& c = p.scene.cloth;
     if (ui.resolution[0] == 0) {
@@ -203,7 +151,8 @@ void drawPanel(ViewerSession& session, ViewerUi& ui) {
         changed |= timeSection(p);
     if (ImGui::CollapsingHeader("Forces", ImGuiTreeNodeFlags_DefaultOpen))
         changed |= forcesSection(p);
-    if (ImGui::CollapsingHeader("Colliders")) changed |= collidersSection(p);
+    if (ImGui::CollapsingHeader("Colliders", ImGuiTreeNodeFlags_DefaultOpen))
+        changed |= drawCollidersSection(p, session);
     if (ImGui::CollapsingHeader("Cloth and pins")) changed |= clothSection(p, session, ui);
     if (changed) {
         p.scene.pins = session.params().scene.pins;  // pins change through togglePin only

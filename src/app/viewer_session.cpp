@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/collider_limits.h"
 #include "core/diagnostics.h"
 #include "core/stability.h"
 
@@ -53,6 +54,11 @@ std::vector<Pin> remapPins(const std::vector<Pin>& pins, const ClothSpec& from,
     return out;
 }
 
+glm::dvec3 clampDragVelocity(const glm::dvec3& v, const Collider& c, double dt) {
+    const double speed = glm::length(v), limit = maxColliderStepTravel(c) / dt;
+    return speed > limit ? v * (limit / speed) : v;
+}
+
 ViewerSession::ViewerSession(const Scene& scene, const BackendChoice& backend) : backend_(backend) {
     params_.scene = scene;
     params_.colliderOn.assign(scene.colliders.size(), true);
@@ -65,6 +71,7 @@ void ViewerSession::applyParameters(const ViewerParams& next) {
     const bool grid = gridDiffers(p.scene, params_.scene);
     if (grid) p.scene.pins = remapPins(params_.scene.pins, params_.scene.cloth, p.scene.cloth);
     params_ = std::move(p);
+    drags_.resize(params_.scene.colliders.size());
     if (grid || unstable()) {
         rebuild();
         return;
@@ -115,6 +122,7 @@ void ViewerSession::replaceSolver(const Scene& effective, const BackendChoice& b
     std::unique_ptr<Solver> next = makeSolver(effective, backend);  // may throw: keep the old
     next->write(state);
     for (const Pin& p : params_.scene.pins) next->setPinned(p.i, p.j, true);  // where they are
+    drags_ = carryDrags(*next);  // may throw (the GPU cannot drag yet): keep the old
     solver_ = std::move(next);
     backend_ = backend;
     ++rebuilds_;
@@ -123,6 +131,7 @@ void ViewerSession::replaceSolver(const Scene& effective, const BackendChoice& b
 
 void ViewerSession::rebuild() {
     solver_ = makeSolver(params_.effective(), backend_);
+    drags_.assign(params_.scene.colliders.size(), std::nullopt);  // the colliders at rest too
     ++rebuilds_;
     instability_.clear();
     simTime_ = 0;
@@ -185,6 +194,70 @@ void ViewerSession::grab(std::int64_t k, const glm::dvec3& target) {
 void ViewerSession::release() {
     grab_.reset();
     solver_->setGrab(std::nullopt);
+}
+
+int ViewerSession::effectiveIndex(std::size_t c) const {
+    if (c >= params_.scene.colliders.size() ||
+        (c < params_.colliderOn.size() && !params_.colliderOn[c]))
+        return -1;
+    int e = 0;
+    for (std::size_t k = 0; k < c; ++k)
+        e += k >= params_.colliderOn.size() || params_.colliderOn[k];
+    return e;
+}
+
+std::size_t ViewerSession::paramsIndex(std::size_t effective) const {
+    for (std::size_t c = 0; c < params_.scene.colliders.size(); ++c)
+        if (effectiveIndex(c) == int(effective)) return c;
+    throw std::invalid_argument("no collider " + std::to_string(effective) + " is on");
+}
+
+void ViewerSession::dragCollider(std::size_t c, const glm::dvec3& target) {
+    const int e = effectiveIndex(c);
+    if (e < 0) throw std::invalid_argument("collider " + std::to_string(c) + " is off");
+    const IntegratorSpec& in = params_.scene.integrator;
+    const glm::dvec3 now = colliderOffset(c);
+    const double frame = std::max(1, in.substeps) * in.dt;  // the next frame's simulated time
+    const glm::dvec3 v =
+        clampDragVelocity((target - now) / frame, params_.scene.colliders[c], in.dt);
+    solver_->setColliderDrag(e, now, v);
+    drags_[c] = ColliderDrag{now, v, solver_->time()};
+}
+
+void ViewerSession::releaseCollider(std::size_t c) {
+    const int e = effectiveIndex(c);
+    if (e < 0 || !drags_[c]) return;
+    const glm::dvec3 now = colliderOffset(c);
+    solver_->setColliderDrag(e, now, glm::dvec3(0));
+    drags_[c] = ColliderDrag{now, glm::dvec3(0), solver_->time()};
+}
+
+const ColliderDrag* ViewerSession::colliderDrag(std::size_t c) const {
+    return c < drags_.size() && drags_[c] ? &*drags_[c] : nullptr;
+}
+
+glm::dvec3 ViewerSession::colliderOffset(std::size_t c) const {
+    const ColliderDrag* d = colliderDrag(c);
+    return d ? d->at(solver_->time()) : glm::dvec3(0);
+}
+
+std::vector<ColliderDrag> ViewerSession::effectiveDrags() const {
+    std::vector<ColliderDrag> out;
+    for (std::size_t c = 0; c < drags_.size(); ++c)
+        if (effectiveIndex(c) >= 0) out.push_back(drags_[c].value_or(ColliderDrag{}));
+    return out;
+}
+
+std::vector<std::optional<ColliderDrag>> ViewerSession::carryDrags(Solver& next) const {
+    std::vector<std::optional<ColliderDrag>> carried = drags_;
+    for (std::size_t c = 0; c < carried.size(); ++c) {
+        if (!carried[c]) continue;
+        const glm::dvec3 now = colliderOffset(c);
+        carried[c] = ColliderDrag{now, carried[c]->velocity, next.time()};
+        if (const int e = effectiveIndex(c); e >= 0)
+            next.setColliderDrag(e, now, carried[c]->velocity);
+    }
+    return carried;
 }
 
 void ViewerSession::sampleDiagnostics() {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/solver_factory.h"
+#include "core/collider_pose.h"
 #include "core/scene.h"
 #include "core/solver.h"
 
@@ -64,6 +65,21 @@ public:
     void release();
     const std::optional<Grab>& grabbed() const { return grab_; }
 
+    // The collider drag (docs/viewer.md): collider c (params order) heads for the displacement
+    // `target` so as to reach it at the end of the next frame (substeps·Δt of simulated time),
+    // no faster than clampDragVelocity allows, through Solver::setColliderDrag. Throws
+    // std::invalid_argument when the backend cannot drag (the GPU, for now) or c is off.
+    void dragCollider(std::size_t c, const glm::dvec3& target);
+    void releaseCollider(std::size_t c);  // velocity 0: it stays where it is
+    // Collider c's drag (nullptr if never dragged since the last rebuild) and its displacement now.
+    const ColliderDrag* colliderDrag(std::size_t c) const;
+    glm::dvec3 colliderOffset(std::size_t c) const;
+    // The drags by the solver's collider order (switched-off colliders left out), for drawing
+    // and picking; and the params index of the solver's collider e.
+    std::vector<ColliderDrag> effectiveDrags() const;
+    std::size_t paramsIndex(std::size_t effective) const;
+    int effectiveIndex(std::size_t c) const;  // in the solver's colliders; −1 when off
+
     Solver& solver() { return *solver_; }
     const Solver& solver() const { return *solver_; }
     bool unstable() const { return !instability_.empty(); }
@@ -83,7 +99,12 @@ private:
     void replaceSolver(const Scene& effective, const BackendChoice& backend);
     double grabStiffness() const;
 
+    // The drags where they are now, put on a new solver (whose clock starts again); throws like
+    // setColliderDrag, before anything changed.
+    std::vector<std::optional<ColliderDrag>> carryDrags(Solver& next) const;
+
     ViewerParams params_;
+    std::vector<std::optional<ColliderDrag>> drags_;  // by params index; since: solver time
     BackendChoice backend_;
     std::unique_ptr<Solver> solver_;
     std::optional<Grab> grab_;
@@ -94,6 +115,10 @@ private:
     int rebuilds_ = 0;
     ViewerHistory history_;
 };
+
+// The drag velocity v [m/s] scaled down so that one step of Δt moves the collider at most
+// maxColliderStepTravel(c) (docs/colliders.md §7: no vertex tunnels through it).
+glm::dvec3 clampDragVelocity(const glm::dvec3& v, const Collider& c, double dt);
 
 // True when the two scenes' clothes differ in grid (resolution, size, origin or axes).
 bool gridDiffers(const Scene& a, const Scene& b);

@@ -16,6 +16,7 @@ struct GLFWwindow;
 namespace cloth::app {
 
 class ViewerSession;
+struct ViewerParams;
 
 struct ViewerUi {
     render::Camera camera;
@@ -40,14 +41,23 @@ struct ViewerUi {
     double fps = 0;
 
     // Mouse interaction in progress.
-    enum class Drag { None, Orbit, Pan, Grab } drag = Drag::None;
+    enum class Drag { None, Orbit, Pan, Grab, Collider } drag = Drag::None;
     glm::vec3 grabPlanePoint{0};
+    // A collider drag (Shift + left drag on a collider): which one (params order), the picked
+    // point and the view direction then (the drag plane), and its displacement then.
+    struct ColliderDrag {
+        std::size_t collider = 0;
+        glm::dvec3 picked{0}, normal{0, 0, 1}, startOffset{0};
+    } colliderDrag;
 };
 
 // The panel (viewer_panel.cpp): edits a copy of the parameters and hands it to
 // session.applyParameters() when anything changed.
 void drawPanel(ViewerSession& session, ViewerUi& ui);
 inline constexpr float kPanelWidth = 360;  // [window units]
+// Its colliders (viewer_panel_colliders.cpp): the switches, placement, thickness, friction,
+// motion and drag state of each; edits `p`, returns whether anything changed.
+bool drawCollidersSection(ViewerParams& p, const ViewerSession& session);
 // Its lower sections (viewer_panel_info.cpp): display modes, diagnostics and plots, output.
 void drawDisplaySection(ViewerUi& ui);
 void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "core/collider_validate.h"
 
@@ -11,19 +13,6 @@ namespace {
 template <typename T>
 Vec3<T> cast(const glm::dvec3& v) {
     return Vec3<T>(v);
-}
-
-// The scene's shape at t = 0, in double (collider_motion.h moves these).
-template <typename Rest>
-Rest restShape(const ColliderShape& shape) {
-    if (const Plane* p = std::get_if<Plane>(&shape)) return PlaneT<double>{p->point, p->normal};
-    if (const Sphere* s = std::get_if<Sphere>(&shape)) return SphereT<double>{s->center, s->radius};
-    if (const Box* b = std::get_if<Box>(&shape))
-        return BoxT<double>{b->center, b->halfExtents, b->rotation.matrix()};
-    if (const Capsule* c = std::get_if<Capsule>(&shape))
-        return CapsuleT<double>{c->a, c->b, c->radius};
-    const MeshCollider& m = std::get<MeshCollider>(shape);
-    return SdfColliderT<double>{&m.baked->grid, m.rotation.matrix(), m.translation};
 }
 
 // Rounding slack of the row culls: far more than the few ulps by which the cull's arithmetic
@@ -101,13 +90,16 @@ bool rowMayTouch(const CpuCollider<T>& c, ConstRow3<T> x, int n) {
 
 template <typename T>
 void CpuColliders<T>::take(const Scene& scene) {
+    std::vector<std::optional<ColliderDrag>> drags;
+    if (rest_.size() == scene.colliders.size())
+        for (const Rest& r : rest_) drags.push_back(r.drag);  // the viewer's drags persist
     rest_.clear();
     posed_.clear();
     meshes_.clear();
     anyMoving_ = false;
     for (const Collider& c : scene.colliders) {
         if (const MeshCollider* m = c.as<MeshCollider>()) meshes_.push_back(m->baked);
-        Rest r{restShape<RestShape>(c.shape), std::nullopt};
+        Rest r{restShape(c.shape), std::nullopt, std::nullopt};
         if (c.motion) r.motion = c.motion->motion();
         CpuCollider<T> p;
         p.params = {T(c.thickness), T(c.friction)};
@@ -118,18 +110,44 @@ void CpuColliders<T>::take(const Scene& scene) {
         rest_.push_back(std::move(r));
         posed_.push_back(p);
     }
+    for (std::size_t k = 0; k < drags.size(); ++k) {
+        rest_[k].drag = drags[k];
+        if (drags[k]) setMoving(k);
+    }
 }
 
+template <typename T>
+void CpuColliders<T>::setMoving(std::size_t k) {
+    posed_[k].moving = true;
+    posed_[k].plain = false;  // a dragged plane or sphere: the general response, with v_c
+    anyMoving_ = true;
+}
+
+template <typename T>
+void CpuColliders<T>::drag(int index, const ColliderDrag& drag) {
+    if (index < 0 || std::size_t(index) >= rest_.size())
+        throw std::invalid_argument("setColliderDrag: collider " + std::to_string(index) +
+                                    " does not exist (the scene has " +
+                                    std::to_string(rest_.size()) + ")");
+    rest_[std::size_t(index)].drag = drag;
+    setMoving(std::size_t(index));
+}
+
+// The pose at time t: the motion's, then the drag's translation (collider_pose.h's rule).
 template <typename T>
 void CpuColliders<T>::pose(double t) noexcept {
     for (std::size_t k = 0; k < rest_.size(); ++k) {
         const Rest& r = rest_[k];
-        if (!r.motion) continue;
+        if (!r.motion && !r.drag) continue;
         CpuCollider<T>& c = posed_[k];
-        const Pose q = poseAt(*r.motion, t);
+        Pose q = r.motion ? poseAt(*r.motion, t) : Pose{};
+        RigidVelocity w = r.motion ? velocityAt(*r.motion, t) : RigidVelocity{};
+        if (r.drag) {
+            q.translation += r.drag->at(t);
+            w.linear += r.drag->velocity;
+        }
         std::visit([&](const auto& s) { setPosed(c, moved(s, q), double(c.params.thickness)); },
                    r.shape);
-        const RigidVelocity w = velocityAt(*r.motion, t);
         c.linear = cast<T>(w.linear);
         c.angular = cast<T>(w.angular);
         c.origin = cast<T>(w.origin);

@@ -12,6 +12,7 @@
 
 #include "core/collider_contact.h"
 #include "core/collider_motion.h"
+#include "core/collider_pose.h"
 #include "core/cpu_rows.h"
 #include "core/scene.h"
 
@@ -44,6 +45,11 @@ public:
     // Poses the moving ones at time t [s] (the end of the step about to be taken). Allocates
     // nothing: it runs in a barrier's completion.
     void pose(double t) noexcept;
+    // Solver::setColliderDrag: collider `index` is displaced by drag.at(t) from the next pose on,
+    // and moves (v_c gains drag.velocity; a plain plane or sphere takes the general response).
+    // Drags outlive take() while the number of colliders stays. std::invalid_argument for an
+    // index out of range.
+    void drag(int index, const ColliderDrag& drag);
     bool empty() const { return posed_.empty(); }
     bool anyMoving() const { return anyMoving_; }
 
@@ -57,12 +63,12 @@ public:
     void applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;
 
 private:
-    using RestShape = std::variant<PlaneT<double>, SphereT<double>, BoxT<double>, CapsuleT<double>,
-                                   SdfColliderT<double>>;
     struct Rest {
-        RestShape shape;
+        ShapeD shape;
         std::optional<Motion> motion;
+        std::optional<ColliderDrag> drag;
     };
+    void setMoving(std::size_t k);
 
     template <typename S>
     static void applyOne(const CpuCollider<T>& c, const S& s, Vec3<T>& p, Vec3<T>& v) {

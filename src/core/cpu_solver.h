@@ -41,6 +41,9 @@ public:
     void setPinned(int i, int j, bool pinned) override;
     void setGrab(const std::optional<Grab>& grab) override;
     void setParameters(const Scene& scene) override;
+    void setColliderDrag(int index, const glm::dvec3& offset, const glm::dvec3& velocity) override {
+        colliders_.drag(index, {offset, velocity, time()});
+    }
 
 private:
     using Spring = StencilSpring<T>;

@@ -86,6 +86,12 @@ public:
     // must equal the solver's; otherwise it throws std::invalid_argument and the caller
     // builds a new solver (and write()s the state into it).
     virtual void setParameters(const Scene& scene) = 0;
+    // The viewer's collider drag (docs/colliders.md §3): from the next step collider `index`
+    // (scene order) is displaced by offset + velocity·(t − t_now) on top of its own motion, and
+    // its surface moves at `velocity` more, so the contact carries the cloth. Offsets persist;
+    // velocity 0 leaves it where it is.
+    virtual void setColliderDrag(int index, const glm::dvec3& offset,
+                                 const glm::dvec3& velocity) = 0;
     long stepsDone() const { return steps_; }
     void resetStepCount() { steps_ = 0; }
     double time() const { return double(steps_) * dt_; }

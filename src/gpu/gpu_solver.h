@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,10 @@ public:
     void setPinned(int i, int j, bool pinned) override;
     void setGrab(const std::optional<Grab>& grab) override;
     void setParameters(const Scene& scene) override;
+    // Not modelled yet: the compute passes pose no collider (docs/colliders.md, status).
+    void setColliderDrag(int, const glm::dvec3&, const glm::dvec3&) override {
+        throw std::invalid_argument("the GPU backend cannot drag colliders yet");
+    }
 
     // GL buffer names (vec4 per vertex, k = j·nu + i): the renderer binds them as vertex
     // buffers. Valid in the context the solver was made in.

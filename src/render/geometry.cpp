@@ -1,6 +1,7 @@
 #include "render/geometry.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "core/forces.h"
 
@@ -44,26 +45,34 @@ bool packCloth(const SimState& state, std::vector<glm::vec4>& positions,
     return true;
 }
 
-SphereMesh uvSphere(int slices, int stacks) {
-    SphereMesh m;
-    constexpr float kPi = 3.14159265358979f;
-    for (int s = 0; s <= stacks; ++s) {
-        const float theta = kPi * float(s) / float(stacks);  // 0 at +y
-        for (int l = 0; l <= slices; ++l) {
-            const float phi = 2 * kPi * float(l) / float(slices);
-            m.positions.emplace_back(std::sin(theta) * std::cos(phi), std::cos(theta),
-                                     -std::sin(theta) * std::sin(phi));
+LitMesh litMesh(const TriMesh& mesh, double creaseDegrees) {
+    // Each face's normal scaled by twice its area, and the faces around each vertex.
+    std::vector<glm::dvec3> faces;
+    std::vector<std::vector<std::uint32_t>> around(mesh.vertices.size());
+    for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+        const auto& t = mesh.triangles[f];
+        faces.push_back(glm::cross(mesh.vertices[t[1]] - mesh.vertices[t[0]],
+                                   mesh.vertices[t[2]] - mesh.vertices[t[0]]));
+        for (const std::uint32_t v : t) around[v].push_back(f);
+    }
+    const auto unit = [](const glm::dvec3& n) {
+        const double len = glm::length(n);
+        return len > 0 ? n / len : glm::dvec3(0);
+    };
+    const double cosCrease = std::cos(creaseDegrees * std::numbers::pi / 180);
+    LitMesh out;
+    for (std::uint32_t f = 0; f < mesh.triangles.size(); ++f) {
+        const glm::dvec3 own = unit(faces[f]);
+        for (const std::uint32_t v : mesh.triangles[f]) {
+            // The area-weighted mean of the faces at v that meet this one at less than the crease.
+            glm::dvec3 n(0);
+            for (const std::uint32_t g : around[v])
+                if (glm::dot(unit(faces[g]), own) >= cosCrease) n += faces[g];
+            out.positions.emplace_back(mesh.vertices[v]);
+            out.normals.emplace_back(unit(n));
         }
     }
-    const auto index = [&](int s, int l) { return std::uint32_t(s * (slices + 1) + l); };
-    for (int s = 0; s < stacks; ++s) {
-        for (int l = 0; l < slices; ++l) {
-            const std::uint32_t a = index(s, l), b = index(s + 1, l), c = index(s + 1, l + 1),
-                                d = index(s, l + 1);
-            m.indices.insert(m.indices.end(), {a, b, c, a, c, d});
-        }
-    }
-    return m;
+    return out;
 }
 
 }  // namespace cloth::render

@@ -1,11 +1,13 @@
 // Geometry the renderer draws, built on the CPU without GL (so tests can check it): the cloth's
-// index buffer, the packed vec4 vertex data the CPU backend uploads, and a UV sphere.
+// index buffer, the packed vec4 vertex data the CPU backend uploads, and the colliders' lit
+// triangles.
 #pragma once
 
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "core/mesh_sdf.h"
 #include "core/solver.h"
 
 namespace cloth::render {
@@ -25,11 +27,13 @@ ClothIndices clothIndices(int nu, int nv);
 bool packCloth(const SimState& state, std::vector<glm::vec4>& positions,
                std::vector<glm::vec4>& normals);
 
-// A unit sphere: position = normal, `slices` around the pole axis, `stacks` pole to pole.
-struct SphereMesh {
-    std::vector<glm::vec3> positions;
-    std::vector<std::uint32_t> indices;  // triangles, counter-clockwise seen from outside
+// A collider's triangle mesh (core/collider_mesh.h) as the renderer draws it: three vertices per
+// triangle, each lit by the area-weighted mean normal of the faces around that vertex that meet
+// the triangle at less than `creaseDegrees` (smooth across a sphere's facets, sharp at a box's
+// edges).
+struct LitMesh {
+    std::vector<glm::vec3> positions, normals;  // one per triangle corner
 };
-SphereMesh uvSphere(int slices, int stacks);
+LitMesh litMesh(const TriMesh& mesh, double creaseDegrees = 40);
 
 }  // namespace cloth::render

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "gpu/gpu_solver.h"
+#include "render/collider_draw.h"
 #include "render/geometry.h"
 #include "render/gl_program.h"
 
@@ -15,7 +16,6 @@ namespace {
 // Colours (linear RGB). Front = the side the DESIGN.md §2 normal points to.
 const glm::vec3 kFront0{0.86f, 0.36f, 0.16f}, kFront1{0.97f, 0.66f, 0.32f};
 const glm::vec3 kBack0{0.16f, 0.34f, 0.72f}, kBack1{0.36f, 0.58f, 0.92f};
-const glm::vec3 kSphere{0.24f, 0.66f, 0.58f};
 const glm::vec3 kWire{0.08f, 0.08f, 0.1f};
 const glm::vec3 kPin{0.95f, 0.15f, 0.2f};
 const glm::vec3 kWind{0.35f, 0.9f, 1.0f};
@@ -50,26 +50,24 @@ void upload(GLenum target, GLuint buffer, const std::vector<T>& data) {
 
 struct Renderer::Impl {
     GlProgram cloth{"render/cloth.vert", "render/cloth.frag"};
-    GlProgram mesh{"render/mesh.vert", "render/mesh.frag"};
-    GlProgram ground{"render/ground.vert", "render/ground.frag"};
     GlProgram lines{"render/lines.vert", "render/lines.frag"};
     GlProgram springs{"render/springs.vert", "render/lines.frag"};
     GlProgram points{"render/points.vert", "render/points.frag"};
 
     GLuint clothVao = 0, clothIndices = 0, pinIndices = 0, ownPositions = 0, ownNormals = 0;
-    GLuint sphereVao = 0, sphereVertices = 0, sphereIndices = 0;
-    GLuint linesVao = 0, linesBuffer = 0, emptyVao = 0;
-    GLsizei clothIndexCount = 0, sphereIndexCount = 0, pinCount = 0;
+    GLuint linesVao = 0, linesBuffer = 0;
+    GLsizei clothIndexCount = 0, pinCount = 0;
     bool clothLines = false;
     GLuint positions = 0, normals = 0;  // the buffers drawn from now
     Scene scene;
     std::vector<glm::vec4> packedPositions, packedNormals;
+    ColliderPainter colliders;
+    double time = 0;                  // the solver's [s]
+    std::vector<ColliderDrag> drags;  // the viewer's, by scene order
 
     Impl();
     ~Impl();
     void bindCloth() const;
-    void drawGround(const glm::mat4& viewProj) const;
-    void drawSpheres(const glm::mat4& viewProj) const;
     void drawCloth(const glm::mat4& viewProj, const RenderOptions& o) const;
     void drawMarkers(const glm::mat4& viewProj, const RenderOptions& o) const;
     void drawSprings(const glm::mat4& viewProj, const RenderOptions& o) const;
@@ -79,9 +77,7 @@ struct Renderer::Impl {
 
 Renderer::Impl::Impl() {
     glGenVertexArrays(1, &clothVao);
-    glGenVertexArrays(1, &sphereVao);
     glGenVertexArrays(1, &linesVao);
-    glGenVertexArrays(1, &emptyVao);
     clothIndices = makeBuffer();
     pinIndices = makeBuffer();
     ownPositions = makeBuffer();
@@ -94,16 +90,6 @@ Renderer::Impl::Impl() {
         glVertexAttribFormat(a, 4, GL_FLOAT, GL_FALSE, 0);
         glVertexAttribBinding(a, a);
     }
-    // Unit sphere.
-    const SphereMesh sphere = uvSphere(48, 24);
-    sphereVertices = makeBuffer();
-    sphereIndices = makeBuffer();
-    glBindVertexArray(sphereVao);
-    upload(GL_ARRAY_BUFFER, sphereVertices, sphere.positions);
-    upload(GL_ELEMENT_ARRAY_BUFFER, sphereIndices, sphere.indices);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3), nullptr);
-    sphereIndexCount = GLsizei(sphere.indices.size());
     // Lines: interleaved position, colour.
     glBindVertexArray(linesVao);
     glBindBuffer(GL_ARRAY_BUFFER, linesBuffer);
@@ -116,11 +102,10 @@ Renderer::Impl::Impl() {
 }
 
 Renderer::Impl::~Impl() {
-    const GLuint arrays[] = {clothVao, sphereVao, linesVao, emptyVao};
-    glDeleteVertexArrays(4, arrays);
-    const GLuint buffers[] = {clothIndices, pinIndices,     ownPositions, ownNormals,
-                              linesBuffer,  sphereVertices, sphereIndices};
-    glDeleteBuffers(7, buffers);
+    const GLuint arrays[] = {clothVao, linesVao};
+    glDeleteVertexArrays(2, arrays);
+    const GLuint buffers[] = {clothIndices, pinIndices, ownPositions, ownNormals, linesBuffer};
+    glDeleteBuffers(5, buffers);
 }
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -131,6 +116,7 @@ void Renderer::setScene(const Scene& scene) {
     const bool gridChanged = scene.cloth.nu != m.scene.cloth.nu ||
                              scene.cloth.nv != m.scene.cloth.nv || m.clothIndexCount == 0;
     m.scene = scene;
+    m.colliders.setColliders(scene.colliders);
     if (!gridChanged) return;
     const ClothIndices c = clothIndices(scene.cloth.nu, scene.cloth.nv);
     glBindVertexArray(m.clothVao);
@@ -147,8 +133,15 @@ void Renderer::setPins(const std::vector<std::int64_t>& vertices) {
     impl_->pinCount = GLsizei(indices.size());
 }
 
+void Renderer::setColliderDrags(const std::vector<ColliderDrag>& drags) {
+    impl_->drags = drags;
+    impl_->colliders.setPose(impl_->time, drags);
+}
+
 bool Renderer::updateCloth(const Solver& solver) {
     Impl& m = *impl_;
+    m.time = solver.time();  // the colliders are drawn where the solver has them now
+    m.colliders.setPose(m.time, m.drags);
     if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) {
         m.positions = gpu->positionBuffer();
         m.normals = gpu->normalBuffer();
@@ -175,15 +168,12 @@ void Renderer::draw(const Camera& camera, const RenderOptions& o, int width, int
     glEnable(GL_PROGRAM_POINT_SIZE);
     const glm::mat4 viewProj =
         camera.projection(float(width) / float(std::max(height, 1))) * camera.view();
-    for (const GlProgram* p : {&m.cloth, &m.mesh, &m.ground}) {
-        p->use();
-        p->set("uEye", camera.eye());
-        p->set("uLightDir", lightDirection());
-    }
-    if (o.colliders) {
-        m.drawGround(viewProj);
-        m.drawSpheres(viewProj);
-    }
+    m.cloth.use();
+    m.cloth.set("uEye", camera.eye());
+    m.cloth.set("uLightDir", lightDirection());
+    if (o.colliders)
+        m.colliders.draw(
+            {viewProj, camera.eye(), lightDirection(), m.restBounds(), o.highlightCollider});
     if (haveCloth_) {
         m.bindCloth();
         m.drawCloth(viewProj, o);
@@ -200,48 +190,6 @@ void Renderer::Impl::bindCloth() const {
     glBindVertexBuffer(0, positions, 0, sizeof(glm::vec4));
     glBindVertexBuffer(1, normals, 0, sizeof(glm::vec4));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kPositionBinding, positions);
-}
-
-void Renderer::Impl::drawGround(const glm::mat4& viewProj) const {
-    const Bounds rest = restBounds();
-    const float halfSize = std::max(3.0f * rest.radius(), 2.0f);
-    glBindVertexArray(emptyVao);
-    ground.use();
-    ground.set("uViewProj", viewProj);
-    ground.set("uHalfSize", halfSize);
-    ground.set("uSpacing", halfSize > 20 ? 1.0f : 0.1f);
-    for (const Collider& c : scene.colliders) {
-        const Plane* p = c.as<Plane>();
-        if (p == nullptr) continue;
-        const glm::vec3 n = glm::vec3(p->normal), point = glm::vec3(p->point);
-        glm::vec3 t, b;
-        planeBasis(n, t, b);
-        // Centred under the cloth: its rest centre projected onto the plane.
-        const glm::vec3 centre = rest.centre() - glm::dot(rest.centre() - point, n) * n;
-        ground.set("uCentre", centre);
-        ground.set("uTangent", t);
-        ground.set("uBitangent", b);
-        ground.set("uNormal", n);
-        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
-    }
-}
-
-void Renderer::Impl::drawSpheres(const glm::mat4& viewProj) const {
-    glBindVertexArray(sphereVao);
-    mesh.use();
-    mesh.set("uViewProj", viewProj);
-    mesh.set("uColour", kSphere);
-    for (const Collider& c : scene.colliders) {
-        const Sphere* s = c.as<Sphere>();
-        if (s == nullptr) continue;
-        // Drawn 2 % small: the cloth resting on it touches it at its vertices only, and its flat
-        // triangles would cut into a full-size sphere.
-        const float r = float(s->radius) * 0.98f;
-        glm::mat4 model(r);
-        model[3] = glm::vec4(glm::vec3(s->center), 1);
-        mesh.set("uModel", model);
-        glDrawElements(GL_TRIANGLES, sphereIndexCount, GL_UNSIGNED_INT, nullptr);
-    }
 }
 
 void Renderer::Impl::drawCloth(const glm::mat4& viewProj, const RenderOptions& o) const {
@@ -369,16 +317,7 @@ Bounds Renderer::Impl::restBounds() const {
 
 Bounds Renderer::sceneBounds() const {
     Bounds b = impl_->restBounds();
-    for (const Collider& c : impl_->scene.colliders) {
-        if (const Sphere* s = c.as<Sphere>()) {
-            b.add(glm::vec3(s->center) - float(s->radius));
-            b.add(glm::vec3(s->center) + float(s->radius));
-        } else if (const Plane* p =
-                       c.as<Plane>()) {  // its point under the cloth: it may fall to it
-            const glm::vec3 n(p->normal), centre = b.centre();
-            b.add(centre - glm::dot(centre - glm::vec3(p->point), n) * n);
-        }  // boxes, capsules and meshes are not drawn yet (docs/colliders.md, status)
-    }
+    b.add(impl_->colliders.bounds(b));
     return b;
 }
 

@@ -1,5 +1,6 @@
 // Draws a scene: the cloth straight from the solver's vec4 buffers (the GPU backend's SSBOs, or
-// a buffer the CPU backend's state is uploaded into once per frame), the colliders, pins,
+// a buffer the CPU backend's state is uploaded into once per frame), the colliders at the
+// solver's time (render/collider_draw.h), pins,
 // optional wireframe, strain colours, a spring-family overlay and the wind arrow.
 #pragma once
 
@@ -9,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/collider_pose.h"
 #include "core/scene.h"
 #include "core/solver.h"
 #include "render/camera.h"
@@ -27,6 +29,7 @@ struct RenderOptions {
     std::vector<std::int64_t> springVertices;  // empty: a default few (corner, edge, centre)
     float strainScale = 0.05f;                 // relative stretch shown at full colour
     std::optional<std::int64_t> grabVertex;    // draws the grab spring to grabTarget
+    std::optional<int> highlightCollider;      // drawn lighter: the one being dragged
     glm::vec3 grabTarget{0};
     glm::vec3 background{0.11f, 0.12f, 0.15f};
 };
@@ -44,9 +47,11 @@ public:
     void setScene(const Scene& scene);
     // Vertex indices k = j·nu + i to mark as pinned.
     void setPins(const std::vector<std::int64_t>& vertices);
-    // Takes the solver's current state: binds the GPU solver's buffers (no copy), or reads the
-    // CPU solver's state and uploads it. Returns false if the state is not finite: the cloth is
-    // then not drawn until a finite state arrives.
+    // The viewer's collider drags (core/collider_pose.h), by the scene's collider order.
+    void setColliderDrags(const std::vector<ColliderDrag>& drags);
+    // Takes the solver's current state and time (colliders are drawn at their pose then): binds the
+    // GPU solver's buffers (no copy), or reads the CPU solver's state and uploads it. Returns false
+    // if the state is not finite: the cloth is then not drawn until a finite state arrives.
     bool updateCloth(const Solver& solver);
     // Forgets the cloth (e.g. after an instability); nothing is drawn for it.
     void clearCloth() { haveCloth_ = false; }
@@ -54,7 +59,7 @@ public:
     // Clears the bound framebuffer and draws into its (x, 0, width, height) viewport.
     void draw(const Camera& camera, const RenderOptions& options, int width, int height, int x = 0);
 
-    // The cloth's rest shape and the colliders, for framing the camera.
+    // The cloth's rest shape and the colliders where they are now, for framing the camera.
     Bounds sceneBounds() const;
 
 private:

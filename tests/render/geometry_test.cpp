@@ -1,11 +1,13 @@
 // The renderer's CPU-side geometry: cloth triangles wound about the DESIGN.md §2 normal, chains
-// as lines, the packed vec4 upload, the sphere mesh.
+// as lines, the packed vec4 upload, the colliders' lit triangles.
 #include "render/geometry.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+
+#include "core/collider_mesh.h"
 
 namespace cloth::render {
 namespace {
@@ -60,22 +62,21 @@ TEST(PackCloth, RefusesANonFiniteState) {
     EXPECT_FALSE(packCloth(s, p, n));
 }
 
-TEST(UvSphere, UnitRadiusAndOutwardWinding) {
-    const SphereMesh m = uvSphere(16, 8);
-    for (const glm::vec3& v : m.positions) EXPECT_NEAR(glm::length(v), 1.0f, 1e-5f);
-    int outward = 0, degenerate = 0;
-    for (std::size_t t = 0; t < m.indices.size(); t += 3) {
-        const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
-                        c = m.positions[m.indices[t + 2]];
-        const glm::vec3 n = glm::cross(b - a, c - a);
-        if (glm::length(n) < 1e-7f) {
-            ++degenerate;  // the pole rows
-            continue;
-        }
-        outward += glm::dot(n, a + b + c) > 0;
+// A box keeps its edges sharp (every corner lit by its face's normal); a sphere is smooth (every
+// corner lit within 3° of the radial direction, finer than its facets).
+TEST(LitMesh, SharpBoxEdgesSmoothSphere) {
+    const LitMesh box = litMesh(boxMesh({glm::dvec3(0), glm::dvec3(1, 0.5, 2), glm::dmat3(1)}));
+    ASSERT_EQ(box.positions.size(), 36u);
+    for (std::size_t k = 0; k < box.positions.size(); k += 3) {
+        const glm::vec3 a = box.positions[k], b = box.positions[k + 1], c = box.positions[k + 2];
+        const glm::vec3 face = glm::normalize(glm::cross(b - a, c - a));
+        for (std::size_t v = k; v < k + 3; ++v)
+            EXPECT_NEAR(glm::dot(box.normals[v], face), 1, 1e-6);
+        EXPECT_GT(glm::dot(face, a + b + c), 0) << "outward";
     }
-    EXPECT_EQ(outward + degenerate, int(m.indices.size() / 3));
-    EXPECT_LE(degenerate, 2 * 16);
+    const LitMesh sphere = litMesh(sphereMesh({glm::dvec3(0), 1.0}, 2));
+    for (std::size_t v = 0; v < sphere.positions.size(); ++v)
+        EXPECT_GT(glm::dot(sphere.normals[v], sphere.positions[v]), std::cos(0.05));
 }
 
 }  // namespace

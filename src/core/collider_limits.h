@@ -1,0 +1,18 @@
+// How far a collider may move in one step without a vertex tunnelling through it
+// (docs/colliders.md §7). The viewer clamps a collider drag with it; scene validation checks
+// moving colliders against it.
+#pragma once
+
+#include "core/scene.h"
+
+namespace cloth {
+
+// The largest travel per step [m], relative to the cloth, that cannot carry a vertex through the
+// collider: a + h for a box of smallest half extent a (the slab bound of §7), R + h for a sphere,
+// r + h for a capsule of radius r, and for a mesh half the smallest extent of the OBJ's bounding
+// box (in its own frame) + h — exact for a box- or sphere-like mesh, too generous where the mesh
+// has parts thinner than its bounds. A plane bounds a half-space and cannot be passed through:
+// infinity. h is the collider's thickness.
+double maxColliderStepTravel(const Collider& collider);
+
+}  // namespace cloth

@@ -1,0 +1,158 @@
+// Solver::setColliderDrag on the CPU (docs/colliders.md §3, the viewer's drag): a dragged box
+// carries the cloth resting on it like a moving one, offsets persist, a dragged plain sphere
+// takes the general response, drags outlive setParameters, and an index out of range is refused.
+// Also maxColliderStepTravel (docs/colliders.md §7) for every shape.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "core/collider_limits.h"
+#include "core/collider_mesh.h"
+#include "core/collider_pose.h"
+#include "core/scene_loader.h"
+#include "core/solver.h"
+
+namespace cloth {
+namespace {
+
+using Json = nlohmann::json;
+
+// A 6×6 cloth of 20 cm resting (h = 2 mm above) on a still box whose top is at y = 0.1.
+Json clothOnBox() {
+    return Json::parse(R"({
+      "cloth": { "resolution": [6, 6], "size": [0.2, 0.2], "origin": [-0.1, 0.1021, -0.1],
+                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
+      "springs": { "structural": 20.0, "shear": 5.0 },
+      "damping": 0.002,
+      "integrator": { "method": "explicit_euler", "dt": 0.001 },
+      "colliders": [ { "type": "box", "center": [0, 0, 0], "half_extents": [0.5, 0.1, 0.5],
+                       "thickness": 0.002, "friction": 0.8 } ]
+    })");
+}
+
+glm::dvec3 meanOf(const std::vector<glm::dvec3>& v) {
+    glm::dvec3 m(0);
+    for (const glm::dvec3& w : v) m += w;
+    return m / double(v.size());
+}
+
+// Law: static friction carries the cloth with the collider (v = v_c at a sticking contact), and
+// the drag's velocity is the collider's: after 1 s at 0.3 m/s the cloth moves at 0.3 m/s.
+TEST(ColliderDrag, DraggedBoxCarriesTheClothRestingOnIt) {
+    const Scene s = parseScene(clothOnBox().dump(), "drag (test)");
+    auto solver = makeCpuSolver(s, {Precision::Double, 1});
+    solver->step(200);  // settle
+    const glm::dvec3 x0 = meanOf(solver->read().positions);
+    solver->setColliderDrag(0, glm::dvec3(0), glm::dvec3(0.3, 0, 0));
+    solver->step(1000);
+    const SimState st = solver->read();
+    const glm::dvec3 v = meanOf(st.velocities), x1 = meanOf(st.positions);
+    EXPECT_NEAR(v.x, 0.3, 0.01);
+    EXPECT_NEAR(v.z, 0.0, 0.01);
+    EXPECT_NEAR(x1.x - x0.x, 0.3, 0.02) << "the cloth travelled with the box";
+    double minY = 1e300;
+    for (const glm::dvec3& p : st.positions) minY = std::min(minY, p.y);
+    EXPECT_GT(minY, 0.1 + 0.002 - 1e-6) << "the cloth sank into the box";
+}
+
+// Law: offsets persist. A box dragged 5 cm up and left there (velocity 0) holds the cloth 5 cm
+// higher, from the next step on and for good; a later drag starts from the offset it is given.
+TEST(ColliderDrag, OffsetsPersistAndVelocityZeroLeavesTheColliderWhereItIs) {
+    const Scene s = parseScene(clothOnBox().dump(), "drag (test)");
+    auto solver = makeCpuSolver(s, {Precision::Double, 1});
+    solver->step(100);
+    solver->setColliderDrag(0, glm::dvec3(0, 0.01, 0), glm::dvec3(0));
+    solver->step(1);
+    for (const glm::dvec3& p : solver->read().positions) EXPECT_GE(p.y, 0.112 - 1e-9);
+    solver->step(500);
+    for (const glm::dvec3& p : solver->read().positions) EXPECT_NEAR(p.y, 0.112, 2e-3);
+    // Rising at 0.05 m/s from that offset for 0.4 s: 2 cm more.
+    solver->setColliderDrag(0, glm::dvec3(0, 0.01, 0), glm::dvec3(0, 0.05, 0));
+    solver->step(400);
+    solver->setColliderDrag(0, glm::dvec3(0, 0.03, 0), glm::dvec3(0));
+    solver->step(300);
+    for (const glm::dvec3& p : solver->read().positions) EXPECT_NEAR(p.y, 0.132, 2e-3);
+}
+
+// Drags outlive a live parameter change (the viewer's friction and thickness sliders).
+TEST(ColliderDrag, DragsOutliveSetParameters) {
+    Scene s = parseScene(clothOnBox().dump(), "drag (test)");
+    auto solver = makeCpuSolver(s, {Precision::Double, 1});
+    solver->setColliderDrag(0, glm::dvec3(0, 0.02, 0), glm::dvec3(0));
+    s.colliders[0].friction = 0.5;
+    solver->setParameters(s);
+    solver->step(300);
+    for (const glm::dvec3& p : solver->read().positions) EXPECT_NEAR(p.y, 0.122, 2e-3);
+}
+
+// A plain sphere (DESIGN.md §2's rule, v_c = 0) that is dragged takes the general response with
+// v_c: a sphere pushed up into a resting vertex chain lifts it at its own speed.
+TEST(ColliderDrag, DraggedPlainSphereMovesItsContactWithIt) {
+    const Scene s = parseScene(R"({
+      "cloth": { "resolution": [3, 3], "size": [0.02, 0.02], "origin": [-0.01, 0.5, -0.01],
+                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
+      "springs": { "structural": 10.0 }, "damping": 0.001, "gravity": [0, 0, 0],
+      "integrator": { "method": "explicit_euler", "dt": 0.001 },
+      "colliders": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.49 } ]
+    })",
+                               "plain sphere (test)");
+    auto solver = makeCpuSolver(s, {Precision::Double, 1});
+    solver->setColliderDrag(0, glm::dvec3(0), glm::dvec3(0, 0.2, 0));
+    solver->step(250);  // the shell meets the cloth after 0.05 s and pushes it for 0.2 s
+    const SimState st = solver->read();
+    const glm::dvec3 centre = st.positions[4];
+    EXPECT_NEAR(centre.y, 0.49 + 0.05, 1e-3);
+    EXPECT_NEAR(st.velocities[4].y, 0.2, 1e-6) << "v_c of the dragged sphere";
+}
+
+TEST(ColliderDrag, IndexOutOfRangeIsRefused) {
+    const Scene s = parseScene(clothOnBox().dump(), "drag (test)");
+    auto solver = makeCpuSolver(s, {Precision::Float, 1});
+    EXPECT_THROW(solver->setColliderDrag(1, glm::dvec3(0), glm::dvec3(0)), std::invalid_argument);
+    EXPECT_THROW(solver->setColliderDrag(-1, glm::dvec3(0), glm::dvec3(0)), std::invalid_argument);
+}
+
+// The drag's pose: the motion's, then the translation offset + velocity·(t − since).
+TEST(ColliderDrag, PoseIsTheMotionThenTheDragTranslation) {
+    Collider c = Sphere{glm::dvec3(1, 0, 0), 0.1};
+    ColliderMotion m;
+    m.type = MotionType::Rotation;
+    m.axis = {0, 1, 0};
+    m.degreesPerSecond = 90;
+    c.motion = m;
+    const ColliderDrag d{glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 2), 0.5};
+    const ShapeD shape = posedShape(c, 1.0, &d);
+    const auto* s = std::get_if<SphereT<double>>(&shape);
+    ASSERT_NE(s, nullptr);
+    // 90° about +y takes (1, 0, 0) to (0, 0, −1); then + (0, 1, 0) + (0, 0, 2)·0.5.
+    EXPECT_NEAR(glm::length(s->center - glm::dvec3(0, 1, 0)), 0, 1e-12);
+    EXPECT_NEAR(colliderVelocity(c, 1.0, &d).at(glm::dvec3(0, 0, -1)).z, 2, 1e-12);
+}
+
+TEST(ColliderLimits, MaxStepTravelIsTheHalfThicknessPlusH) {
+    Collider plane = Plane{};
+    EXPECT_EQ(maxColliderStepTravel(plane), std::numeric_limits<double>::infinity());
+    Collider sphere = Sphere{glm::dvec3(0), 0.3};
+    sphere.thickness = 0.01;
+    EXPECT_DOUBLE_EQ(maxColliderStepTravel(sphere), 0.31);
+    Box b;
+    b.halfExtents = {0.5, 0.01, 0.3};
+    Collider box = b;
+    box.thickness = 0.002;
+    EXPECT_DOUBLE_EQ(maxColliderStepTravel(box), 0.012);  // the slab bound a + h of §7
+    Collider capsule = Capsule{glm::dvec3(0), glm::dvec3(0, 1, 0), 0.05};
+    EXPECT_DOUBLE_EQ(maxColliderStepTravel(capsule), 0.05);
+    MeshCollider m;  // half the OBJ's smallest extent: 0.05 of a 0.4 × 0.1 × 0.6 block
+    m.baked = std::make_shared<BakedMesh>(
+        BakedMesh{boxMesh({glm::dvec3(1), glm::dvec3(0.2, 0.05, 0.3), glm::dmat3(1)}), SdfGrid{}});
+    Collider mesh = m;
+    mesh.thickness = 0.01;
+    EXPECT_NEAR(maxColliderStepTravel(mesh), 0.06, 1e-12);
+}
+
+}  // namespace
+}  // namespace cloth
