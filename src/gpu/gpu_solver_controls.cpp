@@ -123,6 +123,7 @@ void GpuSolver::setParameters(const Scene& scene) {
     maxIterations_ = scene.integrator.maxIterations;
     forcesKept_ = false;
     uploadParams(scene);
+    uploadColliders(scene);
     updateInverseMass(float(1.0 / scene.cloth.mass));
 }
 
