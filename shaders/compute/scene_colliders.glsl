@@ -34,9 +34,11 @@ void collideSphereRecord(int r, vec3 vc, inout vec3 p, inout vec3 v) {
 }
 #endif
 
+#if defined(HAS_BOXES) || defined(HAS_MESHES)
 mat3 recordRotation(int r) {
     return mat3(colliders[r].xyz, colliders[r + 1].xyz, colliders[r + 2].xyz);
 }
+#endif
 
 #ifdef HAS_BOXES
 // (centre, 0), (half extents, 0), the rotation's columns (box axes in the world).
@@ -83,9 +85,17 @@ void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
 #ifdef HAS_MOVING_COLLIDERS
     int pose = POSE_BASE + int((step - 1u) % uint(POSE_BATCH)) * POSE_STRIDE;
 #endif
+#ifdef HAS_PLANES
 #define PLANE(r) collidePlane(p, vel, colliders[r].xyz, colliders[(r) + 1].xyz);
+#endif
+#ifdef HAS_SPHERES
 #define SPHERE(r) collideSphere(p, vel, colliders[r]);
+#endif
+#ifdef HAS_CONTACT
 #define STILL(fn, r) fn(r, vec3(0.0), p, vel);
+#endif
+#ifdef HAS_MOVING_COLLIDERS
 #define MOVING(fn, r, w) fn(r, colliderVelocity(w, p), p, vel);
+#endif
     COLLIDERS_IN_SCENE_ORDER
 }

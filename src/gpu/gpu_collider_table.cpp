@@ -12,16 +12,16 @@ namespace {
 
 constexpr std::size_t kVec4Bytes = 16;
 
-// An int stored bit for bit in a float lane (the shader reads it back with floatBitsToInt).
-float intBits(long long v) {
-    const std::int32_t i = std::int32_t(v);
-    float f;
-    std::memcpy(&f, &i, sizeof f);
-    return f;
+// Copies a record of gpu_layout.h to `out`; returns the vec4 after it.
+template <typename Record>
+glm::vec4* put(glm::vec4* out, const Record& r) {
+    static_assert(sizeof(Record) % sizeof(glm::vec4) == 0);
+    std::memcpy(static_cast<void*>(out), &r, sizeof r);
+    return out + kVec4sOf<Record>;
 }
 
-glm::vec4 column(const glm::dmat3& m, int c) {
-    return vec4(m[c], 0);
+void columns(const glm::dmat3& m, glm::vec4 (&out)[3]) {
+    for (int c = 0; c < 3; ++c) out[c] = vec4(m[c], 0);
 }
 
 template <typename... Ts>
@@ -33,7 +33,8 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // By the shape's index, in ColliderShape's (and RestShape's) order: plane, sphere, box,
 // capsule, mesh.
-constexpr int kShapeVec4s[] = {kPlaneVec4s, kSphereVec4s, kBoxVec4s, kCapsuleVec4s, kMeshVec4s};
+constexpr int kShapeVec4s[] = {kVec4sOf<PlaneRecord>, kVec4sOf<SphereRecord>, kVec4sOf<BoxRecord>,
+                               kVec4sOf<CapsuleRecord>, kVec4sOf<MeshRecord>};
 // The GLSL function of shaders/compute/colliders.glsl that collides with such a record.
 constexpr const char* kRecordFunctions[] = {"collidePlaneRecord", "collideSphereRecord",
                                             "collideBoxRecord", "collideCapsuleRecord",
@@ -66,8 +67,8 @@ ColliderTable::ColliderTable(const Scene& scene) {
             std::nullopt, float(c.thickness), float(c.friction),
             c.plain() && (c.as<Plane>() || c.as<Sphere>())};
         if (c.motion) e.motion = c.motion->motion();
-        const int size = (e.plain ? 0 : kContactVec4s) + kShapeVec4s[c.shape.index()] +
-                         (e.motion ? kVelocityVec4s : 0);
+        const int size = (e.plain ? 0 : kVec4sOf<ContactRecord>)+kShapeVec4s[c.shape.index()] +
+                         (e.motion ? kVec4sOf<VelocityRecord> : 0);
         if (e.motion) {
             e.record = poseStride_;
             poseStride_ += size;
@@ -102,7 +103,7 @@ std::string ColliderTable::order() const {
             order += std::string("STILL(") + fn + ", " + r + ")";
             continue;
         }
-        const int velocity = e.record + kContactVec4s + kShapeVec4s[e.rest.index()];
+        const int velocity = e.record + kVec4sOf<ContactRecord> + kShapeVec4s[e.rest.index()];
         order += std::string("MOVING(") + fn + ", pose + " + r + ", pose + " +
                  std::to_string(velocity) + ")";
     }
@@ -139,34 +140,35 @@ void ColliderTable::appendDefines(Defines& d) const {
 // per-component double → float.
 void ColliderTable::writeRecord(const Entry& e, const RestShape& posed,
                                 const RigidVelocity* velocity, glm::vec4* out) const {
-    if (!e.plain) *out++ = glm::vec4(e.thickness, e.friction, 0, 0);
-    std::visit(Overloaded{[&](const PlaneT<double>& s) {
-                              *out++ = vec4(s.point, 0);
-                              *out++ = vec4(s.normal, 0);
-                          },
-                          [&](const SphereT<double>& s) { *out++ = vec4(s.center, s.radius); },
-                          [&](const BoxT<double>& s) {
-                              *out++ = vec4(s.center, 0);
-                              *out++ = vec4(s.halfExtents, 0);
-                              for (int c = 0; c < 3; ++c) *out++ = column(s.rotation, c);
-                          },
-                          [&](const CapsuleT<double>& s) {
-                              *out++ = vec4(s.a, s.radius);
-                              *out++ = vec4(s.b, 0);
-                          },
-                          [&](const SdfColliderT<double>& s) {
-                              const SdfGrid& g = *s.grid;
-                              *out++ = vec4(g.origin, g.cell);
-                              *out++ = glm::vec4(intBits(g.count.x), intBits(g.count.y),
-                                                 intBits(g.count.z), intBits(e.base));
-                              for (int c = 0; c < 3; ++c) *out++ = column(s.rotation, c);
-                              *out++ = vec4(s.translation, 0);
-                          }},
-               posed);
-    if (velocity == nullptr) return;
-    *out++ = vec4(velocity->linear, 0);
-    *out++ = vec4(velocity->angular, 0);
-    *out++ = vec4(velocity->origin, 0);
+    if (!e.plain) out = put(out, ContactRecord{glm::vec4(e.thickness, e.friction, 0, 0)});
+    out =
+        std::visit(Overloaded{[&](const PlaneT<double>& s) {
+                                  return put(out, PlaneRecord{vec4(s.point, 0), vec4(s.normal, 0)});
+                              },
+                              [&](const SphereT<double>& s) {
+                                  return put(out, SphereRecord{vec4(s.center, s.radius)});
+                              },
+                              [&](const BoxT<double>& s) {
+                                  BoxRecord r{vec4(s.center, 0), vec4(s.halfExtents, 0), {}};
+                                  columns(s.rotation, r.rotation);
+                                  return put(out, r);
+                              },
+                              [&](const CapsuleT<double>& s) {
+                                  return put(out, CapsuleRecord{vec4(s.a, s.radius), vec4(s.b, 0)});
+                              },
+                              [&](const SdfColliderT<double>& s) {
+                                  const SdfGrid& g = *s.grid;
+                                  MeshRecord r{vec4(g.origin, g.cell),
+                                               glm::ivec4(g.count, int(e.base)),
+                                               {},
+                                               vec4(s.translation, 0)};
+                                  columns(s.rotation, r.rotation);
+                                  return put(out, r);
+                              }},
+                   posed);
+    if (velocity != nullptr)
+        put(out, VelocityRecord{vec4(velocity->linear, 0), vec4(velocity->angular, 0),
+                                vec4(velocity->origin, 0)});
 }
 
 std::vector<glm::vec4> ColliderTable::stillRecords() const {

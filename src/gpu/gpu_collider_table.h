@@ -9,8 +9,8 @@
 //            colliders[i / 4][i % 4], each mesh from its record's base);
 //   poses    kPoseBatch slots of poseStride vec4s: the moving colliders' records posed at the
 //            end of step s (t = s·Δt, as the CPU poses them) in slot (s − 1) mod kPoseBatch.
-// A record: (h, c_f, 0, 0) unless the collider is plain (DESIGN.md §2's plane or sphere), then
-// the shape, then for a moving collider its velocity field (linear, angular, origin).
+// A record: a ContactRecord (h, c_f) unless the collider is plain (DESIGN.md §2's plane or
+// sphere), the shape's record, and for a moving collider its VelocityRecord (gpu_layout.h).
 #pragma once
 
 #include <cstddef>
@@ -23,6 +23,7 @@
 
 #include "core/collider_motion.h"
 #include "core/scene.h"
+#include "gpu/gpu_layout.h"
 #include "gpu/shader_loader.h"
 
 namespace cloth::gpu {
@@ -31,15 +32,9 @@ namespace cloth::gpu {
 // default), so that a run uploads once per read.
 inline constexpr int kPoseBatch = 64;
 
-// vec4s per record, as shaders/compute/colliders.glsl reads them.
-inline constexpr int kContactVec4s = 1;   // (h, c_f, 0, 0)
-inline constexpr int kVelocityVec4s = 3;  // (linear, 0), (angular, 0), (origin, 0)
-inline constexpr int kPlaneVec4s = 2;     // (point, 0), (normal, 0)
-inline constexpr int kSphereVec4s = 1;    // (centre, radius)
-inline constexpr int kBoxVec4s = 5;       // (centre, 0), (half extents, 0), rotation columns
-inline constexpr int kCapsuleVec4s = 2;   // (a, radius), (b, 0)
-inline constexpr int kMeshVec4s = 6;      // (grid origin, cell), (count, first sample) as int bits,
-                                          // rotation columns, (translation, 0)
+// vec4s per record (gpu_layout.h's record structs, as scene_colliders.glsl reads them).
+template <typename Record>
+inline constexpr int kVec4sOf = int(sizeof(Record) / 16);
 
 class ColliderTable {
 public:

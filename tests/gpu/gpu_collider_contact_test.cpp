@@ -6,10 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <regex>
 
 #include "core/errors.h"
 #include "gpu/gpu_collider_table.h"
 #include "gpu/gpu_test_support.h"
+#include "gpu/gpu_variant.h"
 #include "gpu_collider_cases.h"
 
 namespace cloth::test {
@@ -138,6 +140,54 @@ TEST_F(GpuColliderContact, SetParametersMovesCollidersAndChangesTheirContact) {
     ASSERT_FALSE(fresh->step(500).unstable);
     EXPECT_EQ(solver->read().positions, fresh->read().positions);
     EXPECT_EQ(solver->read().velocities, fresh->read().velocities);
+}
+
+// The kernel text of a scene with `colliders`, without // comments: what is left is code.
+std::string integrateKernel(const Json& colliders, const fs::path& dir) {
+    const Scene s = parseScene(fallingClothOnColliders(colliders, "explicit_euler").dump(),
+                               (dir / "scene.json").string());
+    const std::string text =
+        assembleKernel(CLOTH_SOURCE_DIR "/shaders", "compute/integrate.comp", s, {}).text;
+    return std::regex_replace(text, std::regex("//[^\n]*"), "");
+}
+
+// DESIGN.md §3: a scene compiles the collider code it declares and nothing else; a plain plane
+// or sphere is DESIGN.md §2's code alone.
+TEST(GpuColliderVariant, EachSceneCompilesOnlyItsColliders) {
+    const fs::path dir = freshTempDir("GpuColliderVariant", "kernels");
+    writeSlabObj(dir);
+    const std::vector<ColliderCase> cases = colliderCases();
+    auto named = [&](const std::string& name) {
+        for (const ColliderCase& c : cases)
+            if (c.name == name) return c.colliders;
+        return Json();
+    };
+    const Json plain = {{{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}};
+    struct Expect {
+        Json colliders;
+        std::vector<const char*> present, absent;
+    };
+    const std::vector<Expect> expects = {
+        {plain,
+         {"collidePlane(p, vel"},
+         {"respondContact", "boxContact", "capsuleContact", "gridContact", "colliderVelocity",
+          "POSE_BATCH"}},
+        {named("box"),
+         {"boxContact(", "STILL(collideBoxRecord, 0)"},
+         {"collidePlane(p, vel", "capsuleContact(", "gridContact(", "colliderVelocity("}},
+        {named("mesh"), {"gridContact(", "sdfValue("}, {"boxContact(", "colliderVelocity("}},
+        {named("capsule_turning"),
+         {"capsuleContact(", "colliderVelocity(", "POSE_BATCH 64",
+          "MOVING(collideCapsuleRecord, pose + 0, pose + 3)"},
+         {"boxContact(", "gridContact("}},
+    };
+    for (const Expect& e : expects) {
+        const std::string text = integrateKernel(e.colliders, dir);
+        for (const char* p : e.present)
+            EXPECT_NE(text.find(p), std::string::npos) << e.colliders << ": no '" << p << "'";
+        for (const char* a : e.absent)
+            EXPECT_EQ(text.find(a), std::string::npos) << e.colliders << ": '" << a << "'";
+    }
 }
 
 // A mesh grid larger than one SSBO binding is an input error naming the mesh's cell, before
