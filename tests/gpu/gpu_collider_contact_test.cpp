@@ -110,6 +110,33 @@ TEST_F(GpuColliderContact, MovingBoxCarriesTheClothRestingOnIt) {
     EXPECT_GT(minY, 0.1 + 0.002 - 1e-5) << "the cloth sank into the box";
 }
 
+// The poses of a step do not depend on how the steps are grouped into calls, status reads and
+// pose batches: runs of many steps longer than a batch (checkEvery 200), one step per call, and
+// runs that straddle batches give the same bits.
+TEST_F(GpuColliderContact, PoseBatchesDoNotDependOnHowStepsAreGrouped) {
+    const fs::path dir = freshTempDir("GpuColliderContact", "grouping");
+    writeSlabObj(dir);
+    const Scene s = parseScene(
+        fallingClothOnColliders(colliderCases().back().colliders, "explicit_euler").dump(),
+        (dir / "scene.json").string());
+    auto run = [&](StepDispatch dispatch, int checkEvery, const std::vector<long>& calls) {
+        GpuOptions options;
+        options.dispatch = dispatch;
+        options.checkEvery = checkEvery;
+        auto solver = makeGpuSolver(s, options);
+        for (long n : calls) EXPECT_FALSE(solver->step(n).unstable);
+        return solver->read();
+    };
+    for (StepDispatch d : {StepDispatch::PerStep, StepDispatch::ManySteps}) {
+        const SimState whole = run(d, 64, {300});
+        EXPECT_EQ(run(d, 200, {300}).positions, whole.positions) << stepDispatchName(d);
+        EXPECT_EQ(run(d, 7, {1, 63, 2, 100, 134}).positions, whole.positions)
+            << stepDispatchName(d);
+        EXPECT_EQ(run(d, 64, std::vector<long>(300, 1)).velocities, whole.velocities)
+            << stepDispatchName(d);
+    }
+}
+
 // setParameters takes a collider's new placement, thickness, friction and motion speed as data:
 // the solver then steps exactly as a new solver of the new scene given the same state.
 TEST_F(GpuColliderContact, SetParametersMovesCollidersAndChangesTheirContact) {
