@@ -1,6 +1,5 @@
 #include "gpu/gpu_collider_table.h"
 
-#include <algorithm>
 #include <cstring>
 
 #include "core/collider_validate.h"
@@ -35,40 +34,44 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 // capsule, mesh.
 constexpr int kShapeVec4s[] = {kVec4sOf<PlaneRecord>, kVec4sOf<SphereRecord>, kVec4sOf<BoxRecord>,
                                kVec4sOf<CapsuleRecord>, kVec4sOf<MeshRecord>};
-// The GLSL function of shaders/compute/colliders.glsl that collides with such a record.
+constexpr int kContactVec4s = kVec4sOf<ContactRecord>;
+constexpr int kVelocityVec4s = kVec4sOf<VelocityRecord>;
+// The GLSL function of shaders/compute/scene_colliders.glsl that collides with such a record.
 constexpr const char* kRecordFunctions[] = {"collidePlaneRecord", "collideSphereRecord",
                                             "collideBoxRecord", "collideCapsuleRecord",
                                             "collideMeshRecord"};
 
 }  // namespace
 
+// The scene's shape at t = 0, in double, as CpuColliders takes it (collider_motion.h moves it).
+ColliderTable::RestShape ColliderTable::restShape(const ColliderShape& shape) {
+    return std::visit(
+        Overloaded{
+            [](const Plane& p) -> RestShape {
+                return PlaneT<double>{p.point, p.normal};
+            },
+            [](const Sphere& s) -> RestShape {
+                return SphereT<double>{s.center, s.radius};
+            },
+            [](const Box& b) -> RestShape {
+                return BoxT<double>{b.center, b.halfExtents, b.rotation.matrix()};
+            },
+            [](const Capsule& c) -> RestShape {
+                return CapsuleT<double>{c.a, c.b, c.radius};
+            },
+            [](const MeshCollider& m) -> RestShape {
+                return SdfColliderT<double>{&m.baked->grid, m.rotation.matrix(), m.translation};
+            }},
+        shape);
+}
+
 ColliderTable::ColliderTable(const Scene& scene) {
-    std::size_t sampleVec4s = 0;
     for (const Collider& c : scene.colliders) {
-        Entry e{
-            std::visit(
-                Overloaded{[](const Plane& p) -> RestShape {
-                               return PlaneT<double>{p.point, p.normal};
-                           },
-                           [](const Sphere& s) -> RestShape {
-                               return SphereT<double>{s.center, s.radius};
-                           },
-                           [](const Box& b) -> RestShape {
-                               return BoxT<double>{b.center, b.halfExtents, b.rotation.matrix()};
-                           },
-                           [](const Capsule& k) -> RestShape {
-                               return CapsuleT<double>{k.a, k.b, k.radius};
-                           },
-                           [](const MeshCollider& m) -> RestShape {
-                               return SdfColliderT<double>{&m.baked->grid, m.rotation.matrix(),
-                                                           m.translation};
-                           }},
-                c.shape),
-            std::nullopt, float(c.thickness), float(c.friction),
-            c.plain() && (c.as<Plane>() || c.as<Sphere>())};
+        Entry e{restShape(c.shape), std::nullopt, float(c.thickness), float(c.friction),
+                c.plain() && (c.as<Plane>() || c.as<Sphere>())};
         if (c.motion) e.motion = c.motion->motion();
-        const int size = (e.plain ? 0 : kVec4sOf<ContactRecord>)+kShapeVec4s[c.shape.index()] +
-                         (e.motion ? kVec4sOf<VelocityRecord> : 0);
+        const int size = (e.plain ? 0 : kContactVec4s) + kShapeVec4s[c.shape.index()] +
+                         (e.motion ? kVelocityVec4s : 0);
         if (e.motion) {
             e.record = poseStride_;
             poseStride_ += size;
@@ -78,14 +81,11 @@ ColliderTable::ColliderTable(const Scene& scene) {
         }
         if (const MeshCollider* m = c.as<MeshCollider>()) {
             meshes_.push_back(m->baked);
-            e.base = (long long)(sampleVec4s)*4;  // relative until the records are counted
-            sampleVec4s += (m->baked->grid.values.size() + 3) / 4;
+            e.sampleOffset = (long long)(sampleCount_)*4;  // each mesh from a whole vec4
+            sampleCount_ += (m->baked->grid.values.size() + 3) / 4;
         }
         entries_.push_back(std::move(e));
     }
-    sampleCount_ = sampleVec4s;
-    for (std::size_t n = 0; n < entries_.size(); ++n)
-        if (scene.colliders[n].as<MeshCollider>()) entries_[n].base += (long long)(recordCount_)*4;
 }
 
 std::string ColliderTable::order() const {
@@ -103,7 +103,7 @@ std::string ColliderTable::order() const {
             order += std::string("STILL(") + fn + ", " + r + ")";
             continue;
         }
-        const int velocity = e.record + kVec4sOf<ContactRecord> + kShapeVec4s[e.rest.index()];
+        const int velocity = e.record + kContactVec4s + kShapeVec4s[e.rest.index()];
         order += std::string("MOVING(") + fn + ", pose + " + r + ", pose + " +
                  std::to_string(velocity) + ")";
     }
@@ -141,31 +141,31 @@ void ColliderTable::appendDefines(Defines& d) const {
 void ColliderTable::writeRecord(const Entry& e, const RestShape& posed,
                                 const RigidVelocity* velocity, glm::vec4* out) const {
     if (!e.plain) out = put(out, ContactRecord{glm::vec4(e.thickness, e.friction, 0, 0)});
-    out =
-        std::visit(Overloaded{[&](const PlaneT<double>& s) {
-                                  return put(out, PlaneRecord{vec4(s.point, 0), vec4(s.normal, 0)});
-                              },
-                              [&](const SphereT<double>& s) {
-                                  return put(out, SphereRecord{vec4(s.center, s.radius)});
-                              },
-                              [&](const BoxT<double>& s) {
-                                  BoxRecord r{vec4(s.center, 0), vec4(s.halfExtents, 0), {}};
-                                  columns(s.rotation, r.rotation);
-                                  return put(out, r);
-                              },
-                              [&](const CapsuleT<double>& s) {
-                                  return put(out, CapsuleRecord{vec4(s.a, s.radius), vec4(s.b, 0)});
-                              },
-                              [&](const SdfColliderT<double>& s) {
-                                  const SdfGrid& g = *s.grid;
-                                  MeshRecord r{vec4(g.origin, g.cell),
-                                               glm::ivec4(g.count, int(e.base)),
-                                               {},
-                                               vec4(s.translation, 0)};
-                                  columns(s.rotation, r.rotation);
-                                  return put(out, r);
-                              }},
-                   posed);
+    out = std::visit(
+        Overloaded{[&](const PlaneT<double>& s) {
+                       return put(out, PlaneRecord{vec4(s.point, 0), vec4(s.normal, 0)});
+                   },
+                   [&](const SphereT<double>& s) {
+                       return put(out, SphereRecord{vec4(s.center, s.radius)});
+                   },
+                   [&](const BoxT<double>& s) {
+                       BoxRecord r{vec4(s.center, 0), vec4(s.halfExtents, 0), {}};
+                       columns(s.rotation, r.rotation);
+                       return put(out, r);
+                   },
+                   [&](const CapsuleT<double>& s) {
+                       return put(out, CapsuleRecord{vec4(s.a, s.radius), vec4(s.b, 0)});
+                   },
+                   [&](const SdfColliderT<double>& s) {
+                       const SdfGrid& g = *s.grid;
+                       MeshRecord r{vec4(g.origin, g.cell),
+                                    glm::ivec4(g.count, int(sampleStart() * 4 + e.sampleOffset)),
+                                    {},
+                                    vec4(s.translation, 0)};
+                       columns(s.rotation, r.rotation);
+                       return put(out, r);
+                   }},
+        posed);
     if (velocity != nullptr)
         put(out, VelocityRecord{vec4(velocity->linear, 0), vec4(velocity->angular, 0),
                                 vec4(velocity->origin, 0)});
@@ -180,13 +180,14 @@ std::vector<glm::vec4> ColliderTable::stillRecords() const {
 
 std::vector<glm::vec4> ColliderTable::samples() const {
     std::vector<glm::vec4> out(sampleCount_, glm::vec4(0));
-    float* f = &out[0][0];
     for (const Entry& e : entries_) {
         const auto* mesh = std::get_if<SdfColliderT<double>>(&e.rest);
         if (mesh == nullptr) continue;
         const std::vector<double>& values = mesh->grid->values;
-        const long long from = e.base - (long long)(recordCount_)*4;
-        for (std::size_t i = 0; i < values.size(); ++i) f[from + (long long)i] = float(values[i]);
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            const std::size_t at = std::size_t(e.sampleOffset) + i;
+            out[at / 4][int(at % 4)] = float(values[i]);
+        }
     }
     return out;
 }

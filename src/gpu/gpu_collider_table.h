@@ -6,7 +6,7 @@
 // Three regions of vec4s, in this order:
 //   records  the still colliders' records, each at the offset its macro names;
 //   samples  the meshes' SDF samples, four floats per vec4 (sample i of the buffer at
-//            colliders[i / 4][i % 4], each mesh from its record's base);
+//            colliders[i / 4][i % 4], each mesh from the index in its record);
 //   poses    kPoseBatch slots of poseStride vec4s: the moving colliders' records posed at the
 //            end of step s (t = s·Δt, as the CPU poses them) in slot (s − 1) mod kPoseBatch.
 // A record: a ContactRecord (h, c_f) unless the collider is plain (DESIGN.md §2's plane or
@@ -72,11 +72,12 @@ private:
         RestShape rest;  // the scene's shape at t = 0
         std::optional<Motion> motion;
         float thickness, friction;
-        bool plain;          // DESIGN.md §2's plane or sphere: shape only, today's code
-        int record = 0;      // vec4 index: in the records region, or in a pose slot if moving
-        long long base = 0;  // mesh: float index of its first sample in the whole buffer
+        bool plain;      // DESIGN.md §2's plane or sphere: shape only, today's code
+        int record = 0;  // vec4 index: in the records region, or in a pose slot if moving
+        long long sampleOffset = 0;  // mesh: its first sample's float index in the samples
     };
 
+    static RestShape restShape(const ColliderShape& shape);
     void writeRecord(const Entry& e, const RestShape& posed, const RigidVelocity* velocity,
                      glm::vec4* out) const;
     std::string order() const;
