@@ -17,7 +17,8 @@ float sdfValue(int index) { return colliders[index >> 2][index & 3]; }
 #include "../colliders/collider_contact.glsl"
 
 // Record r of a collider with a thickness, friction or motion: colliders[r] = (h, c_f, 0, 0),
-// the shape from r + 1. vc: the collider's velocity at the vertex (0 for a still one).
+// the shape from r + 1 (gpu::ContactRecord, then the shape's record of src/gpu/gpu_layout.h).
+// vc: the collider's velocity at the vertex (0 for a still one).
 #ifdef HAS_CONTACT_PLANES
 // (point, 0), (unit normal, 0).
 void collidePlaneRecord(int r, vec3 vc, inout vec3 p, inout vec3 v) {
