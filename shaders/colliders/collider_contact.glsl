@@ -25,6 +25,7 @@ bool respondContact(vec4 c, float thickness, float friction, vec3 vc, inout vec3
     return true;
 }
 
+#ifdef HAS_CONTACT_SPHERES
 // The sphere lands on its shell: p = c + (R + h) n (DESIGN.md §2's c + R n when h = 0).
 bool respondSphere(vec3 center, float radius, float thickness, float friction, vec3 vc,
                    inout vec3 p, inout vec3 v) {
@@ -34,3 +35,4 @@ bool respondSphere(vec3 center, float radius, float thickness, float friction, v
     respondVelocity(v, c.xyz, vc, friction);
     return true;
 }
+#endif

@@ -30,8 +30,8 @@ layout(std430, binding = 4) readonly buffer Params {
 } params;
 
 #ifdef HAS_COLLIDERS
-// Plane n: colliders[2n] = point, colliders[2n + 1] = unit normal.
-// Sphere n: colliders[2 NUM_PLANES + n] = (centre, radius). Applied in COLLIDERS_IN_SCENE_ORDER.
+// One record per collider in scene order, the meshes' SDF samples, the moving colliders' pose
+// batch: src/gpu/gpu_collider_table.h lays it out, scene_colliders.glsl reads it.
 layout(std430, binding = 5) readonly buffer Colliders {
     vec4 colliders[];
 };

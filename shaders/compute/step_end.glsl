@@ -43,11 +43,7 @@ void applyPin(vec4 x, vec4 v, inout vec3 p, inout vec3 vel) {
 }
 
 #ifdef HAS_COLLIDERS
-void applyColliders(inout vec3 p, inout vec3 vel) {
-#define PLANE(n) collidePlane(p, vel, colliders[2 * (n)].xyz, colliders[2 * (n) + 1].xyz);
-#define SPHERE(n) collideSphere(p, vel, colliders[2 * NUM_PLANES + (n)]);
-    COLLIDERS_IN_SCENE_ORDER
-}
+#include "scene_colliders.glsl"
 #endif
 
 // The scheme's new (p, vel) of vertex k at step `step`: pins, colliders, store (keeping the w of x and v),
@@ -55,7 +51,7 @@ void applyColliders(inout vec3 p, inout vec3 vel) {
 void finishStep(uint step, uint k, vec4 x, vec4 v, vec3 p, vec3 vel) {
     applyPin(x, v, p, vel);
 #ifdef HAS_COLLIDERS
-    applyColliders(p, vel);
+    applyColliders(step, p, vel);
 #endif
     positions[k] = vec4(p, x.w);
     velocities[k] = vec4(vel, v.w);

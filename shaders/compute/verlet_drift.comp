@@ -16,7 +16,7 @@ void main() {
                  params.gravity.xyz);
     applyPin(x, v, p, vel);
 #ifdef HAS_COLLIDERS
-    applyColliders(p, vel);
+    applyColliders(uStep, p, vel);
 #endif
     positions[k] = vec4(p, x.w);
     velocities[k] = vec4(vel, v.w);

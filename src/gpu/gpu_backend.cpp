@@ -9,8 +9,7 @@
 namespace cloth {
 
 std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& options) {
-    refuseFollowPinsOnGpu(scene);
-    refuseUnmodelledColliders(scene);  // bad input (exit 2) before any context is made
+    refuseFollowPinsOnGpu(scene);  // bad input (exit 2) before any context is made
     return std::make_unique<GpuSolver>(scene, options);
 }
 
@@ -21,7 +20,6 @@ std::string describeGpu() {
 std::string describeGpuVariant(const Scene& scene) {
     try {
         refuseFollowPinsOnGpu(scene);
-        refuseUnmodelledColliders(scene);
     } catch (const InputError& e) {
         return "none: " + e.key() + ": " + e.reason();
     }

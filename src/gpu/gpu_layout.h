@@ -15,7 +15,7 @@ enum Binding : unsigned {
     kForces = 2,      // vec4 per vertex: spring + wind force [N]
     kNormals = 3,     // vec4 per vertex: unit normal (0 where undefined)
     kParams = 4,      // one Params
-    kColliders = 5,   // planes (point, normal) then spheres (centre, radius), see layout.glsl
+    kColliders = 5,   // collider records, SDF samples, pose batch (gpu_collider_table.h)
     kPins = 6,        // vec4 per pin: pinned position [m]
     kStatus = 7,      // one Status
     // The integrator's own buffers from 8 on: only its scene compiles and allocates them.
@@ -92,6 +92,50 @@ static_assert(offsetof(CgState, beta) == 12);
 static_assert(offsetof(CgState, iterations) == 16);
 static_assert(offsetof(CgState, done) == 20);
 inline constexpr std::uint32_t kCgRunning = 0, kCgConverged = 1, kCgStopped = 2;
+
+// The records of the Colliders block (shaders/compute/scene_colliders.glsl, docs/colliders.md
+// §9), each a run of vec4s: a collider's record is its ContactRecord (unless it is DESIGN.md §2's
+// plain plane or sphere), its shape's record, and for a moving collider its VelocityRecord.
+struct ContactRecord {
+    glm::vec4 params;  // x thickness h [m], y friction c_f, zw 0
+};
+struct PlaneRecord {
+    glm::vec4 point;   // xyz [m]
+    glm::vec4 normal;  // xyz unit
+};
+struct SphereRecord {
+    glm::vec4 center;  // xyz [m], w radius [m]
+};
+struct BoxRecord {
+    glm::vec4 center;       // xyz [m]
+    glm::vec4 halfExtents;  // xyz [m]
+    glm::vec4 rotation[3];  // columns: the box's axes in the world (xyz)
+};
+struct CapsuleRecord {
+    glm::vec4 a;  // xyz end point [m], w radius [m]
+    glm::vec4 b;  // xyz end point [m]
+};
+struct MeshRecord {
+    glm::vec4 grid;         // xyz the grid's sample (0, 0, 0) in the mesh frame [m], w cell [m]
+    glm::ivec4 count;       // xyz samples per axis, w the first sample's float index in the block
+    glm::vec4 rotation[3];  // columns: mesh frame → world
+    glm::vec4 translation;  // xyz [m]
+};
+struct VelocityRecord {  // docs/colliders.md §3: v_c(p) = linear + angular × (p − origin)
+    glm::vec4 linear;    // xyz [m/s]
+    glm::vec4 angular;   // xyz [rad/s]
+    glm::vec4 origin;    // xyz [m]
+};
+static_assert(sizeof(ContactRecord) == 16);
+static_assert(sizeof(PlaneRecord) == 32 && offsetof(PlaneRecord, normal) == 16);
+static_assert(sizeof(SphereRecord) == 16);
+static_assert(sizeof(BoxRecord) == 80 && offsetof(BoxRecord, halfExtents) == 16 &&
+              offsetof(BoxRecord, rotation) == 32);
+static_assert(sizeof(CapsuleRecord) == 32 && offsetof(CapsuleRecord, b) == 16);
+static_assert(sizeof(MeshRecord) == 96 && offsetof(MeshRecord, count) == 16 &&
+              offsetof(MeshRecord, rotation) == 32 && offsetof(MeshRecord, translation) == 80);
+static_assert(sizeof(VelocityRecord) == 48 && offsetof(VelocityRecord, angular) == 16 &&
+              offsetof(VelocityRecord, origin) == 32);
 
 static_assert(sizeof(glm::vec4) == 16 && sizeof(glm::ivec4) == 16);
 

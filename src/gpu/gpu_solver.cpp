@@ -88,6 +88,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
                          "must be at least 1, not " + std::to_string(checkEvery_));
     workGroup_ = chooseWorkGroup({options.workGroupX, options.workGroupY}, &info);
     checkGridFits(scene, workGroup_, info);
+    gpu::ColliderTable(scene).checkFits(info.maxStorageBlockSize, scene.source);
     if (forces_ == ForcesKernel::Tiled) checkTileFits(workGroup_, info);
     const long long vertices = static_cast<long long>(nu_) * nv_;
     if (usesManySteps(options.dispatch, method_, vertices, info.software))
@@ -154,10 +155,9 @@ void GpuSolver::upload(const Scene& scene) {
     const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
     bufferData(buffers_[gpu::kStatus], &status, sizeof status);
     bufferData(buffers_[gpu::kParams], nullptr, sizeof(gpu::Params));
-    bufferData(buffers_[gpu::kColliders], nullptr,
-               std::size_t(2 * features_.planes + features_.spheres) * kVec4);
     allocateIntegratorBuffers();
     uploadParams(scene);
+    uploadColliders(scene);
 }
 
 // Stage or solver state, as zeros: written by the step before it is read.
@@ -191,18 +191,6 @@ void GpuSolver::uploadParams(const Scene& scene) {
     p.integration = glm::vec4(float(scene.integrator.dt), float(scene.maxSpeed * scene.maxSpeed),
                               float(scene.integrator.tolerance), 0);
     subData(buffers_[gpu::kParams], 0, &p, sizeof p);
-    // Planes first (point, normal), then spheres (centre, radius): layout.glsl's Colliders.
-    std::vector<glm::vec4> planes, spheres;
-    for (const Collider& c : scene.colliders) {
-        if (const Plane* pl = c.as<Plane>()) {
-            planes.push_back(vec4(pl->point, 0));
-            planes.push_back(vec4(pl->normal, 0));
-        } else if (const Sphere* s = c.as<Sphere>()) {
-            spheres.push_back(vec4(s->center, s->radius));
-        }
-    }
-    planes.insert(planes.end(), spheres.begin(), spheres.end());
-    subData(buffers_[gpu::kColliders], 0, planes.data(), planes.size() * kVec4);
 }
 
 // Pass 1 alone: fresh normals for the renderer (its forces are recomputed by the next step).
@@ -267,10 +255,7 @@ StepResult GpuSolver::step(long n) {
     const long every = method_ == Method::ImplicitEuler ? 1 : checkEvery_;
     while (done < n && status.firstBadStep == gpu::kNoBadStep) {
         const long chunk = std::min<long>(n - done, every);
-        if (manySteps())
-            runManySteps(before + done + 1, chunk);
-        else
-            for (long s = 1; s <= chunk; ++s) dispatchStep(before + done + s);
+        runSteps(before + done + 1, chunk);
         done += chunk;
         status = readStatus();  // the only round trip: 16 bytes every checkEvery steps
     }

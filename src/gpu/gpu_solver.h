@@ -7,12 +7,14 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/solver.h"
 #include "gpu/gpu_backend.h"
+#include "gpu/gpu_collider_table.h"
 #include "gpu/gpu_layout.h"
 #include "gpu/gpu_variant.h"
 
@@ -73,6 +75,11 @@ private:
 
     void upload(const Scene& scene);
     void uploadParams(const Scene& scene);
+    // The Colliders block (gpu_solver_colliders.cpp): the records and samples of `scene`; the
+    // moving colliders' poses are uploaded by the batch as the steps reach them.
+    void uploadColliders(const Scene& scene);
+    long posedSteps(long first);
+    void runSteps(long first, long count);
     void updateInverseMass(float inverseMass);
     void storePin(int slot);
     void computeNormals() const;
@@ -115,6 +122,10 @@ private:
     std::map<std::int64_t, PinSlot> pinSlots_;  // by vertex k: the pins and former pins
     std::vector<glm::vec4> pins_;               // host copy of the Pins table, by slot
     std::size_t pinCapacity_ = 0;               // rows allocated in the Pins buffer
+    std::optional<gpu::ColliderTable> colliders_;
+    std::vector<const void*> sampleSources_;       // the meshes whose samples are on the GPU
+    std::size_t colliderVec4s_ = ~std::size_t(0);  // vec4s allocated in Colliders; ~0: none
+    long posedFrom_ = 0, posedTo_ = 0;             // steps [from, to) whose poses are uploaded
     std::string name_;
     std::array<unsigned, gpu::kBindingCount> buffers_{};  // 0: not used by this integrator
     std::array<unsigned, kKernelCount> programs_{};       // 0: not compiled for this scene

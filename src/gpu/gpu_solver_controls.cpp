@@ -97,9 +97,9 @@ void GpuSolver::setGrab(const std::optional<Grab>& grab) {
     forcesKept_ = false;
 }
 
-// Everything but the compiled variant is data: the Params block and the Colliders table are
-// rewritten in place, and a new mass rewrites position.w. Checks come first, so a refused
-// scene changes nothing.
+// Everything but the compiled variant is data: the Params block and the Colliders records are
+// rewritten in place (a collider's placement, thickness, friction, motion), and a new mass
+// rewrites position.w. Checks come first, so a refused scene changes nothing.
 void GpuSolver::setParameters(const Scene& scene) {
     if (scene.cloth.nu != nu_ || scene.cloth.nv != nv_)
         throw std::invalid_argument("setParameters: the grid size differs; build a new solver");
@@ -109,6 +109,7 @@ void GpuSolver::setParameters(const Scene& scene) {
         throw std::invalid_argument(
             "setParameters: the scene compiles to another GPU kernel (collider order or "
             "integrator); build a new solver");
+    gpu::ColliderTable(scene).checkFits(context_.info().maxStorageBlockSize, scene.source);
     const Grid g = scene.grid();
     std::set<std::int64_t> scenePins, pinnedNow;
     for (const Pin& p : scene.pins) scenePins.insert(g.index(p.i, p.j));
@@ -123,6 +124,7 @@ void GpuSolver::setParameters(const Scene& scene) {
     maxIterations_ = scene.integrator.maxIterations;
     forcesKept_ = false;
     uploadParams(scene);
+    uploadColliders(scene);
     updateInverseMass(float(1.0 / scene.cloth.mass));
 }
 

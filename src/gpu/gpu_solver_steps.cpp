@@ -53,10 +53,12 @@ double GpuSolver::timePass(Kernel k, int repeats) {
     for (int r = 0; r <= repeats; ++r) {  // r = 0 is the warm-up
         glFinish();
         const auto t0 = std::chrono::steady_clock::now();
-        if (k == Kernel::Forces)
+        if (k == Kernel::Forces) {
             runPass(k);
-        else
+        } else {
+            posedSteps(steps_ + 1);
             runStepPass(k, steps_ + 1);
+        }
         glFinish();
         const double s =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -7,6 +7,7 @@
 #include "core/errors.h"
 #include "core/solver.h"
 #include "gpu/egl_context.h"
+#include "gpu/gpu_collider_table.h"
 
 namespace cloth {
 namespace {
@@ -51,18 +52,6 @@ std::pair<int, std::string> springTable(const Scene& scene) {
                 std::to_string(o) + ")";
     }
     return {count, rows};
-}
-
-// PLANE(n)/SPHERE(n) in the order the scene lists its colliders (DESIGN.md §2).
-std::string colliderOrder(const Scene& scene) {
-    std::string order;
-    int planes = 0, spheres = 0;
-    for (const Collider& c : scene.colliders) {
-        if (!order.empty()) order += " ";
-        order += c.as<Plane>() ? "PLANE(" + std::to_string(planes++) + ")"
-                               : "SPHERE(" + std::to_string(spheres++) + ")";
-    }
-    return order;
 }
 
 WorkGroup parseWorkGroup(const char* text) {
@@ -126,27 +115,7 @@ void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
                              " vertices)");
 }
 
-void refuseUnmodelledColliders(const Scene& scene) {
-    for (size_t n = 0; n < scene.colliders.size(); ++n) {
-        const Collider& c = scene.colliders[n];
-        const std::string at = "colliders[" + std::to_string(n) + "]";
-        if (!c.as<Plane>() && !c.as<Sphere>())
-            throw InputError(scene.source, at + ".type",
-                             std::string("the GPU backend does not model ") +
-                                 colliderTypeName(c.shape) +
-                                 " colliders yet (the CPU backend does: --backend cpu)");
-        for (auto [set, key] : {std::pair{c.thickness != 0, "thickness"},
-                                {c.friction != 0, "friction"},
-                                {c.motion.has_value(), "motion"}})
-            if (set)
-                throw InputError(scene.source, at + "." + key,
-                                 std::string("the GPU backend does not model a collider's ") + key +
-                                     " yet (the CPU backend does: --backend cpu)");
-    }
-}
-
 Defines gpuDefines(const Scene& scene, WorkGroup wg) {
-    refuseUnmodelledColliders(scene);
     const Features f = Features::of(scene);
     Defines d;
     if (f.structural) d.push_back({"HAS_STRUCTURAL", ""});
@@ -155,12 +124,7 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg) {
     if (f.wind) d.push_back({"HAS_WIND", ""});
     d.push_back({"NUM_PLANES", std::to_string(f.planes)});
     d.push_back({"NUM_SPHERES", std::to_string(f.spheres)});
-    if (f.planes > 0) d.push_back({"HAS_PLANES", ""});
-    if (f.spheres > 0) d.push_back({"HAS_SPHERES", ""});
-    if (f.planes + f.spheres > 0) {
-        d.push_back({"HAS_COLLIDERS", ""});
-        d.push_back({"COLLIDERS_IN_SCENE_ORDER", colliderOrder(scene)});
-    }
+    gpu::ColliderTable(scene).appendDefines(d);
     d.push_back({integratorDefine(scene.integrator.method), ""});
     d.push_back({"WX", std::to_string(wg.x)});
     d.push_back({"WY", std::to_string(wg.y)});

@@ -29,14 +29,11 @@ WorkGroup chooseWorkGroup(WorkGroup requested, const GpuInfo* info);
 void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info);
 
 // The scene's kernel variant: HAS_STRUCTURAL/HAS_SHEAR/HAS_BEND, HAS_WIND, NUM_PLANES,
-// NUM_SPHERES, the integrator, WX/WY, and the generated spring table and collider order. A
-// feature the scene lacks is absent, not multiplied by zero. Pins and the grab are not
-// features: the viewer changes them at run time, so their (one-compare) code is always there.
+// NUM_SPHERES, the colliders' defines and order (gpu::ColliderTable), the integrator, WX/WY,
+// and the generated spring table. A feature the scene lacks is absent, not multiplied by zero.
+// Pins and the grab are not features: the viewer changes them at run time, so their
+// (one-compare) code is always there.
 Defines gpuDefines(const Scene& scene, WorkGroup wg);
-
-// InputError naming the first collider key the shaders do not model yet (a box, capsule or mesh,
-// a thickness, friction or motion; docs/colliders.md, status), e.g. `colliders[1].type`.
-void refuseUnmodelledColliders(const Scene& scene);
 
 // The compute kernels of the backend. A scene compiles the forces pass and its integrator's
 // kernels only (kernelsOf); docs/integrators.md gives each scheme's passes.

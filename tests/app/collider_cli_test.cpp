@@ -1,8 +1,9 @@
 // Collider input through the command line (docs/colliders.md §5): bad values exit with 2 naming
-// the file and the key; good ones validate (and are described) and run on the CPU; the GPU
-// backend refuses, with exit 2 and the key, what its shaders do not model yet.
+// the file and the key; good ones validate (and are described) and run on the CPU and on the GPU
+// (docs/colliders.md §9).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -75,9 +76,19 @@ TEST(ColliderCli, NonFiniteOrZeroRotationAxisExitsTwoNamingTheKey) {
                       "colliders[0].rotation.axis");
 }
 
-// validate describes the new keys; run --backend cpu simulates them; run --backend gpu refuses
-// them with exit 2 naming the key (the shaders are wired in a later step).
-TEST(ColliderCli, BoxValidatesRunsOnCpuAndIsRefusedByTheGpu) {
+// `run --backend gpu` on `scene`: exit 0, or 4 where no GPU context can be made (skipped then,
+// unless CLOTH_REQUIRE_GPU=1, DESIGN.md §6).
+void expectGpuRuns(const fs::path& scene) {
+    const auto r =
+        test::runProcess({kExe, "run", scene.string(), "--backend", "gpu", "--quiet"}, 60);
+    const char* required = std::getenv("CLOTH_REQUIRE_GPU");
+    if (r.exitCode == 4 && !(required && std::string(required) == "1"))
+        GTEST_SKIP() << "no GPU: " << r.err;
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+}
+
+// validate describes the new keys; run simulates them on both backends.
+TEST(ColliderCli, BoxValidatesAndRunsOnBothBackends) {
     const fs::path scene = writeScene("box", R"({"type": "box", "center": [0, 0.9, 0],
         "half_extents": [0.5, 0.05, 0.5], "rotation": {"axis": [1, 0, 0], "degrees": 5},
         "thickness": 0.01, "friction": 0.5})");
@@ -87,19 +98,13 @@ TEST(ColliderCli, BoxValidatesRunsOnCpuAndIsRefusedByTheGpu) {
     EXPECT_TRUE(has(r.out, "friction 0.5")) << r.out;
     r = test::runProcess({kExe, "run", scene.string(), "--backend", "cpu", "--quiet"}, 60);
     EXPECT_EQ(r.exitCode, 0) << test::describe(r);
-    r = test::runProcess({kExe, "run", scene.string(), "--backend", "gpu", "--quiet"}, 60);
-    EXPECT_EQ(r.exitCode, 2) << test::describe(r);
-    EXPECT_TRUE(has(r.err, "colliders[0].type")) << r.err;
-    EXPECT_TRUE(has(r.err, "does not model box colliders")) << r.err;
+    expectGpuRuns(scene);
 }
 
-TEST(ColliderCli, GpuRefusesFrictionOnASphereNamingTheKey) {
-    const fs::path scene =
-        writeScene("sphere_friction", R"({"type": "sphere", "center": [0, 0.5, 0], "radius": 0.3,
-                               "friction": 0.2})");
-    const auto r = test::runProcess({kExe, "run", scene.string(), "--backend", "gpu"}, 60);
-    EXPECT_EQ(r.exitCode, 2) << test::describe(r);
-    EXPECT_TRUE(has(r.err, "colliders[0].friction")) << r.err;
+TEST(ColliderCli, GpuRunsAMovingSphereWithFriction) {
+    expectGpuRuns(writeScene("sphere_friction", R"({"type": "sphere", "center": [0, 0.5, 0],
+        "radius": 0.3, "friction": 0.2,
+        "motion": {"type": "linear", "velocity": [0, 0.5, 0]}})"));
 }
 
 }  // namespace

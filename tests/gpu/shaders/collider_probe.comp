@@ -11,6 +11,11 @@ layout(std430, binding = 2) readonly buffer GridValues { float gridValues[]; };
 
 float sdfValue(int index) { return gridValues[index]; }
 
+// Every shape (the solver's kernels define only the scene's).
+#define HAS_CONTACT_PLANES
+#define HAS_CONTACT_SPHERES
+#define HAS_BOXES
+#define HAS_CAPSULES
 #include "../../../shaders/colliders/collider_shapes.glsl"
 #include "../../../shaders/colliders/collider_grid.glsl"
 #include "../../../shaders/colliders/collider_contact.glsl"

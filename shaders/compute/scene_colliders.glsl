@@ -1,0 +1,102 @@
+// The scene's colliders in its order (DESIGN.md §2 "Order inside one step", docs/colliders.md
+// §9), read from the Colliders block (layout.glsl) as src/gpu/gpu_collider_table.h lays it out:
+// one record per collider, the meshes' SDF samples, and the moving colliders' poses for a batch
+// of steps. The host generates COLLIDERS_IN_SCENE_ORDER from the scene, so a scene compiles the
+// shapes it declares and nothing else; a plain plane or sphere is DESIGN.md §2's code.
+
+#ifdef HAS_CONTACT
+#ifdef HAS_MESHES
+// Sample `index` of the whole block, four floats per vec4: no storage block of its own (rk4
+// already binds many, and llvmpipe limits them per shader).
+float sdfValue(int index) { return colliders[index >> 2][index & 3]; }
+#endif
+#include "../colliders/collider_shapes.glsl"
+#ifdef HAS_MESHES
+#include "../colliders/collider_grid.glsl"
+#endif
+#include "../colliders/collider_contact.glsl"
+
+// Record r of a collider with a thickness, friction or motion: colliders[r] = (h, c_f, 0, 0),
+// the shape from r + 1 (gpu::ContactRecord, then the shape's record of src/gpu/gpu_layout.h).
+// vc: the collider's velocity at the vertex (0 for a still one).
+#ifdef HAS_CONTACT_PLANES
+// (point, 0), (unit normal, 0).
+void collidePlaneRecord(int r, vec3 vc, inout vec3 p, inout vec3 v) {
+    vec4 c = planeContact(p, colliders[r + 1].xyz, colliders[r + 2].xyz);
+    respondContact(c, colliders[r].x, colliders[r].y, vc, p, v);
+}
+#endif
+
+#ifdef HAS_CONTACT_SPHERES
+// (centre, radius).
+void collideSphereRecord(int r, vec3 vc, inout vec3 p, inout vec3 v) {
+    vec4 s = colliders[r + 1];
+    respondSphere(s.xyz, s.w, colliders[r].x, colliders[r].y, vc, p, v);
+}
+#endif
+
+#if defined(HAS_BOXES) || defined(HAS_MESHES)
+mat3 recordRotation(int r) {
+    return mat3(colliders[r].xyz, colliders[r + 1].xyz, colliders[r + 2].xyz);
+}
+#endif
+
+#ifdef HAS_BOXES
+// (centre, 0), (half extents, 0), the rotation's columns (box axes in the world).
+void collideBoxRecord(int r, vec3 vc, inout vec3 p, inout vec3 v) {
+    vec4 c = boxContact(p, colliders[r + 1].xyz, colliders[r + 2].xyz, recordRotation(r + 3));
+    respondContact(c, colliders[r].x, colliders[r].y, vc, p, v);
+}
+#endif
+
+#ifdef HAS_CAPSULES
+// (a, radius), (b, 0).
+void collideCapsuleRecord(int r, vec3 vc, inout vec3 p, inout vec3 v) {
+    vec4 a = colliders[r + 1];
+    vec4 c = capsuleContact(p, a.xyz, colliders[r + 2].xyz, a.w);
+    respondContact(c, colliders[r].x, colliders[r].y, vc, p, v);
+}
+#endif
+
+#ifdef HAS_MESHES
+// (grid origin, cell), (sample counts, first sample) as int bits, the pose's rotation columns,
+// (translation, 0).
+void collideMeshRecord(int r, vec3 vc, inout vec3 p, inout vec3 v) {
+    vec4 grid = colliders[r + 1];
+    ivec4 count = floatBitsToInt(colliders[r + 2]);
+    vec4 c = gridContact(p, grid.xyz, grid.w, count.xyz, count.w, recordRotation(r + 3),
+                         colliders[r + 6].xyz);
+    respondContact(c, colliders[r].x, colliders[r].y, vc, p, v);
+}
+#endif
+
+#ifdef HAS_MOVING_COLLIDERS
+// docs/colliders.md §3: v_c(p) = linear + angular × (p − origin), from the record's (linear, 0),
+// (angular, 0), (origin, 0) at w.
+vec3 colliderVelocity(int w, vec3 p) {
+    return colliders[w].xyz + cross(colliders[w + 1].xyz, p - colliders[w + 2].xyz);
+}
+#endif
+#endif  // HAS_CONTACT
+
+// Every collider on one vertex at the end of step `step`. A moving collider's record lies in
+// the slot of its step in the pose batch (the host posed it at t = step·Δt); its velocity is
+// evaluated at the vertex before the projection moves it, as on the CPU.
+void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
+#ifdef HAS_MOVING_COLLIDERS
+    int pose = POSE_BASE + int((step - 1u) % uint(POSE_BATCH)) * POSE_STRIDE;
+#endif
+#ifdef HAS_PLANES
+#define PLANE(r) collidePlane(p, vel, colliders[r].xyz, colliders[(r) + 1].xyz);
+#endif
+#ifdef HAS_SPHERES
+#define SPHERE(r) collideSphere(p, vel, colliders[r]);
+#endif
+#ifdef HAS_CONTACT
+#define STILL(fn, r) fn(r, vec3(0.0), p, vel);
+#endif
+#ifdef HAS_MOVING_COLLIDERS
+#define MOVING(fn, r, w) fn(r, colliderVelocity(w, p), p, vel);
+#endif
+    COLLIDERS_IN_SCENE_ORDER
+}

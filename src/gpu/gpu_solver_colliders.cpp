@@ -1,0 +1,66 @@
+// GpuSolver's Colliders block (docs/colliders.md §9, src/gpu/gpu_collider_table.h): the still
+// records and the meshes' samples when the scene is taken, the moving colliders' poses a batch of
+// kPoseBatch steps at a time as the steps reach them.
+#include <GL/glew.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "gpu/gpu_buffers.h"
+#include "gpu/gpu_solver.h"
+
+namespace cloth {
+
+using gpu::kVec4;
+using gpu::subData;
+
+// The samples of a baked mesh are uploaded again only when the meshes changed (setParameters
+// moving a mesh changes its record, not its grid).
+void GpuSolver::uploadColliders(const Scene& scene) {
+    colliders_.emplace(scene);
+    const gpu::ColliderTable& table = *colliders_;
+    const std::vector<const void*> sources = table.sampleSources();
+    if (table.vec4Count() != colliderVec4s_) {
+        colliderVec4s_ = table.vec4Count();
+        gpu::bufferData(buffers_[gpu::kColliders], nullptr, colliderVec4s_ * kVec4);
+        sampleSources_.clear();
+    }
+    const std::vector<glm::vec4> records = table.stillRecords();
+    subData(buffers_[gpu::kColliders], 0, records.data(), records.size() * kVec4);
+    if (sources != sampleSources_) {
+        const std::vector<glm::vec4> samples = table.samples();
+        subData(buffers_[gpu::kColliders], table.sampleStart() * kVec4, samples.data(),
+                samples.size() * kVec4);
+        sampleSources_ = sources;
+    }
+    posedFrom_ = posedTo_ = 0;  // the poses of the new placement (and Δt) are not there yet
+}
+
+// How many steps from `first` on have their poses in the batch, after uploading the batch that
+// starts at `first` if that one's were missing. Unbounded when nothing moves.
+long GpuSolver::posedSteps(long first) {
+    if (!colliders_->anyMoving()) return std::numeric_limits<long>::max();
+    if (first < posedFrom_ || first >= posedTo_) {
+        const std::vector<glm::vec4> batch = colliders_->poseBatch(first, dt_);
+        subData(buffers_[gpu::kColliders], colliders_->poseStart() * kVec4, batch.data(),
+                batch.size() * kVec4);
+        posedFrom_ = first;
+        posedTo_ = first + gpu::kPoseBatch;
+    }
+    return posedTo_ - first;
+}
+
+// Steps first .. first + count − 1, in runs that the uploaded poses cover: one upload per
+// kPoseBatch steps, one many-steps dispatch per run at most.
+void GpuSolver::runSteps(long first, long count) {
+    for (long s = first; s < first + count;) {
+        const long run = std::min(first + count - s, posedSteps(s));
+        if (manySteps())
+            runManySteps(s, run);
+        else
+            for (long k = s; k < s + run; ++k) dispatchStep(k);
+        s += run;
+    }
+}
+
+}  // namespace cloth

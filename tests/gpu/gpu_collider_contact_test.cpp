@@ -1,0 +1,240 @@
+// Contact laws of docs/colliders.md on the GPU solver, mirroring
+// tests/core/collider_solver_test.cpp: Coulomb friction holds a cloth on a tilted box below the
+// friction angle and lets it slide above; a moving box carries the cloth resting on it;
+// setParameters moves colliders and changes their thickness and friction without a new kernel; a
+// mesh grid beyond one SSBO is an input error.
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <regex>
+
+#include "core/errors.h"
+#include "gpu/gpu_collider_table.h"
+#include "gpu/gpu_test_support.h"
+#include "gpu/gpu_variant.h"
+#include "gpu_collider_cases.h"
+
+namespace cloth::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+glm::dvec3 mean(const std::vector<glm::dvec3>& v) {
+    glm::dvec3 m(0);
+    for (const glm::dvec3& x : v) m += x;
+    return m / double(v.size());
+}
+
+// A 5×5 cloth, 0.1 m square, lying flat on a box tilted by θ about x (friction c_f, h = 2 mm),
+// released at rest: how far its centre moves in 1 s [m]. collider_solver_test.cpp's scene with
+// springs 200 times softer: its K = 20 N/m puts explicit Euler outside its bound Δt < μ/λ_max
+// (λ_max ≤ 200 N/m, μ = 0.002: 10 µs against Δt = 1 ms), so a sliding cloth there blows up near
+// t = 0.4 s (on the CPU too); here λ_max ≤ 1 N/m and the bound is 2 ms.
+double slideOnTiltedBox(double degrees, double friction, StepDispatch dispatch) {
+    const double t = degrees * std::numbers::pi / 180;
+    const double top = 0.05 + 0.002;  // the box's half height + h
+    const glm::dvec3 up(0, std::cos(t), std::sin(t)), along(0, -std::sin(t), std::cos(t));
+    Json j = Json::parse(R"({
+      "cloth": { "resolution": [5, 5], "size": [0.1, 0.1], "mass": 0.001 },
+      "springs": { "structural": 0.1, "shear": 0.025 },
+      "damping": 0.002,
+      "integrator": { "method": "explicit_euler", "dt": 0.001 },
+      "duration": 1.0
+    })");
+    const glm::dvec3 origin = top * up - 0.05 * glm::dvec3(1, 0, 0) - 0.05 * along;
+    j["cloth"]["origin"] = {origin.x, origin.y, origin.z};
+    j["cloth"]["u_axis"] = {1, 0, 0};
+    j["cloth"]["v_axis"] = {along.x, along.y, along.z};
+    j["colliders"] = Json::array({{{"type", "box"},
+                                   {"center", {0, 0, 0}},
+                                   {"half_extents", {1, 0.05, 1}},
+                                   {"rotation", {{"axis", {1, 0, 0}}, {"degrees", degrees}}},
+                                   {"thickness", 0.002},
+                                   {"friction", friction}}});
+    const Scene s = parseScene(j.dump(), "tilted box (test)");
+    GpuOptions options;
+    options.dispatch = dispatch;
+    auto solver = makeGpuSolver(s, options);
+    const glm::dvec3 start = mean(solver->read().positions);
+    const StepResult r = solver->step(s.defaultSteps());
+    EXPECT_FALSE(r.unstable) << r.reason << " at step " << r.firstBadStep;
+    return glm::length(mean(solver->read().positions) - start);
+}
+
+class GpuColliderContact : public GpuTest {};
+
+// Law (Coulomb, docs/colliders.md §2): a cloth on a slope holds below the friction angle
+// atan(c_f) and slides above it, on the GPU as on the CPU.
+TEST_F(GpuColliderContact, ClothHoldsBelowTheFrictionAngleAndSlidesAbove) {
+    for (double cf : {0.3, 0.6, 1.0}) {
+        const double angle = std::atan(cf) * 180 / std::numbers::pi;
+        for (StepDispatch d : {StepDispatch::PerStep, StepDispatch::ManySteps}) {
+            const double below = slideOnTiltedBox(angle - 3, cf, d);
+            const double above = slideOnTiltedBox(angle + 3, cf, d);
+            std::printf(
+                "gpu %-10s friction %.1f (atan %.2f°): centre moves %.3g m in 1 s at %.2f°, "
+                "%.3g m at %.2f°\n",
+                stepDispatchName(d), cf, angle, below, angle - 3, above, angle + 3);
+            EXPECT_LT(below, 0.01) << "c_f " << cf << ": slid below the friction angle";
+            EXPECT_GT(above, 0.05) << "c_f " << cf << ": held above the friction angle";
+        }
+    }
+}
+
+// Law: static friction carries the cloth with a moving collider (v = v_c at a sticking
+// contact), posed by the batch of poses the host uploads.
+TEST_F(GpuColliderContact, MovingBoxCarriesTheClothRestingOnIt) {
+    const Json j = Json::parse(R"({
+      "cloth": { "resolution": [6, 6], "size": [0.2, 0.2], "origin": [-0.1, 0.1021, -0.1],
+                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
+      "springs": { "structural": 20.0, "shear": 5.0 },
+      "damping": 0.002,
+      "integrator": { "method": "explicit_euler", "dt": 0.001 },
+      "duration": 1.0,
+      "colliders": [ { "type": "box", "center": [0, 0, 0], "half_extents": [0.5, 0.1, 0.5],
+                       "thickness": 0.002, "friction": 0.8,
+                       "motion": { "type": "linear", "velocity": [0.3, 0, 0] } } ]
+    })");
+    const Scene s = parseScene(j.dump(), "moving box (test)");
+    auto solver = makeGpuSolver(s);
+    // Uneven calls, so that runs of steps straddle the pose batches.
+    for (long n : {1L, 63L, 70L, 200L, 666L}) ASSERT_FALSE(solver->step(n).unstable);
+    const SimState st = solver->read();
+    const glm::dvec3 v = mean(st.velocities);
+    double minY = 1e300;
+    for (const glm::dvec3& p : st.positions) minY = std::min(minY, p.y);
+    std::printf("gpu: box at 0.3 m/s: cloth's mean velocity after 1 s (%.4f, %.4f, %.4f) m/s\n",
+                v.x, v.y, v.z);
+    EXPECT_NEAR(v.x, 0.3, 0.01);
+    EXPECT_NEAR(v.z, 0.0, 0.01);
+    EXPECT_GT(minY, 0.1 + 0.002 - 1e-5) << "the cloth sank into the box";
+}
+
+// The poses of a step do not depend on how the steps are grouped into calls, status reads and
+// pose batches: runs of many steps longer than a batch (checkEvery 200), one step per call, and
+// runs that straddle batches give the same bits.
+TEST_F(GpuColliderContact, PoseBatchesDoNotDependOnHowStepsAreGrouped) {
+    const fs::path dir = freshTempDir("GpuColliderContact", "grouping");
+    writeSlabObj(dir);
+    const Scene s = parseScene(
+        fallingClothOnColliders(colliderCases().back().colliders, "explicit_euler").dump(),
+        (dir / "scene.json").string());
+    auto run = [&](StepDispatch dispatch, int checkEvery, const std::vector<long>& calls) {
+        GpuOptions options;
+        options.dispatch = dispatch;
+        options.checkEvery = checkEvery;
+        auto solver = makeGpuSolver(s, options);
+        for (long n : calls) EXPECT_FALSE(solver->step(n).unstable);
+        return solver->read();
+    };
+    for (StepDispatch d : {StepDispatch::PerStep, StepDispatch::ManySteps}) {
+        const SimState whole = run(d, 64, {300});
+        EXPECT_EQ(run(d, 200, {300}).positions, whole.positions) << stepDispatchName(d);
+        EXPECT_EQ(run(d, 7, {1, 63, 2, 100, 134}).positions, whole.positions)
+            << stepDispatchName(d);
+        EXPECT_EQ(run(d, 64, std::vector<long>(300, 1)).velocities, whole.velocities)
+            << stepDispatchName(d);
+    }
+}
+
+// setParameters takes a collider's new placement, thickness, friction and motion speed as data:
+// the solver then steps exactly as a new solver of the new scene given the same state.
+TEST_F(GpuColliderContact, SetParametersMovesCollidersAndChangesTheirContact) {
+    const fs::path dir = freshTempDir("GpuColliderContact", "set_parameters");
+    writeSlabObj(dir);
+    const Json all = colliderCases().back().colliders;
+    Json moved = all;
+    moved[0]["center"] = {0.0, 0.72, 0.02};
+    moved[0]["thickness"] = 0.02;
+    moved[0]["friction"] = 0.9;
+    moved[1]["motion"]["degrees_per_second"] = -45;
+    moved[2]["translation"] = {0.05, 0.74, 0};
+    moved[2]["thickness"] = 0.01;
+    moved[3]["radius"] = 0.15;
+    moved[4]["motion"]["velocity"] = {0, 0.2, 0};
+    auto scene = [&](const Json& colliders) {
+        return parseScene(fallingClothOnColliders(colliders, "explicit_euler").dump(),
+                          (dir / "scene.json").string());
+    };
+    const Scene before = scene(all), after = scene(moved);
+    auto solver = makeGpuSolver(before);
+    ASSERT_FALSE(solver->step(300).unstable);
+    solver->setParameters(after);
+    solver->resetStepCount();  // both solvers pose the colliders at the same times
+    auto fresh = makeGpuSolver(after);
+    fresh->write(solver->read());
+    ASSERT_FALSE(solver->step(500).unstable);
+    ASSERT_FALSE(fresh->step(500).unstable);
+    EXPECT_EQ(solver->read().positions, fresh->read().positions);
+    EXPECT_EQ(solver->read().velocities, fresh->read().velocities);
+}
+
+// The kernel text of a scene with `colliders`, without // comments: what is left is code.
+std::string integrateKernel(const Json& colliders, const fs::path& dir) {
+    const Scene s = parseScene(fallingClothOnColliders(colliders, "explicit_euler").dump(),
+                               (dir / "scene.json").string());
+    const std::string text =
+        assembleKernel(CLOTH_SOURCE_DIR "/shaders", "compute/integrate.comp", s, {}).text;
+    return std::regex_replace(text, std::regex("//[^\n]*"), "");
+}
+
+// DESIGN.md §3: a scene compiles the collider code it declares and nothing else; a plain plane
+// or sphere is DESIGN.md §2's code alone.
+TEST(GpuColliderVariant, EachSceneCompilesOnlyItsColliders) {
+    const fs::path dir = freshTempDir("GpuColliderVariant", "kernels");
+    writeSlabObj(dir);
+    const std::vector<ColliderCase> cases = colliderCases();
+    auto named = [&](const std::string& name) {
+        for (const ColliderCase& c : cases)
+            if (c.name == name) return c.colliders;
+        return Json();
+    };
+    const Json plain = {{{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}};
+    struct Expect {
+        Json colliders;
+        std::vector<const char*> present, absent;
+    };
+    const std::vector<Expect> expects = {
+        {plain,
+         {"collidePlane(p, vel"},
+         {"respondContact", "boxContact", "capsuleContact", "gridContact", "colliderVelocity",
+          "POSE_BATCH"}},
+        {named("box"),
+         {"boxContact(", "STILL(collideBoxRecord, 0)"},
+         {"collidePlane(p, vel", "capsuleContact(", "gridContact(", "colliderVelocity("}},
+        {named("mesh"), {"gridContact(", "sdfValue("}, {"boxContact(", "colliderVelocity("}},
+        {named("capsule_turning"),
+         {"capsuleContact(", "colliderVelocity(", "POSE_BATCH 64",
+          "MOVING(collideCapsuleRecord, pose + 0, pose + 3)"},
+         {"boxContact(", "gridContact("}},
+    };
+    for (const Expect& e : expects) {
+        const std::string text = integrateKernel(e.colliders, dir);
+        for (const char* p : e.present)
+            EXPECT_NE(text.find(p), std::string::npos) << e.colliders << ": no '" << p << "'";
+        for (const char* a : e.absent)
+            EXPECT_EQ(text.find(a), std::string::npos) << e.colliders << ": '" << a << "'";
+    }
+}
+
+// A mesh grid larger than one SSBO binding is an input error naming the mesh's cell, before
+// anything is allocated (gpu::ColliderTable::checkFits).
+TEST(GpuColliderTable, AGridBeyondOneSsboNamesTheMeshCell) {
+    const fs::path dir = freshTempDir("GpuColliderTable", "fits");
+    writeSlabObj(dir);
+    const Scene s = parseScene(
+        fallingClothOnColliders(colliderCases().back().colliders, "explicit_euler").dump(),
+        (dir / "scene.json").string());
+    const gpu::ColliderTable table(s);
+    const long long bytes = (long long)(table.vec4Count()) * 16;
+    EXPECT_NO_THROW(table.checkFits(bytes, s.source));
+    try {
+        table.checkFits(bytes - 1, s.source);
+        FAIL() << "a table one byte too large was accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "colliders[2].cell") << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace cloth::test
