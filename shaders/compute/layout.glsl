@@ -39,7 +39,7 @@ layout(std430, binding = 5) readonly buffer Colliders {
 
 // Always present: the viewer pins and releases vertices at run time (Solver::setPinned).
 layout(std430, binding = 6) readonly buffer Pins {
-    vec4 pins[];  // xyz pinned position [m]
+    vec4 pins[];  // xyz pinned position [m] (a follow pin: its rest position), w 0 or follow + 1
 };
 
 #ifdef INTEGRATOR_RK4

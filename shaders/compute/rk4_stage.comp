@@ -1,8 +1,8 @@
 // rk4 (docs/integrators.md): pass 2 of stage s = 0..3, after the forces pass evaluated F at the
 // stage state (x, v) in positions/velocities. Stage s adds k_{s+1} = (v, a(x, v)) to the sums and
 // writes the next stage's state y_n + c k_{s+1}; the last one writes
-// y_{n+1} = y_n + (h/6)(k1 + 2k2 + 2k3 + k4) and ends the step. Pinned vertices keep x_pin, v = 0
-// in every stage.
+// y_{n+1} = y_n + (h/6)(k1 + 2k2 + 2k3 + k4) and ends the step. Pinned vertices keep their pin
+// (a follow pin at its end-of-step pose, with v_c) in every stage.
 #include "layout.glsl"
 #include "common.glsl"
 #include "step_end.glsl"
@@ -42,7 +42,7 @@ void main() {
     }
     float c = uStage == 2 ? h : 0.5 * h;  // the next stage's point y_n + c k
     vec3 p = x0 + c * v.xyz, vel = v0 + c * a;
-    applyPin(x, v, p, vel);
+    applyPin(uStep, x, v, p, vel);
     positions[k] = vec4(p, x.w);
     velocities[k] = vec4(vel, v.w);
 }

@@ -79,12 +79,31 @@ vec3 colliderVelocity(int w, vec3 p) {
 #endif
 #endif  // HAS_CONTACT
 
+#ifdef HAS_MOVING_COLLIDERS
+// The first vec4 of step `step`'s slot in the pose batch (the host posed it at that step's end).
+int poseSlot(uint step) {
+    return POSE_BASE + int((step - 1u) % uint(POSE_BATCH)) * POSE_STRIDE;
+}
+#endif
+
+#ifdef HAS_FOLLOW_PINS
+// A pin that follows a collider (docs/colliders.md §5) at the end of step `step`: its rest
+// position x0 through the collider's motion, x = R x0 + T, with the velocity v_c(x) there, from
+// the FollowRecord (rotation columns, translation, linear, angular, origin) at `f` in the slot.
+void followPin(uint step, int f, vec3 x0, out vec3 p, out vec3 vel) {
+    int r = poseSlot(step) + f;
+    p = mat3(colliders[r].xyz, colliders[r + 1].xyz, colliders[r + 2].xyz) * x0 +
+        colliders[r + 3].xyz;
+    vel = colliders[r + 4].xyz + cross(colliders[r + 5].xyz, p - colliders[r + 6].xyz);
+}
+#endif
+
 // Every collider on one vertex at the end of step `step`. A moving collider's record lies in
 // the slot of its step in the pose batch (the host posed it at t = step·Δt); its velocity is
 // evaluated at the vertex before the projection moves it, as on the CPU.
 void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
 #ifdef HAS_MOVING_COLLIDERS
-    int pose = POSE_BASE + int((step - 1u) % uint(POSE_BATCH)) * POSE_STRIDE;
+    int pose = poseSlot(step);
 #endif
 #ifdef HAS_PLANES
 #define PLANE(r) collidePlane(p, vel, colliders[r].xyz, colliders[(r) + 1].xyz);

@@ -32,24 +32,30 @@ void checkStability(uint step, uint k, vec3 p, vec3 v) {
     }
 }
 
-// A pinned vertex (by the scene or at run time: position.w = 0) goes back to its pinned
-// position, at rest. Compiled always, since setPinned may pin any vertex; one compare of a value
-// already loaded. x, v: the vertex's stored vec4s (w: inverse mass, pin slot).
-void applyPin(vec4 x, vec4 v, inout vec3 p, inout vec3 vel) {
-    if (x.w == 0.0) {
-        p = pins[int(v.w)].xyz;
-        vel = vec3(0.0);
-    }
-}
-
 #ifdef HAS_COLLIDERS
 #include "scene_colliders.glsl"
 #endif
 
+// A pinned vertex (by the scene or at run time: position.w = 0) goes back to its pinned
+// position, at rest; one that follows a collider (the pin's w > 0: its FollowRecord's offset + 1
+// in the pose slot) to where the collider's motion carries it at the end of step `step`, with
+// its velocity. Compiled always, since setPinned may pin any vertex; one compare of a value
+// already loaded. x, v: the vertex's stored vec4s (w: inverse mass, pin slot).
+void applyPin(uint step, vec4 x, vec4 v, inout vec3 p, inout vec3 vel) {
+    if (x.w == 0.0) {
+        vec4 pin = pins[int(v.w)];
+        p = pin.xyz;
+        vel = vec3(0.0);
+#ifdef HAS_FOLLOW_PINS
+        if (pin.w > 0.0) followPin(step, int(pin.w) - 1, pin.xyz, p, vel);
+#endif
+    }
+}
+
 // The scheme's new (p, vel) of vertex k at step `step`: pins, colliders, store (keeping the w of x and v),
 // check.
 void finishStep(uint step, uint k, vec4 x, vec4 v, vec3 p, vec3 vel) {
-    applyPin(x, v, p, vel);
+    applyPin(step, x, v, p, vel);
 #ifdef HAS_COLLIDERS
     applyColliders(step, p, vel);
 #endif

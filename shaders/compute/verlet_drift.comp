@@ -14,7 +14,7 @@ void main() {
     vec3 p = x.xyz, vel = v.xyz;
     kickAndDrift(p, vel, forces[k].xyz, x.w, params.integration.x, params.gravity.w,
                  params.gravity.xyz);
-    applyPin(x, v, p, vel);
+    applyPin(uStep, x, v, p, vel);
 #ifdef HAS_COLLIDERS
     applyColliders(uStep, p, vel);
 #endif

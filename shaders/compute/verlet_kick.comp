@@ -15,7 +15,7 @@ void main() {
     vec3 p = x.xyz;
     vec3 vel = kick(v.xyz, forces[k].xyz, x.w, params.integration.x, params.gravity.w,
                     params.gravity.xyz);
-    applyPin(x, v, p, vel);
+    applyPin(uStep, x, v, p, vel);
     velocities[k] = vec4(vel, v.w);
     checkStability(uStep, k, p, vel);
 }

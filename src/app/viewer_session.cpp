@@ -120,9 +120,9 @@ void ViewerSession::setBackend(const BackendChoice& backend) {
 void ViewerSession::replaceSolver(const Scene& effective, const BackendChoice& backend) {
     const SimState state = solver_->read();
     std::unique_ptr<Solver> next = makeSolver(effective, backend);  // may throw: keep the old
-    next->write(state);
+    next->write(state);  // the time too: moving colliders and follow pins go on from there
     for (const Pin& p : params_.scene.pins) next->setPinned(p.i, p.j, true);  // where they are
-    drags_ = carryDrags(*next);  // may throw (the GPU cannot drag yet): keep the old
+    drags_ = carryDrags(*next);
     solver_ = std::move(next);
     backend_ = backend;
     ++rebuilds_;

@@ -81,7 +81,7 @@ bool CpuSolver<T>::fused() const {
 template <typename T>
 void CpuSolver<T>::takeParameters(const Scene& scene) {
     grid_ = scene.grid();
-    Solver::dt_ = scene.integrator.dt;
+    Solver::setStepDt(scene.integrator.dt);
     springs_ = activeSprings<T>(scene);
     rowSprings_.clear();
     upwardSprings_ = families_ = 0;
@@ -135,6 +135,7 @@ void CpuSolver<T>::write(const SimState& state) {
         v_.set(k, cast<T>(state.velocities[std::size_t(k)]));
         if (pinned_[k]) pinPosition_[k] = x_.get(k);  // a pin holds the vertex where it now is
     }
+    Solver::setTime(state.time);
     forcesValid_ = false;
     for (Band& b : bands_) {  // a written state starts afresh, as on the GPU
         b.badVertex = -1;
@@ -352,6 +353,7 @@ SimState CpuSolver<T>::read() const {
         s.positions[std::size_t(k)] = x_.get(k);
         s.velocities[std::size_t(k)] = v_.get(k);
     }
+    s.time = time();
     return s;
 }
 

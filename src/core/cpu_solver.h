@@ -162,7 +162,7 @@ private:
     // Poses the moving colliders and the pins that follow them at the end of step `stepNumber`
     // (1-based), before it is taken.
     void poseColliders(long stepNumber) noexcept {
-        const double t = double(stepNumber) * Solver::dt_;
+        const double t = Solver::timeAt(stepNumber);
         if (colliders_.anyMoving()) colliders_.pose(t);
         if (!follows_.empty()) poseFollowPins(t);
     }

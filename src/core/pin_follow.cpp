@@ -62,12 +62,4 @@ void checkFollowPins(const Scene& scene) {
     }
 }
 
-void refuseFollowPinsOnGpu(const Scene& scene) {
-    for (std::size_t k = 0; k < scene.pins.size(); ++k)
-        if (scene.pins[k].follow >= 0)
-            throw InputError(scene.source, followKey(k),
-                             "the GPU backend does not model pins that follow a collider yet (the "
-                             "CPU backend does: --backend cpu)");
-}
-
 }  // namespace cloth

@@ -47,8 +47,4 @@ inline PinState followPinAt(const FollowPin& f, double t) {
 // InputError naming `pins[k].follow`.
 void checkFollowPins(const Scene& scene);
 
-// The GPU backend does not model follow pins yet: an InputError naming `pins[k].follow` for the
-// first one (exit 2), before any context is made.
-void refuseFollowPinsOnGpu(const Scene& scene);
-
 }  // namespace cloth

@@ -22,6 +22,7 @@ struct SimState {
     int nu = 0, nv = 0;
     std::vector<glm::dvec3> positions;   // [m], index k = j·nu + i
     std::vector<glm::dvec3> velocities;  // [m/s]
+    double time = 0;  // [s] the solver's time (Solver::time()): write() carries it on
 };
 
 // What step(n) did. A run is unstable at the first step after which a position or velocity is
@@ -75,7 +76,8 @@ public:
     virtual std::string name() const = 0;  // "cpu double, 2 threads", "gpu float (llvmpipe)"
 
     // Interactive control (the viewer). Each takes effect from the next step.
-    // Replaces positions and velocities (same grid): carries a run across backends.
+    // Replaces positions and velocities (same grid) and sets the time to state.time: carries a
+    // run across backends, moving colliders and follow pins where they were.
     virtual void write(const SimState& state) = 0;
     // Pins vertex (i, j) where it is now (zero velocity), or releases it.
     virtual void setPinned(int i, int j, bool pinned) = 0;
@@ -93,14 +95,38 @@ public:
     virtual void setColliderDrag(int index, const glm::dvec3& offset,
                                  const glm::dvec3& velocity) = 0;
     long stepsDone() const { return steps_; }
-    void resetStepCount() { steps_ = 0; }
-    double time() const { return double(steps_) * dt_; }
+    // Steps done and the time back to 0.
+    void resetStepCount() { steps_ = originStep_ = 0, timeOrigin_ = 0; }
+    // The simulated time [s]: t₀ + (steps − step₀)·Δt, re-based when Δt changes, so that the
+    // moving colliders, follow pins and drags posed by it go on continuously.
+    double time() const { return timeAt(steps_); }
     const SolveStats& solveStats() const { return solveStats_; }
 
 protected:
+    // The time at the end of step `step` (1-based): the poses of that step. Bit for bit
+    // double(step)·Δt while Δt has not changed and no time was written.
+    double timeAt(long step) const { return timeOrigin_ + double(step - originStep_) * dt_; }
+    // Δt from the next step on; the time now stays where it is.
+    void setStepDt(double dt) {
+        if (dt == dt_) return;
+        timeOrigin_ = time();
+        originStep_ = steps_;
+        dt_ = dt;
+    }
+    // The time now becomes t [s] (write()); the same time changes nothing, not even a bit.
+    void setTime(double t) {
+        if (t == time()) return;
+        timeOrigin_ = t;
+        originStep_ = steps_;
+    }
+
     long steps_ = 0;
     SolveStats solveStats_;
     double dt_ = 0;
+
+private:
+    double timeOrigin_ = 0;  // [s] t₀, the time at step originStep_
+    long originStep_ = 0;
 };
 
 struct CpuOptions {

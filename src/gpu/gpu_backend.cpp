@@ -1,7 +1,5 @@
 #include "gpu/gpu_backend.h"
 
-#include "core/errors.h"
-#include "core/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_solver.h"
 #include "gpu/gpu_variant.h"
@@ -9,7 +7,6 @@
 namespace cloth {
 
 std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& options) {
-    refuseFollowPinsOnGpu(scene);  // bad input (exit 2) before any context is made
     return std::make_unique<GpuSolver>(scene, options);
 }
 
@@ -18,11 +15,6 @@ std::string describeGpu() {
 }
 
 std::string describeGpuVariant(const Scene& scene) {
-    try {
-        refuseFollowPinsOnGpu(scene);
-    } catch (const InputError& e) {
-        return "none: " + e.key() + ": " + e.reason();
-    }
     std::string line;
     for (const auto& [name, value] : gpuDefines(scene, chooseWorkGroup({}, nullptr))) {
         if (name == "SPRING_OFFSETS") continue;  // the table rows; NUM_SPRING_OFFSETS says enough

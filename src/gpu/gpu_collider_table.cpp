@@ -1,9 +1,11 @@
 #include "gpu/gpu_collider_table.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/collider_validate.h"
 #include "core/errors.h"
+#include "core/pin_follow.h"
 #include "gpu/gpu_buffers.h"
 
 namespace cloth::gpu {
@@ -65,14 +67,29 @@ ColliderTable::RestShape ColliderTable::restShape(const ColliderShape& shape) {
         shape);
 }
 
-ColliderTable::ColliderTable(const Scene& scene) {
-    for (const Collider& c : scene.colliders) {
-        Entry e{restShape(c.shape), std::nullopt, float(c.thickness), float(c.friction),
-                c.plain() && (c.as<Plane>() || c.as<Sphere>())};
+ColliderTable::ColliderTable(const Scene& scene, const std::vector<bool>& dragged) {
+    // The FollowRecords first in the slot: their offsets, which the pins table holds, do not
+    // change when a drag makes another collider moving.
+    std::vector<int> follow(scene.colliders.size(), -1);
+    for (const Pin& p : scene.pins) {
+        if (!follows(scene, p) || follow[std::size_t(p.follow)] >= 0) continue;
+        follow[std::size_t(p.follow)] = poseStride_;
+        poseStride_ += kVec4sOf<FollowRecord>;
+    }
+    for (std::size_t n = 0; n < scene.colliders.size(); ++n) {
+        const Collider& c = scene.colliders[n];
+        const bool moving = c.motion || (n < dragged.size() && dragged[n]);
+        Entry e{restShape(c.shape),
+                std::nullopt,
+                float(c.thickness),
+                float(c.friction),
+                !moving && c.plain() && (c.as<Plane>() || c.as<Sphere>()),
+                moving};
+        e.follow = follow[n];
         if (c.motion) e.motion = c.motion->motion();
         const int size = (e.plain ? 0 : kContactVec4s) + kShapeVec4s[c.shape.index()] +
-                         (e.motion ? kVelocityVec4s : 0);
-        if (e.motion) {
+                         (e.moving ? kVelocityVec4s : 0);
+        if (e.moving) {
             e.record = poseStride_;
             poseStride_ += size;
         } else {
@@ -99,7 +116,7 @@ std::string ColliderTable::order() const {
             continue;
         }
         const char* fn = kRecordFunctions[e.rest.index()];
-        if (!e.motion) {
+        if (!e.moving) {
             order += std::string("STILL(") + fn + ", " + r + ")";
             continue;
         }
@@ -127,6 +144,8 @@ void ColliderTable::appendDefines(Defines& d) const {
                                        "HAS_CAPSULES", "HAS_MESHES"};
     for (int s = 0; s < 5; ++s)
         if (has[s]) d.push_back({kHas[s], ""});
+    if (std::any_of(entries_.begin(), entries_.end(), [](const Entry& e) { return e.follow >= 0; }))
+        d.push_back({"HAS_FOLLOW_PINS", ""});
     if (anyMoving()) {
         d.push_back({"HAS_MOVING_COLLIDERS", ""});
         d.push_back({"POSE_BASE", std::to_string(poseStart())});
@@ -174,7 +193,7 @@ void ColliderTable::writeRecord(const Entry& e, const RestShape& posed,
 std::vector<glm::vec4> ColliderTable::stillRecords() const {
     std::vector<glm::vec4> out(recordCount_, glm::vec4(0));
     for (const Entry& e : entries_)
-        if (!e.motion) writeRecord(e, e.rest, nullptr, &out[std::size_t(e.record)]);
+        if (!e.moving) writeRecord(e, e.rest, nullptr, &out[std::size_t(e.record)]);
     return out;
 }
 
@@ -198,17 +217,35 @@ std::vector<const void*> ColliderTable::sampleSources() const {
     return out;
 }
 
-// The CPU's route (CpuColliders::pose): the rest shape moved by poseAt(t) and the velocity
-// field velocityAt(t), in double, at t = step·Δt, the end of the step.
-std::vector<glm::vec4> ColliderTable::poseBatch(long first, double dt) const {
+// The CPU's route (CpuColliders::pose, collider_pose.h): the rest shape moved by the motion's
+// pose and the drag's translation, the velocity field the motion's plus the drag's velocity, in
+// double, at the end of the step; a FollowRecord from the motion alone (followPinAt).
+std::vector<glm::vec4> ColliderTable::poseBatch(
+    long first, const std::function<double(long)>& timeOf,
+    const std::vector<std::optional<ColliderDrag>>& drags) const {
     std::vector<glm::vec4> out(std::size_t(poseStride_) * kPoseBatch, glm::vec4(0));
     for (long step = first; step < first + kPoseBatch; ++step) {
-        const double t = double(step) * dt;
+        const double t = timeOf(step);
         glm::vec4* slot = &out[std::size_t((step - 1) % kPoseBatch) * std::size_t(poseStride_)];
-        for (const Entry& e : entries_) {
-            if (!e.motion) continue;
-            const Pose q = poseAt(*e.motion, t);
-            const RigidVelocity w = velocityAt(*e.motion, t);
+        for (std::size_t n = 0; n < entries_.size(); ++n) {
+            const Entry& e = entries_[n];
+            if (!e.moving) continue;
+            const Pose motion = e.motion ? poseAt(*e.motion, t) : Pose{};
+            const RigidVelocity motionVelocity =
+                e.motion ? velocityAt(*e.motion, t) : RigidVelocity{};
+            if (e.follow >= 0) {
+                FollowRecord f{{}, vec4(motion.translation, 0), {}};
+                columns(motion.rotation, f.rotation);
+                f.velocity = {vec4(motionVelocity.linear, 0), vec4(motionVelocity.angular, 0),
+                              vec4(motionVelocity.origin, 0)};
+                put(slot + e.follow, f);
+            }
+            Pose q = motion;
+            RigidVelocity w = motionVelocity;
+            if (n < drags.size() && drags[n]) {
+                q.translation += drags[n]->at(t);
+                w.linear += drags[n]->velocity;
+            }
             const RestShape posed =
                 std::visit([&](const auto& s) { return RestShape(moved(s, q)); }, e.rest);
             writeRecord(e, posed, &w, slot + e.record);

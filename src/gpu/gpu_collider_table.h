@@ -8,12 +8,15 @@
 //   samples  the meshes' SDF samples, four floats per vec4 (sample i of the buffer at
 //            colliders[i / 4][i % 4], each mesh from the index in its record);
 //   poses    kPoseBatch slots of poseStride vec4s: the moving colliders' records posed at the
-//            end of step s (t = s·Δt, as the CPU poses them) in slot (s − 1) mod kPoseBatch.
+//            end of step s (the solver's time then, as the CPU poses them) in slot
+//            (s − 1) mod kPoseBatch, after a FollowRecord per collider that pins follow.
+// A collider is moving when it has a motion or is dragged (compiled as moving: `dragged`).
 // A record: a ContactRecord (h, c_f) unless the collider is plain (DESIGN.md §2's plane or
 // sphere), the shape's record, and for a moving collider its VelocityRecord (gpu_layout.h).
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
@@ -22,6 +25,7 @@
 #include <vector>
 
 #include "core/collider_motion.h"
+#include "core/collider_pose.h"
 #include "core/scene.h"
 #include "gpu/gpu_layout.h"
 #include "gpu/shader_loader.h"
@@ -38,7 +42,9 @@ inline constexpr int kVec4sOf = int(sizeof(Record) / 16);
 
 class ColliderTable {
 public:
-    explicit ColliderTable(const Scene& scene);
+    // dragged[c]: collider c is compiled as moving although it may have no motion (the
+    // viewer's drag); missing entries: false.
+    explicit ColliderTable(const Scene& scene, const std::vector<bool>& dragged = {});
 
     // HAS_COLLIDERS and what the scene's colliders need compiled (HAS_PLANES, HAS_SPHERES for
     // plain ones; HAS_CONTACT, HAS_CONTACT_PLANES, HAS_CONTACT_SPHERES, HAS_BOXES, HAS_CAPSULES,
@@ -48,6 +54,9 @@ public:
 
     bool empty() const { return entries_.empty(); }
     bool anyMoving() const { return poseStride_ > 0; }
+    bool moving(std::size_t collider) const { return entries_.at(collider).moving; }
+    // The FollowRecord's vec4 offset in a pose slot of a collider that pins follow; −1 if none.
+    int followRecord(std::size_t collider) const { return entries_.at(collider).follow; }
     std::size_t sampleStart() const { return recordCount_; }               // vec4 index
     std::size_t poseStart() const { return recordCount_ + sampleCount_; }  // vec4 index
     std::size_t vec4Count() const { return poseStart() + std::size_t(poseStride_) * kPoseBatch; }
@@ -58,8 +67,10 @@ public:
     std::vector<glm::vec4> samples() const;
     // The meshes whose samples the table holds, in scene order: equal lists, equal samples.
     std::vector<const void*> sampleSources() const;
-    // The poses region for steps first .. first + kPoseBatch − 1 (each in its slot) at Δt = dt.
-    std::vector<glm::vec4> poseBatch(long first, double dt) const;
+    // The poses region for steps first .. first + kPoseBatch − 1 (each in its slot), step s at
+    // time timeOf(s) [s], collider c displaced by drags[c] if it has one (core/collider_pose.h).
+    std::vector<glm::vec4> poseBatch(long first, const std::function<double(long)>& timeOf,
+                                     const std::vector<std::optional<ColliderDrag>>& drags) const;
 
     // InputError when the block exceeds `maxBytes` (one SSBO binding): naming the key
     // colliders[n].cell of the mesh with the most samples (colliders otherwise).
@@ -72,8 +83,10 @@ private:
         RestShape rest;  // the scene's shape at t = 0
         std::optional<Motion> motion;
         float thickness, friction;
-        bool plain;      // DESIGN.md §2's plane or sphere: shape only, today's code
-        int record = 0;  // vec4 index: in the records region, or in a pose slot if moving
+        bool plain;       // DESIGN.md §2's plane or sphere: shape only, today's code
+        bool moving;      // a motion or a drag: posed per step
+        int record = 0;   // vec4 index: in the records region, or in a pose slot if moving
+        int follow = -1;  // its FollowRecord's vec4 index in a pose slot; −1: no pin follows it
         long long sampleOffset = 0;  // mesh: its first sample's float index in the samples
     };
 

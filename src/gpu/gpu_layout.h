@@ -126,6 +126,14 @@ struct VelocityRecord {  // docs/colliders.md §3: v_c(p) = linear + angular × 
     glm::vec4 angular;   // xyz [rad/s]
     glm::vec4 origin;    // xyz [m]
 };
+// A followed collider's motion at the end of a step, for its follow pins (docs/colliders.md §5,
+// §9): x(t) = rotation·x₀ + translation, v = linear + angular × (x − origin). The motion alone:
+// a viewer's drag moves the collider, not the pins that follow it (as on the CPU).
+struct FollowRecord {
+    glm::vec4 rotation[3];  // columns
+    glm::vec4 translation;  // xyz [m]
+    VelocityRecord velocity;
+};
 static_assert(sizeof(ContactRecord) == 16);
 static_assert(sizeof(PlaneRecord) == 32 && offsetof(PlaneRecord, normal) == 16);
 static_assert(sizeof(SphereRecord) == 16);
@@ -136,6 +144,9 @@ static_assert(sizeof(MeshRecord) == 96 && offsetof(MeshRecord, count) == 16 &&
               offsetof(MeshRecord, rotation) == 32 && offsetof(MeshRecord, translation) == 80);
 static_assert(sizeof(VelocityRecord) == 48 && offsetof(VelocityRecord, angular) == 16 &&
               offsetof(VelocityRecord, origin) == 32);
+
+static_assert(sizeof(FollowRecord) == 112 && offsetof(FollowRecord, translation) == 48 &&
+              offsetof(FollowRecord, velocity) == 64);
 
 static_assert(sizeof(glm::vec4) == 16 && sizeof(glm::ivec4) == 16);
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/errors.h"
+#include "core/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/shader_loader.h"
@@ -28,7 +29,8 @@ constexpr std::size_t kMinPinCapacity = 16;
 // The scene's kernels (kernelsOf its integrator, and many_steps.comp when `manyStepsGroup` > 0)
 // with the variant's defines; none leaks if a later one fails to build.
 std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup wg,
-                                                 ForcesKernel forces, int manyStepsGroup) {
+                                                 ForcesKernel forces, int manyStepsGroup,
+                                                 const std::vector<bool>& dragged) {
     const ShaderDirectory dir = findShaderDirectory();
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -46,8 +48,8 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
     }
     try {
         for (Kernel k : kernels)
-            programs[int(k)] =
-                compileComputeProgram(assembleKernel(dir.path, kernelFile(k), scene, wg, extra));
+            programs[int(k)] = compileComputeProgram(
+                assembleKernel(dir.path, kernelFile(k), scene, wg, extra, dragged));
     } catch (...) {
         for (unsigned p : programs) glDeleteProgram(p);  // 0 is silently ignored
         throw;
@@ -81,6 +83,9 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       nv_(scene.cloth.nv),
       checkEvery_(options.checkEvery),
       maxSpeed_(scene.maxSpeed) {
+    scene_ = scene;
+    dragged_.assign(scene.colliders.size(), false);
+    drags_.resize(scene.colliders.size());
     context_.makeCurrent();
     const GpuInfo& info = context_.info();
     if (checkEvery_ < 1)
@@ -95,9 +100,8 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
         manyStepsGroup_ = manyStepsGroupSize(vertices, info);
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
-    dt_ = scene.integrator.dt;
-    defines_ = gpuDefines(scene, workGroup_);
-    programs_ = buildPrograms(scene, workGroup_, forces_, manyStepsGroup_);
+    setStepDt(scene.integrator.dt);
+    compilePrograms();
     glGenBuffers(gpu::kStatus + 1, buffers_.data());
     for (gpu::Binding b : integratorBindings(method_)) glGenBuffers(1, &buffers_[b]);
     upload(scene);
@@ -113,6 +117,14 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
                          : "") +
             ")";
     computeNormals();  // valid before the first step, for a renderer drawing frame 0
+}
+
+void GpuSolver::compilePrograms() {
+    const std::array<unsigned, kKernelCount> programs =
+        buildPrograms(scene_, workGroup_, forces_, manyStepsGroup_, dragged_);
+    for (unsigned p : programs_) glDeleteProgram(p);
+    programs_ = programs;
+    defines_ = gpuDefines(scene_, workGroup_, dragged_);
 }
 
 GpuSolver::~GpuSolver() {
@@ -143,6 +155,18 @@ void GpuSolver::upload(const Scene& scene) {
         v[std::size_t(k)].w = float(pins_.size());  // exact below 2^24 pins
         pinSlots_[k] = {int(pins_.size()), true};
         pins_.push_back(glm::vec4(glm::vec3(x[std::size_t(k)]), 0));
+    }
+    // A follow pin holds its rest position and its collider's FollowRecord offset + 1, and
+    // starts where the collider's motion puts it at t = 0, with its velocity (as on the CPU).
+    const gpu::ColliderTable colliders(scene);
+    for (const FollowPin& f : followPins(scene)) {
+        const std::size_t k = std::size_t(f.vertex);
+        const PinState s = followPinAt(f, 0.0);
+        x[k] = vec4(s.position, 0);
+        v[k] = vec4(s.velocity, v[k].w);
+        pins_[std::size_t(v[k].w)] =
+            vec4(f.rest, float(colliders.followRecord(std::size_t(f.collider)) + 1));
+        following_[f.vertex] = f.collider;
     }
     bufferData(buffers_[gpu::kPositions], x);
     bufferData(buffers_[gpu::kVelocities], v);
@@ -307,6 +331,7 @@ SimState GpuSolver::read() const {
         s.positions[k] = glm::dvec3(glm::vec3(x[k]));
         s.velocities[k] = glm::dvec3(glm::vec3(v[k]));
     }
+    s.time = time();
     return s;
 }
 

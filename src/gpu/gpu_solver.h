@@ -8,7 +8,6 @@
 #include <cstdint>
 #include <map>
 #include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -40,10 +39,10 @@ public:
     void setPinned(int i, int j, bool pinned) override;
     void setGrab(const std::optional<Grab>& grab) override;
     void setParameters(const Scene& scene) override;
-    // Not modelled yet: the compute passes pose no collider (docs/colliders.md, status).
-    void setColliderDrag(int, const glm::dvec3&, const glm::dvec3&) override {
-        throw std::invalid_argument("the GPU backend cannot drag colliders yet");
-    }
+    // The drag is added to the collider's posed records (docs/colliders.md §9). The first drag
+    // of a collider compiled as still (no motion) compiles the kernels again with it moving,
+    // keeping the state; later drags and every other collider's are data.
+    void setColliderDrag(int index, const glm::dvec3& offset, const glm::dvec3& velocity) override;
 
     // GL buffer names (vec4 per vertex, k = j·nu + i): the renderer binds them as vertex
     // buffers. Valid in the context the solver was made in.
@@ -73,6 +72,8 @@ private:
         bool pinned;  // pinned now: position.w = 0
     };
 
+    // The kernels of the variant scene_ and dragged_ make; the old ones stay if a build fails.
+    void compilePrograms();
     void upload(const Scene& scene);
     void uploadParams(const Scene& scene);
     // The Colliders block (gpu_solver_colliders.cpp): the records and samples of `scene`; the
@@ -110,7 +111,12 @@ private:
     // verlet: the forces buffer holds F(x_n) of the coming step (F(x_{n+1}) of the last one).
     // Anything that changes the state or the forces from outside discards it.
     bool forcesKept_ = false;
-    Defines defines_;  // the compiled variant: setParameters must not need another
+    Defines defines_;            // the compiled variant: setParameters must not need another
+    Scene scene_;                // the scene of the last setParameters (a recompilation's)
+    std::vector<bool> dragged_;  // by collider: compiled as moving for a drag (ColliderTable)
+    std::vector<std::optional<ColliderDrag>> drags_;  // by collider: the viewer's drags
+    std::optional<Grab> grab_;                        // set again in recompiled kernels
+    std::map<std::int64_t, int> following_;           // vertex k → the collider its pin follows
     WorkGroup workGroup_;
     ForcesKernel forces_;
     int manyStepsGroup_ = 0;  // many_steps.comp's invocations; 0: two dispatches per step

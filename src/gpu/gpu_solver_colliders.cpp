@@ -1,11 +1,15 @@
 // GpuSolver's Colliders block (docs/colliders.md §9, src/gpu/gpu_collider_table.h): the still
-// records and the meshes' samples when the scene is taken, the moving colliders' poses a batch of
-// kPoseBatch steps at a time as the steps reach them.
+// records and the meshes' samples when the scene is taken, the moving colliders' poses (with the
+// viewer's drags) and the follow pins' motions a batch of kPoseBatch steps at a time as the steps
+// reach them.
 #include <GL/glew.h>
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
+#include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/gpu_solver.h"
 
@@ -17,7 +21,7 @@ using gpu::subData;
 // The samples of a baked mesh are uploaded again only when the meshes changed (setParameters
 // moving a mesh changes its record, not its grid).
 void GpuSolver::uploadColliders(const Scene& scene) {
-    colliders_.emplace(scene);
+    colliders_.emplace(scene, dragged_);
     const gpu::ColliderTable& table = *colliders_;
     const std::vector<const void*> sources = table.sampleSources();
     if (table.vec4Count() != colliderVec4s_) {
@@ -41,13 +45,37 @@ void GpuSolver::uploadColliders(const Scene& scene) {
 long GpuSolver::posedSteps(long first) {
     if (!colliders_->anyMoving()) return std::numeric_limits<long>::max();
     if (first < posedFrom_ || first >= posedTo_) {
-        const std::vector<glm::vec4> batch = colliders_->poseBatch(first, dt_);
+        const std::vector<glm::vec4> batch = colliders_->poseBatch(
+            first, [this](long s) { return timeAt(s); }, drags_);
         subData(buffers_[gpu::kColliders], colliders_->poseStart() * kVec4, batch.data(),
                 batch.size() * kVec4);
         posedFrom_ = first;
         posedTo_ = first + gpu::kPoseBatch;
     }
     return posedTo_ - first;
+}
+
+void GpuSolver::setColliderDrag(int index, const glm::dvec3& offset, const glm::dvec3& velocity) {
+    if (index < 0 || std::size_t(index) >= drags_.size())
+        throw std::invalid_argument("setColliderDrag: collider " + std::to_string(index) +
+                                    " does not exist (the scene has " +
+                                    std::to_string(drags_.size()) + ")");
+    context_.makeCurrent();
+    const std::size_t c = std::size_t(index);
+    if (!colliders_->moving(c)) {  // still so far: another variant, with c moving
+        dragged_[c] = true;
+        try {
+            compilePrograms();
+        } catch (...) {
+            dragged_[c] = false;  // the old kernels run on, undragged
+            throw;
+        }
+        setGrabUniforms(grab_);
+        sampleSources_.clear();  // the samples region starts elsewhere now
+        uploadColliders(scene_);
+    }
+    drags_[c] = ColliderDrag{offset, velocity, time()};
+    posedFrom_ = posedTo_ = 0;  // posed again, from the next step
 }
 
 // Steps first .. first + count − 1, in runs that the uploaded poses cover: one upload per

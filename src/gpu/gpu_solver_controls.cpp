@@ -1,11 +1,14 @@
 // GpuSolver's interactive control (the viewer, Solver's second half): small buffer updates and
-// two uniforms, never a recompilation. Each takes effect from the next step, and each discards
-// the forces verlet kept from the last step (docs/integrators.md).
+// two uniforms, never a recompilation (a drag may need one: gpu_solver_colliders.cpp). Each takes
+// effect from the next step, and each discards the forces verlet kept from the last step
+// (docs/integrators.md).
 #include <GL/glew.h>
 
+#include <map>
 #include <set>
 #include <stdexcept>
 
+#include "core/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/gpu_solver.h"
@@ -31,8 +34,11 @@ void GpuSolver::write(const SimState& state) {
         v[std::size_t(k)].w = float(pin.slot);
         if (!pin.pinned) continue;
         x[std::size_t(k)].w = 0;
+        if (following_.count(k) != 0) continue;  // its row holds its rest position
         pins_[std::size_t(pin.slot)] = glm::vec4(glm::vec3(x[std::size_t(k)]), 0);  // held here
     }
+    setTime(state.time);
+    posedFrom_ = posedTo_ = 0;  // posed again at the (new) time
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
@@ -46,7 +52,8 @@ void GpuSolver::write(const SimState& state) {
 }
 
 // Pinning reads the vertex back (16 bytes) and holds it there at rest; releasing gives it its
-// inverse mass again, so it moves on from where it is with its (zero) velocity.
+// inverse mass again, so it moves on from where it is with its velocity. As on the CPU, a vertex
+// that follows a collider keeps following when pinned again, and stops when released.
 void GpuSolver::setPinned(int i, int j, bool pinned) {
     if (i < 0 || j < 0 || i >= nu_ || j >= nv_)
         throw std::invalid_argument("setPinned: vertex outside the grid");
@@ -54,11 +61,14 @@ void GpuSolver::setPinned(int i, int j, bool pinned) {
     auto it = pinSlots_.find(k);
     if (!pinned && (it == pinSlots_.end() || !it->second.pinned)) return;
     forcesKept_ = false;
+    if (pinned && following_.count(k) != 0) return;  // pinned, and following, already
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     const std::size_t at = std::size_t(k) * kVec4;
     if (!pinned) {
         it->second.pinned = false;
+        following_.erase(k);
+        pins_[std::size_t(it->second.slot)].w = 0;  // re-pinned, it is a still pin
         subData(buffers_[gpu::kPositions], at + 3 * sizeof(float), &inverseMass_, sizeof(float));
         return;
     }
@@ -94,6 +104,7 @@ void GpuSolver::setGrab(const std::optional<Grab>& grab) {
         throw std::invalid_argument("setGrab: vertex outside the grid");
     context_.makeCurrent();
     setGrabUniforms(grab);
+    grab_ = grab;
     forcesKept_ = false;
 }
 
@@ -105,21 +116,25 @@ void GpuSolver::setParameters(const Scene& scene) {
         throw std::invalid_argument("setParameters: the grid size differs; build a new solver");
     if (!(Features::of(scene) == features_))
         throw std::invalid_argument("setParameters: the features differ; build a new solver");
-    if (gpuDefines(scene, workGroup_) != defines_)
+    if (gpuDefines(scene, workGroup_, dragged_) != defines_)
         throw std::invalid_argument(
             "setParameters: the scene compiles to another GPU kernel (collider order or "
             "integrator); build a new solver");
-    gpu::ColliderTable(scene).checkFits(context_.info().maxStorageBlockSize, scene.source);
+    gpu::ColliderTable(scene, dragged_)
+        .checkFits(context_.info().maxStorageBlockSize, scene.source);
     const Grid g = scene.grid();
     std::set<std::int64_t> scenePins, pinnedNow;
     for (const Pin& p : scene.pins) scenePins.insert(g.index(p.i, p.j));
     for (const auto& [k, pin] : pinSlots_)
         if (pin.pinned) pinnedNow.insert(k);
-    if (scenePins != pinnedNow)
+    std::map<std::int64_t, int> follows;
+    for (const FollowPin& f : followPins(scene)) follows[f.vertex] = f.collider;
+    if (scenePins != pinnedNow || follows != following_)
         throw std::invalid_argument("setParameters: the pins differ; use setPinned");
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    dt_ = scene.integrator.dt;
+    setStepDt(scene.integrator.dt);  // the time goes on from where it is
+    scene_ = scene;
     maxSpeed_ = scene.maxSpeed;
     maxIterations_ = scene.integrator.maxIterations;
     forcesKept_ = false;

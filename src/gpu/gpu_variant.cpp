@@ -115,7 +115,7 @@ void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
                              " vertices)");
 }
 
-Defines gpuDefines(const Scene& scene, WorkGroup wg) {
+Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dragged) {
     const Features f = Features::of(scene);
     Defines d;
     if (f.structural) d.push_back({"HAS_STRUCTURAL", ""});
@@ -124,7 +124,7 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg) {
     if (f.wind) d.push_back({"HAS_WIND", ""});
     d.push_back({"NUM_PLANES", std::to_string(f.planes)});
     d.push_back({"NUM_SPHERES", std::to_string(f.spheres)});
-    gpu::ColliderTable(scene).appendDefines(d);
+    gpu::ColliderTable(scene, dragged).appendDefines(d);
     d.push_back({integratorDefine(scene.integrator.method), ""});
     d.push_back({"WX", std::to_string(wg.x)});
     d.push_back({"WY", std::to_string(wg.y)});
@@ -194,8 +194,8 @@ int manyStepsGroupSize(long long vertices, const GpuInfo& info) {
 }
 
 ShaderSource assembleKernel(const std::string& dir, const std::string& file, const Scene& scene,
-                            WorkGroup wg, const Defines& extra) {
-    Defines d = gpuDefines(scene, wg);
+                            WorkGroup wg, const Defines& extra, const std::vector<bool>& dragged) {
+    Defines d = gpuDefines(scene, wg, dragged);
     d.insert(d.end(), extra.begin(), extra.end());
     return assembleShader(dir, file, d);
 }

@@ -32,8 +32,9 @@ void checkGridFits(const Scene& scene, WorkGroup wg, const GpuInfo& info);
 // NUM_SPHERES, the colliders' defines and order (gpu::ColliderTable), the integrator, WX/WY,
 // and the generated spring table. A feature the scene lacks is absent, not multiplied by zero.
 // Pins and the grab are not features: the viewer changes them at run time, so their
-// (one-compare) code is always there.
-Defines gpuDefines(const Scene& scene, WorkGroup wg);
+// (one-compare) code is always there. dragged[c]: collider c is compiled as moving (the viewer
+// drags it; gpu::ColliderTable).
+Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dragged = {});
 
 // The compute kernels of the backend. A scene compiles the forces pass and its integrator's
 // kernels only (kernelsOf); docs/integrators.md gives each scheme's passes.
@@ -74,6 +75,7 @@ int manyStepsGroupSize(long long vertices, const GpuInfo& info);
 // The assembled source of a kernel file (kernelFile) for `scene`, with `extra` defines after the
 // scene's (FORCES_TILED, MANY_STEPS_GROUP).
 ShaderSource assembleKernel(const std::string& dir, const std::string& file, const Scene& scene,
-                            WorkGroup wg, const Defines& extra = {});
+                            WorkGroup wg, const Defines& extra = {},
+                            const std::vector<bool>& dragged = {});
 
 }  // namespace cloth

@@ -1,8 +1,8 @@
 // Follow pins through the command line (docs/colliders.md §5): validate lists them, run on the
-// CPU simulates them, the GPU backend refuses them with exit 2 naming `pins[k].follow`, and a
-// follow naming a still collider exits 2 naming the key.
+// CPU and on the GPU simulates them, and a follow naming a still collider exits 2 naming the key.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -35,7 +35,7 @@ bool has(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
 }
 
-TEST(PinFollowCli, ValidatesRunsOnCpuAndIsRefusedByTheGpu) {
+TEST(PinFollowCli, ValidatesAndRunsOnBothBackends) {
     const fs::path scene = writeScene("good", R"([[0, 0], {"at": [-1, 0], "follow": 1}])");
     auto r = test::runProcess({kExe, "validate", scene.string()}, 60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
@@ -43,9 +43,11 @@ TEST(PinFollowCli, ValidatesRunsOnCpuAndIsRefusedByTheGpu) {
     r = test::runProcess({kExe, "run", scene.string(), "--backend", "cpu", "--quiet"}, 60);
     EXPECT_EQ(r.exitCode, 0) << test::describe(r);
     r = test::runProcess({kExe, "run", scene.string(), "--backend", "gpu", "--quiet"}, 60);
-    EXPECT_EQ(r.exitCode, 2) << test::describe(r);
-    EXPECT_TRUE(has(r.err, scene.string())) << r.err;
-    EXPECT_TRUE(has(r.err, "pins[1].follow")) << r.err;
+    // Exit 4 where no GPU context can be made: skipped then, unless CLOTH_REQUIRE_GPU=1.
+    const char* required = std::getenv("CLOTH_REQUIRE_GPU");
+    if (r.exitCode == 4 && !(required && std::string(required) == "1"))
+        GTEST_SKIP() << "no GPU: " << r.err;
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
 }
 
 TEST(PinFollowCli, FollowingAStillColliderExitsTwoNamingTheKey) {

@@ -128,20 +128,6 @@ TEST(PinFollow, BadFollowsAreRefusedNamingTheKey) {
     expectRefused(none, "pins[0].follow", "the scene has 0 colliders");
 }
 
-TEST(PinFollow, TheGpuRefusesFollowPinsNamingTheKey) {
-    const Scene s = parse(followScene(kWalking));
-    try {
-        refuseFollowPinsOnGpu(s);
-        ADD_FAILURE() << "not refused";
-    } catch (const InputError& e) {
-        EXPECT_EQ(e.key(), "pins[0].follow");
-        EXPECT_NE(e.reason().find("GPU backend does not model"), std::string::npos);
-    }
-    Json still = followScene(kWalking);
-    still["pins"] = Json::parse("[[0, 0], [-1, 0]]");
-    EXPECT_NO_THROW(refuseFollowPinsOnGpu(parse(still)));
-}
-
 struct MotionCase {
     const char* name;
     Json motion;

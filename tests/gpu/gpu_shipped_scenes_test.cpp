@@ -1,0 +1,109 @@
+// The shipped cape and windsock scenes (docs/colliders.md §10) on the GPU: both have follow pins
+// on moving capsules. Shorter than the scenes' own durations (tests/core/shipped_scenes_test.cpp
+// runs those on the CPU): the cape for 2 s, by which it lies over the shoulders and hangs down the
+// back, the windsock for 2 s, by which the wind has blown it out.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "core/collider_contact.h"
+#include "core/collider_pose.h"
+#include "core/pin_follow.h"
+#include "gpu_test_support.h"
+
+namespace cloth {
+namespace {
+
+Scene shipped(const char* name, double seconds) {
+    return loadScene(std::string(CLOTH_SOURCE_DIR "/scenes/") + name + ".json",
+                     {"duration=" + std::to_string(seconds)});
+}
+
+// φ − h of collider c at time t at p: ≥ 0 outside its offset surface.
+double clearance(const Collider& c, double t, const glm::dvec3& p) {
+    const ShapeD shape = posedShape(c, t);
+    return std::visit([&](const auto& s) { return contact(s, p).phi; }, shape) - c.thickness;
+}
+
+double worstClearance(const Scene& scene, const Solver& solver) {
+    double worst = 1e300;
+    const SimState s = solver.read();
+    for (const Collider& c : scene.colliders)
+        for (const glm::dvec3& p : s.positions)
+            worst = std::min(worst, clearance(c, solver.time(), p));
+    return worst;
+}
+
+std::unique_ptr<Solver> runOnGpu(const Scene& scene) {
+    auto solver = makeGpuSolver(scene, {});
+    const StepResult r = solver->step(scene.defaultSteps());
+    EXPECT_FALSE(r.unstable) << r.reason;
+    return solver;
+}
+
+using GpuShippedScene = test::GpuTest;
+
+// The cape: no vertex inside any body part (to float rounding), the follow-pinned top edge where
+// the shoulders' pose puts it, the hem behind the torso in the figure's turning frame.
+TEST_F(GpuShippedScene, CapeDrapesOverTheTurningFiguresBack) {
+    const Scene scene = shipped("cape", 2.0);
+    auto solver = runOnGpu(scene);
+    const double t = solver->time();
+    const SimState s = solver->read();
+    const double clear = worstClearance(scene, *solver);
+    double pinError = 0;
+    for (const FollowPin& f : followPins(scene))
+        pinError = std::max(
+            pinError, glm::length(s.positions[size_t(f.vertex)] - followPinAt(f, t).position));
+    const Grid g = scene.grid();
+    const Motion turn = scene.colliders[0].motion->motion();
+    const glm::dvec3 hem = s.positions[size_t(g.index(g.nu / 2, g.nv - 1))];
+    const glm::dvec3 local = glm::transpose(poseAt(turn, t).rotation) * hem;
+    std::printf(
+        "gpu cape (%.1f s): worst clearance %.3g m, pins off by %.3g m, hem at (%.3f, %.3f, %.3f) "
+        "in the figure's frame\n",
+        t, clear, pinError, local.x, local.y, local.z);
+    EXPECT_EQ(followPins(scene).size(), size_t(g.nu));
+    EXPECT_GT(clear, -1e-6);
+    EXPECT_LT(pinError, 2e-6);
+    EXPECT_LT(local.z, -0.14);
+    EXPECT_LT(local.y, 1.0);
+}
+
+// The windsock: blown along the wind against the same run without it, nothing inside the pole
+// or the ground, the pins on the swaying pole.
+TEST_F(GpuShippedScene, WindsockIsBlownAlongTheWind) {
+    const Scene scene = shipped("windsock", 2.0);
+    Scene calm = scene;
+    calm.wind.reset();
+    auto windy = runOnGpu(scene), still = runOnGpu(calm);
+    const glm::dvec3 w = scene.wind->direction;
+    const Grid g = scene.grid();
+    auto meanAlong = [&](const std::vector<glm::dvec3>& xs) {
+        double sum = 0;
+        for (const glm::dvec3& p : xs) sum += glm::dot(p, w);
+        return sum / double(xs.size());
+    };
+    std::vector<glm::dvec3> rest;
+    for (int j = 0; j < g.nv; ++j)
+        for (int i = 0; i < g.nu; ++i) rest.push_back(g.restPosition(i, j));
+    const double blown = meanAlong(windy->read().positions) - meanAlong(rest);
+    const double calmShift = meanAlong(still->read().positions) - meanAlong(rest);
+    const double clear = worstClearance(scene, *windy);
+    double pinError = 0;
+    const SimState s = windy->read();
+    for (const FollowPin& f : followPins(scene))
+        pinError = std::max(pinError, glm::length(s.positions[size_t(f.vertex)] -
+                                                  followPinAt(f, windy->time()).position));
+    std::printf(
+        "gpu windsock (2 s): mean shift along the wind %.3f m (without wind %.3f m), worst "
+        "clearance %.3g m, pins off by %.3g m\n",
+        blown, calmShift, clear, pinError);
+    EXPECT_GT(blown, 0.05);
+    EXPECT_GT(blown, calmShift + 0.3);
+    EXPECT_GT(clear, -1e-6);
+    EXPECT_LT(pinError, 2e-6);
+}
+
+}  // namespace
+}  // namespace cloth
