@@ -25,6 +25,14 @@ std::string below(double x) {
     return number(std::floor(x / unit) * unit);
 }
 
+// What maxColliderStepTravel is made of, for messages.
+std::string travelText(const Collider& c) {
+    const char* what = c.as<Box>()            ? "its smallest half extent"
+                       : c.as<MeshCollider>() ? "half its mesh's smallest extent"
+                                              : "its radius";
+    return std::string(what) + " + thickness " + number(c.thickness) + " m";
+}
+
 }  // namespace
 
 double maxColliderStepTravel(const Collider& c) {
@@ -61,10 +69,9 @@ void checkColliderMotionStep(const Scene& scene, const std::vector<bool>& on) {
             scene.source, "colliders[" + std::to_string(n) + "].motion",
             "the collider's surface moves at up to " + number(speed) + " m/s, " +
                 number(speed * dt) + " m in one step of integrator.dt = " + number(dt) +
-                " s, more than the " + number(limit) +
-                " m (its radius or smallest half extent + thickness) it may move per step "
-                "without cloth tunnelling through it (docs/colliders.md §7); it passes with "
-                "integrator.dt ≤ " +
+                " s, more than the " + number(limit) + " m (" + travelText(c) +
+                ") it may move per step without cloth tunnelling through it "
+                "(docs/colliders.md §7); it passes with integrator.dt ≤ " +
                 below(limit / speed) + " s or a motion of at most " + below(limit / dt) + " m/s");
     }
 }
