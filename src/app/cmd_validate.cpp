@@ -4,6 +4,8 @@
 
 #include "app/cli.h"
 #include "app/solver_factory.h"
+#include "core/collider_limits.h"
+#include "core/collider_speed.h"
 #include "core/collider_validate.h"
 #include "core/errors.h"
 #include "core/scene_loader.h"
@@ -49,7 +51,8 @@ std::string motionText(const ColliderMotion& m) {
 }
 
 // One line per collider: its shape, then what docs/colliders.md §2–3 add to it.
-void printCollider(size_t n, const Collider& c) {
+// A moving collider also gets its step and its margin against docs/colliders.md §7's limit.
+void printCollider(size_t n, const Collider& c, double dt) {
     std::string text;
     char buf[400];
     if (const Plane* p = c.as<Plane>()) {
@@ -80,6 +83,11 @@ void printCollider(size_t n, const Collider& c) {
         text += buf;
     }
     if (c.motion) text += "; " + motionText(*c.motion);
+    if (const double margin = motionStepMargin(c, dt); std::isfinite(margin)) {
+        std::snprintf(buf, sizeof buf, "; %.3g m per step, %.3gx inside the tunnelling limit",
+                      maxMotionSpeed(c) * dt, margin);
+        text += buf;
+    }
     std::printf("collider %zu   %s\n", n, text.c_str());
 }
 
@@ -114,7 +122,8 @@ void printModel(const Scene& s) {
     }
     std::printf("\n");
     if (s.colliders.empty()) std::printf("colliders    none\n");
-    for (size_t n = 0; n < s.colliders.size(); ++n) printCollider(n, s.colliders[n]);
+    for (size_t n = 0; n < s.colliders.size(); ++n)
+        printCollider(n, s.colliders[n], s.integrator.dt);
     std::printf("integrator   %s, dt = %g s, %d substeps per frame, duration %g s = %ld steps\n",
                 methodName(s.integrator.method), s.integrator.dt, s.integrator.substeps, s.duration,
                 s.defaultSteps());

@@ -7,6 +7,7 @@
 
 #include "core/collider_limits.h"
 #include "core/diagnostics.h"
+#include "core/pin_follow.h"
 #include "core/stability.h"
 
 namespace cloth::app {
@@ -19,11 +20,7 @@ std::int64_t vertexIndex(const Scene& s, const Pin& p) {
 }  // namespace
 
 Scene ViewerParams::effective() const {
-    Scene s = scene;
-    s.colliders.clear();
-    for (std::size_t c = 0; c < scene.colliders.size(); ++c)
-        if (c >= colliderOn.size() || colliderOn[c]) s.colliders.push_back(scene.colliders[c]);
-    return s;
+    return keepColliders(scene, colliderOn);  // follow pins renumbered; a dropped one holds still
 }
 
 void ViewerHistory::push(float e, float strain, float ms) {
@@ -68,6 +65,7 @@ ViewerSession::ViewerSession(const Scene& scene, const BackendChoice& backend) :
 void ViewerSession::applyParameters(const ViewerParams& next) {
     ViewerParams p = next;
     p.colliderOn.resize(p.scene.colliders.size(), true);
+    checkColliderMotionStep(p.scene, p.colliderOn);  // as the loader does; before any change
     const bool grid = gridDiffers(p.scene, params_.scene);
     if (grid) p.scene.pins = remapPins(params_.scene.pins, params_.scene.cloth, p.scene.cloth);
     params_ = std::move(p);

@@ -21,7 +21,8 @@ namespace cloth::app {
 struct ViewerParams {
     Scene scene;
     std::vector<bool> colliderOn;  // one per scene.colliders
-    // The scene the solver runs: switched-off colliders removed.
+    // The scene the solver runs: switched-off colliders removed, follow pins renumbered (one
+    // whose collider is off becomes a still pin; keepColliders in core/pin_follow.h).
     Scene effective() const;
 };
 
@@ -38,7 +39,9 @@ public:
     // Throws InputError for a bad scene, GpuUnavailable when the GPU backend cannot run.
     ViewerSession(const Scene& scene, const BackendChoice& backend);
 
-    // The one way parameters change (panel, --set, tests). A different grid (resolution, size,
+    // The one way parameters change (panel, --set, tests). Throws InputError, changing nothing,
+    // when a moving collider would outrun the tunnelling limit at the new Δt (the loader's
+    // checkColliderMotionStep, core/collider_limits.h). A different grid (resolution, size,
     // placement) rebuilds the cloth at rest; parameters the solver can take live go to
     // setParameters(); anything else (a family or collider switched on or off) builds a new
     // solver of the same backend and carries the state into it.

@@ -3,6 +3,8 @@
 // moving colliders against it.
 #pragma once
 
+#include <vector>
+
 #include "core/scene.h"
 
 namespace cloth {
@@ -14,5 +16,16 @@ namespace cloth {
 // has parts thinner than its bounds. A plane bounds a half-space and cannot be passed through:
 // infinity. h is the collider's thickness.
 double maxColliderStepTravel(const Collider& collider);
+
+// maxColliderStepTravel(c) / (maxMotionSpeed(c)·Δt) (core/collider_speed.h): how many times the
+// collider's own step fits in what it may travel per step; +∞ for a still collider or a plane.
+double motionStepMargin(const Collider& c, double dt);
+
+// The scene loader's "clamp motion" rule (docs/colliders.md §7): a moving collider whose surface
+// may move further in one step of integrator.dt than maxColliderStepTravel is refused with an
+// InputError naming `colliders[n].motion`, giving the speed, Δt, the limit, and the largest Δt
+// and the largest speed that pass. Colliders whose `on` entry is false are skipped (missing
+// entries: on), so the viewer can check the scene it runs with the panel's numbering.
+void checkColliderMotionStep(const Scene& scene, const std::vector<bool>& on = {});
 
 }  // namespace cloth

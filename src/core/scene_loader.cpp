@@ -11,6 +11,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/collider_limits.h"
 #include "core/errors.h"
 #include "core/key_path.h"
 #include "core/params.h"
@@ -254,6 +255,7 @@ Scene SceneReader::read(const Json& doc) {
             scene.colliders.push_back(readCollider(list[n], element("colliders", n)));
     }
     checkFollowPins(scene);
+    checkColliderMotionStep(scene);  // docs/colliders.md §7: no collider outruns the limit
     if (doc.contains("wind")) scene.wind = readWind(doc["wind"]);
     scene.maxSpeed = param(doc, "max_speed", "max_speed", "max_speed", scene.maxSpeed);
     scene.duration = param(doc, "duration", "duration", "duration", scene.duration);

@@ -107,5 +107,24 @@ TEST(ColliderCli, GpuRunsAMovingSphereWithFriction) {
         "motion": {"type": "linear", "velocity": [0, 0.5, 0]}})"));
 }
 
+// docs/colliders.md §7's rule through --set, for run and validate alike: the windsock's pole
+// (r + h = 3 cm) swings at up to 0.47 m/s, so Δt = 0.07 s, or a 100 Hz swing at its Δt, lets it
+// outrun the tunnelling limit: exit 2 naming the scene, colliders[0].motion, and the Δt that
+// would pass.
+TEST(ColliderCli, SetThatOutrunsTheTunnellingLimitExitsTwo) {
+    const std::string scene = CLOTH_SOURCE_DIR "/scenes/windsock.json";
+    for (const char* set : {"integrator.dt=0.07", "colliders[0].motion.frequency=100"}) {
+        for (const char* cmd : {"validate", "run"}) {
+            const auto r = test::runProcess({kExe, cmd, scene, "--set", set}, 60);
+            EXPECT_EQ(r.exitCode, 2) << cmd << " --set " << set << "\n" << test::describe(r);
+            EXPECT_TRUE(has(r.err, scene)) << r.err;
+            EXPECT_TRUE(has(r.err, "colliders[0].motion")) << r.err;
+            EXPECT_TRUE(has(r.err, "it passes with integrator.dt ≤")) << r.err;
+        }
+    }
+    const auto ok = test::runProcess({kExe, "validate", scene, "--set", "integrator.dt=0.06"}, 60);
+    EXPECT_EQ(ok.exitCode, 0) << "0.47 m/s × 0.06 s < 3 cm\n" << test::describe(ok);
+}
+
 }  // namespace
 }  // namespace cloth

@@ -156,8 +156,8 @@ TEST_P(ColliderSolver, MatchesTheReferenceAndEndsNoStepInside) {
     double devDouble = 0, devFloat = 0, worstInside = 0, moved = 0;
     for (long n = 1; n <= steps; ++n) {
         reference.step();
-        dbl->step(1);
-        flt->step(1);
+        ASSERT_FALSE(dbl->step(1).unstable) << c.name << ": double, step " << n;
+        ASSERT_FALSE(flt->step(1).unstable) << c.name << ": float, step " << n;
         const SimState sd = dbl->read(), sf = flt->read();
         devDouble = std::max(devDouble, maxDeviationOverExtent(sd, reference, extent));
         devFloat = std::max(devFloat, maxDeviationOverExtent(sf, reference, extent));
@@ -190,7 +190,10 @@ INSTANTIATE_TEST_SUITE_P(EveryShape, ColliderSolver, ::testing::ValuesIn(cases()
 
 // A 5×5 cloth, 0.1 m square, lying flat on a box tilted by θ about x (friction c_f, h = 2 mm),
 // released at rest: how far its centre moves in 1 s [m]. docs/colliders.md §2: it holds iff
-// tan θ ≤ c_f, up to the creep of the seed's explicit Euler (≈ ½ g sin θ Δt m/s).
+// tan θ ≤ c_f, up to the creep of the seed's explicit Euler (≈ ½ g sin θ Δt m/s). The springs
+// keep explicit Euler inside its bound Δt < μ/λ_max (DESIGN.md §2): λ_max ≤ 2·4·(0.1 + 0.025)
+// = 1 N/m and μ = 0.002 give 2 ms against Δt = 1 ms (the GPU test's scene; with K = 20 N/m the
+// bound is 10 µs and a sliding cloth blows up near step 400). The run must stay stable.
 double slideOnTiltedBox(double degrees, double friction) {
     const double t = degrees * std::numbers::pi / 180;
     const double top = 0.05 + 0.002;  // the box's half height + h
@@ -199,7 +202,7 @@ double slideOnTiltedBox(double degrees, double friction) {
     const glm::dvec3 centre = top * up;
     Json j = Json::parse(R"({
       "cloth": { "resolution": [5, 5], "size": [0.1, 0.1], "mass": 0.001 },
-      "springs": { "structural": 20.0, "shear": 5.0 },
+      "springs": { "structural": 0.1, "shear": 0.025 },
       "damping": 0.002,
       "integrator": { "method": "explicit_euler", "dt": 0.001 },
       "duration": 1.0
@@ -222,7 +225,9 @@ double slideOnTiltedBox(double degrees, double friction) {
         return m / double(st.positions.size());
     };
     const glm::dvec3 start = mean(solver->read());
-    solver->step(s.defaultSteps());
+    const StepResult r = solver->step(s.defaultSteps());
+    EXPECT_FALSE(r.unstable) << degrees << "°, c_f " << friction << ": " << r.reason << " at step "
+                             << r.firstBadStep;
     return glm::length(mean(solver->read()) - start);
 }
 
@@ -243,7 +248,9 @@ TEST(ColliderFriction, ClothHoldsBelowTheFrictionAngleAndSlidesAbove) {
 }
 
 // Law: static friction carries the cloth with a moving collider (v = v_c at a sticking
-// contact): on a box moving sideways at 0.3 m/s, the cloth's mean velocity approaches it.
+// contact): on a box moving sideways at 0.3 m/s, the cloth's mean velocity approaches it. The
+// springs (the GPU test's twin) are outside explicit Euler's bound, but every vertex sticks
+// every step, which sets its velocity to v_c and leaves no mode to grow: the run is stable.
 TEST(ColliderMotion, MovingBoxCarriesTheClothRestingOnIt) {
     Json j = Json::parse(R"({
       "cloth": { "resolution": [6, 6], "size": [0.2, 0.2], "origin": [-0.1, 0.1021, -0.1],
@@ -258,7 +265,8 @@ TEST(ColliderMotion, MovingBoxCarriesTheClothRestingOnIt) {
     })");
     const Scene s = parseScene(j.dump(), "moving box (test)");
     auto solver = makeCpuSolver(s, {Precision::Double, 1});
-    solver->step(s.defaultSteps());
+    const StepResult r = solver->step(s.defaultSteps());
+    EXPECT_FALSE(r.unstable) << r.reason << " at step " << r.firstBadStep;
     glm::dvec3 v(0);
     const SimState st = solver->read();
     for (const glm::dvec3& w : st.velocities) v += w;
@@ -270,47 +278,6 @@ TEST(ColliderMotion, MovingBoxCarriesTheClothRestingOnIt) {
     EXPECT_NEAR(v.x, 0.3, 0.01);
     EXPECT_NEAR(v.z, 0.0, 0.01);
     EXPECT_GT(minY, 0.1 + 0.002 - 1e-6) << "the cloth sank into the box";
-}
-
-// ---- tunnelling at cloth level (docs/colliders.md §7) ------------------------------------------
-
-// A 9×9 cloth, 0.2 m square, level above a thin box (half thickness a = 1 cm, h = 2 mm), thrown
-// down at `speed`; after 0.1 s, the lowest vertex's height relative to the box's midplane [m]
-// (negative: some vertex went through).
-double lowestAfterThrow(double speed) {
-    Json j = Json::parse(R"({
-      "cloth": { "resolution": [9, 9], "size": [0.2, 0.2], "origin": [-0.1, 0.05, -0.1],
-                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
-      "springs": { "structural": 5.0 },
-      "integrator": { "method": "explicit_euler", "dt": 0.001 },
-      "colliders": [ { "type": "box", "center": [0, 0, 0], "half_extents": [0.5, 0.01, 0.5],
-                       "thickness": 0.002 } ]
-    })");
-    const Scene s = parseScene(j.dump(), "thin box (test)");
-    auto solver = makeCpuSolver(s, {Precision::Double, 1});
-    SimState st = solver->read();
-    for (glm::dvec3& v : st.velocities) v = {0, -speed, 0};
-    solver->write(st);
-    solver->step(100);
-    double lowest = 1e300;
-    for (const glm::dvec3& p : solver->read().positions) lowest = std::min(lowest, p.y);
-    return lowest;
-}
-
-// Law (docs/colliders.md §7): a vertex that starts outside the offset surface is held by a slab
-// of half thickness a iff its speed relative to it satisfies s·Δt ≤ a + h: thrown below that
-// limit (12 m/s here) the whole cloth stays on the near side; at 2.5× it passes through.
-TEST(ColliderTunnelling, ClothThrownAtAThinBoxStaysOnItBelowTheLimit) {
-    const double limit = (0.01 + 0.002) / 0.001;  // (a + h)/Δt [m/s]
-    for (double fraction : {0.1, 0.3, 0.6, 0.9}) {
-        const double lowest = lowestAfterThrow(fraction * limit);
-        std::printf(
-            "thrown at %.1f m/s (%.0f%% of the limit): lowest vertex %.4f m above the "
-            "midplane\n",
-            fraction * limit, 100 * fraction, lowest);
-        EXPECT_GT(lowest, 0.01 + 0.002 - 1e-9) << fraction * limit << " m/s";
-    }
-    EXPECT_LT(lowestAfterThrow(2.5 * limit), -0.01) << "the test would not see a tunnel";
 }
 
 }  // namespace
