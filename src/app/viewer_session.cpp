@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/collider_limits.h"
+#include "core/collider_speed.h"
 #include "core/diagnostics.h"
 #include "core/pin_follow.h"
 #include "core/stability.h"
@@ -52,8 +53,12 @@ std::vector<Pin> remapPins(const std::vector<Pin>& pins, const ClothSpec& from,
 }
 
 glm::dvec3 clampDragVelocity(const glm::dvec3& v, const Collider& c, double dt) {
-    const double speed = glm::length(v), limit = maxColliderStepTravel(c) / dt;
-    return speed > limit ? v * (limit / speed) : v;
+    // The drag adds to the collider's own motion: in the worst case their speeds add up.
+    const double own = c.motion ? maxMotionSpeed(c) : 0.0;
+    const double limit = std::max(0.0, maxColliderStepTravel(c) / dt - own);
+    const double speed = glm::length(v);
+    if (!(speed > limit)) return v;
+    return limit > 0 ? v * (limit / speed) : glm::dvec3(0);
 }
 
 ViewerSession::ViewerSession(const Scene& scene, const BackendChoice& backend) : backend_(backend) {

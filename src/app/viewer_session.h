@@ -120,7 +120,8 @@ private:
 };
 
 // The drag velocity v [m/s] scaled down so that one step of Δt moves the collider at most
-// maxColliderStepTravel(c) (docs/colliders.md §7: no vertex tunnels through it).
+// maxColliderStepTravel(c) (docs/colliders.md §7: no vertex tunnels through it), its own
+// motion's top speed (maxMotionSpeed) included.
 glm::dvec3 clampDragVelocity(const glm::dvec3& v, const Collider& c, double dt);
 
 // True when the two scenes' clothes differ in grid (resolution, size, origin or axes).

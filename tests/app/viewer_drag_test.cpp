@@ -9,6 +9,7 @@
 
 #include "app/viewer_session.h"
 #include "core/collider_limits.h"
+#include "core/collider_speed.h"
 #include "core/errors.h"
 #include "core/scene_loader.h"
 #include "render/image_checks.h"
@@ -72,6 +73,13 @@ TEST(ViewerDrag, DragSpeedIsClampedToTheTunnellingLimit) {
     const glm::dvec3 v = app::clampDragVelocity(fast, box, dt);
     EXPECT_NEAR(glm::length(v) * dt, 0.06, 1e-12);
     EXPECT_NEAR(glm::dot(glm::normalize(v), glm::normalize(fast)), 1, 1e-12);
+    // A box that moves 0.01 m per step by itself (a linear motion) leaves the drag the
+    // rest of the limit: together they still move at most 0.06 m in one step.
+    Collider moving = box;
+    moving.motion = ColliderMotion{};
+    moving.motion->velocity = glm::dvec3(0, 0, 0.01 / dt);
+    const glm::dvec3 w = app::clampDragVelocity(fast, moving, dt);
+    EXPECT_NEAR((glm::length(w) + maxMotionSpeed(moving)) * dt, 0.06, 1e-12);
 }
 
 TEST(ViewerDrag, DragsFollowSwitchesLiveEditsAndRebuildsAndResetClearsThem) {
