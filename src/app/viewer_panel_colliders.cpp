@@ -42,7 +42,12 @@ void motionText(const Collider& c) {
 // Where the viewer's drag has put it, and how fast it may go (docs/colliders.md §7).
 void dragText(const ViewerSession& session, std::size_t c, const Collider& col) {
     const double dt = session.params().scene.integrator.dt;
-    const double limit = maxColliderStepTravel(col) / dt;
+    // The fastest drag clampDragVelocity lets through, the collider's own motion included.
+    const double travel = maxColliderStepTravel(col);
+    const double limit =
+        std::isfinite(travel)
+            ? glm::length(clampDragVelocity(glm::dvec3(2 * travel / dt, 0, 0), col, dt))
+            : travel;
     const ColliderDrag* d = session.colliderDrag(c);
     if (d == nullptr) {
         if (std::isfinite(limit)) ImGui::TextDisabled("Shift+drag it (at most %.3g m/s)", limit);

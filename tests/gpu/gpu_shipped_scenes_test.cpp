@@ -1,9 +1,12 @@
-// The shipped cape and windsock scenes (docs/colliders.md §10) on the GPU: both have follow pins
-// on moving capsules. Shorter than the scenes' own durations (tests/core/shipped_scenes_test.cpp
-// runs those on the CPU): the cape for 2 s, by which it lies over the shoulders and hangs down the
-// back, the windsock for 2 s, by which the wind has blown it out.
+// The shipped cape, table and windsock scenes (docs/colliders.md §10) on the GPU: the cape and
+// the windsock have follow pins on moving capsules, the table boxes with friction. Shorter than the
+// scenes' own durations (tests/core/shipped_scenes_test.cpp runs those on the CPU): the cape for 2
+// s, by which it lies over the shoulders and hangs down the back, the windsock for 2 s, by which
+// the wind has blown it out.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "core/collider_contact.h"
@@ -68,6 +71,35 @@ TEST_F(GpuShippedScene, CapeDrapesOverTheTurningFiguresBack) {
     EXPECT_LT(pinError, 2e-6);
     EXPECT_LT(local.z, -0.14);
     EXPECT_LT(local.y, 1.0);
+}
+
+// The table (3 s, its whole duration): the tablecloth's centre rests on the top at h, its edges
+// hang below it, nothing inside a box; with a frictionless top the same cloth slides off.
+TEST_F(GpuShippedScene, TableclothStaysOnTheTableByFriction) {
+    const Scene scene = shipped("table", 3.0);
+    auto solver = runOnGpu(scene);
+    const SimState s = solver->read();
+    const Grid g = scene.grid();
+    const Box& top = *scene.colliders[0].as<Box>();
+    const double topY = top.center.y + top.halfExtents.y;
+    const glm::dvec3 centre = s.positions[size_t(g.index(g.nu / 2, g.nv / 2))];
+    double lowest = 1e300;
+    for (const glm::dvec3& p : s.positions) lowest = std::min(lowest, p.y);
+    const double clear = worstClearance(scene, *solver);
+    Scene slippery = scene;
+    slippery.colliders[0].friction = 0;
+    const glm::dvec3 slid =
+        runOnGpu(slippery)->read().positions[size_t(g.index(g.nu / 2, g.nv / 2))];
+    std::printf(
+        "gpu table (3 s): centre at (%.4f, %.4f, %.4f), top at y = %.3f, lowest vertex %.3f m, "
+        "worst clearance %.3g m; frictionless: centre at (%.3f, %.3f, %.3f)\n",
+        centre.x, centre.y, centre.z, topY, lowest, clear, slid.x, slid.y, slid.z);
+    EXPECT_LT(std::abs(centre.x - top.center.x), top.halfExtents.x - 0.2);
+    EXPECT_LT(std::abs(centre.z - top.center.z), top.halfExtents.z - 0.2);
+    EXPECT_NEAR(centre.y, topY + scene.colliders[0].thickness, 2e-3);
+    EXPECT_LT(lowest, topY - 0.1);
+    EXPECT_GT(clear, -1e-6);
+    EXPECT_LT(slid.y, topY - 0.1);
 }
 
 // The windsock: blown along the wind against the same run without it, nothing inside the pole
