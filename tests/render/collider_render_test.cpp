@@ -3,6 +3,7 @@
 // moving colliders at the solver's time, and a drag's offset where the viewer put it.
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 
 #include "core/scene_loader.h"
@@ -20,14 +21,22 @@ constexpr int kWidth = 480, kHeight = 360;
 
 class ColliderRender : public test::GpuTest {
 protected:
+    // The target needs the GL context, which GpuTest::SetUp makes (or skips the test without):
+    // a member initialiser would run first, without a context when the test runs alone.
+    void SetUp() override {
+        test::GpuTest::SetUp();
+        if (IsSkipped() || HasFatalFailure()) return;
+        target_.emplace(kWidth, kHeight);
+    }
+
     // The picture with the cloth moved far away (the colliders alone), from a fixed camera.
     Image draw(Renderer& r, const Solver& solver) {
         r.updateCloth(solver);
-        target_.bind();
+        target_->bind();
         RenderOptions o;
         o.wind = false;
         r.draw(camera_, o, kWidth, kHeight);
-        return target_.read();
+        return target_->read();
     }
     // The pixel where world point p projects (top row first).
     glm::ivec2 pixelOf(const glm::dvec3& p) const {
@@ -57,7 +66,7 @@ protected:
         c.distance = 2.6f;
         return c;
     }();
-    OffscreenTarget target_{kWidth, kHeight};
+    std::optional<OffscreenTarget> target_;
 };
 
 // The cloth far above the view: only the colliders (and the ground) are in the picture.
