@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "core/collider_limits.h"
@@ -15,24 +14,13 @@
 #include "core/collider_pose.h"
 #include "core/scene_loader.h"
 #include "core/solver.h"
+#include "support/contact_scenes.h"
 
 namespace cloth {
 namespace {
 
-using Json = nlohmann::json;
-
-// A 6×6 cloth of 20 cm resting (h = 2 mm above) on a still box whose top is at y = 0.1.
-Json clothOnBox() {
-    return Json::parse(R"({
-      "cloth": { "resolution": [6, 6], "size": [0.2, 0.2], "origin": [-0.1, 0.1021, -0.1],
-                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
-      "springs": { "structural": 20.0, "shear": 5.0 },
-      "damping": 0.002,
-      "integrator": { "method": "explicit_euler", "dt": 0.001 },
-      "colliders": [ { "type": "box", "center": [0, 0, 0], "half_extents": [0.5, 0.1, 0.5],
-                       "thickness": 0.002, "friction": 0.8 } ]
-    })");
-}
+using test::clothOnBox;
+using test::meanOf;
 
 // Steps n and checks the run stayed stable (DESIGN.md §2). clothOnBox's springs are outside
 // explicit Euler's bound, but the cloth rests on the box with friction 0.8: every vertex sticks
@@ -40,12 +28,6 @@ Json clothOnBox() {
 void stepStable(Solver& solver, long n) {
     const StepResult r = solver.step(n);
     EXPECT_FALSE(r.unstable) << r.reason << " at step " << r.firstBadStep;
-}
-
-glm::dvec3 meanOf(const std::vector<glm::dvec3>& v) {
-    glm::dvec3 m(0);
-    for (const glm::dvec3& w : v) m += w;
-    return m / double(v.size());
 }
 
 // Law: static friction carries the cloth with the collider (v = v_c at a sticking contact), and
@@ -62,8 +44,7 @@ TEST(ColliderDrag, DraggedBoxCarriesTheClothRestingOnIt) {
     EXPECT_NEAR(v.x, 0.3, 0.01);
     EXPECT_NEAR(v.z, 0.0, 0.01);
     EXPECT_NEAR(x1.x - x0.x, 0.3, 0.02) << "the cloth travelled with the box";
-    double minY = 1e300;
-    for (const glm::dvec3& p : st.positions) minY = std::min(minY, p.y);
+    const double minY = test::lowestY(st.positions);
     EXPECT_GT(minY, 0.1 + 0.002 - 1e-6) << "the cloth sank into the box";
 }
 
@@ -100,14 +81,7 @@ TEST(ColliderDrag, DragsOutliveSetParameters) {
 // A plain sphere (DESIGN.md §2's rule, v_c = 0) that is dragged takes the general response with
 // v_c: a sphere pushed up into a resting vertex chain lifts it at its own speed.
 TEST(ColliderDrag, DraggedPlainSphereMovesItsContactWithIt) {
-    const Scene s = parseScene(R"({
-      "cloth": { "resolution": [3, 3], "size": [0.02, 0.02], "origin": [-0.01, 0.5, -0.01],
-                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
-      "springs": { "structural": 10.0 }, "damping": 0.001, "gravity": [0, 0, 0],
-      "integrator": { "method": "explicit_euler", "dt": 0.001 },
-      "colliders": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.49 } ]
-    })",
-                               "plain sphere (test)");
+    const Scene s = parseScene(test::kPatchAbovePlainSphere, "plain sphere (test)");
     auto solver = makeCpuSolver(s, {Precision::Double, 1});
     solver->setColliderDrag(0, glm::dvec3(0), glm::dvec3(0, 0.2, 0));
     stepStable(*solver, 250);  // the shell meets the cloth after 0.05 s and pushes it for 0.2 s

@@ -14,6 +14,7 @@
 #include "core/scene_json.h"
 #include "core/scene_loader.h"
 #include "core/solver.h"
+#include "support/follow_scene.h"
 #include "support/reference_bridge.h"
 
 namespace cloth {
@@ -21,40 +22,11 @@ namespace {
 
 using Json = nlohmann::json;
 
-// A 7 × 5 cloth hanging from a capsule that moves by `motion`; pins (0, 0) and (-1, 0) follow
-// the capsule (colliders[1]), (3, 0) is still. The capsule sits just above the top row. Every
-// integrator inside its bound (DESIGN.md §2, λ_max ≤ 2·4·(200 + 50 + 5) = 2040 N/m): explicit
-// Euler needs Δt < μ/λ_max, so it gets μ = 4 (2 ms; cΔt = 0.4 < 2) where μ = 0.02 (10 µs) blew
-// up at step 289 with the swinging capsule.
-Json followScene(const Json& motion, const char* method = "symplectic_euler") {
-    Json j = Json::parse(R"({
-      "cloth": { "resolution": [7, 5], "size": [0.6, 0.4], "origin": [-0.3, 1.0, 0.1],
-                 "u_axis": [1, 0, 0], "v_axis": [0, -1, 0], "mass": 0.01 },
-      "springs": { "structural": 200, "shear": 50, "bend": 5 }, "damping": 0.02,
-      "pins": [ {"at": [0, 0], "follow": 1}, [3, 0], {"at": [-1, 0], "follow": 1} ],
-      "integrator": { "dt": 0.001 }, "duration": 0.3,
-      "colliders": [
-        { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0] },
-        { "type": "capsule", "a": [-0.3, 1.08, 0.1], "b": [0.3, 1.08, 0.1], "radius": 0.05,
-          "thickness": 0.005, "friction": 0.3 } ]
-    })");
-    j["integrator"]["method"] = method;
-    if (std::string(method) == "explicit_euler") j["damping"] = 4.0;
-    j["colliders"][1]["motion"] = motion;
-    return j;
-}
-
-const Json kTurning = Json::parse(
-    R"({"type": "rotation", "axis": [0, 1, 0], "pivot": [0.05, 0, -0.1],
-        "degrees_per_second": 90})");
-const Json kWalking = Json::parse(R"({"type": "linear", "velocity": [0.3, 0, -0.2]})");
-const Json kSwinging = Json::parse(
-    R"({"type": "oscillation", "axis": [0, 0, 1], "amplitude": 0.1, "frequency": 1.5,
-        "phase_degrees": 30})");
-
-Scene parse(const Json& j) {
-    return parseScene(j.dump(), "follow.json");
-}
+using test::followScene;
+using test::kSwinging;
+using test::kTurning;
+using test::kWalking;
+using test::parseFollowScene;
 
 // The pose written out independently of collider_motion.h: the rotation about y by θ through
 // the pivot, the linear shift, the sine swing.
@@ -77,7 +49,7 @@ glm::dvec3 expectedPosition(const Json& motion, double t, const glm::dvec3& x0) 
 }
 
 TEST(PinFollow, KeysRoundTripExactly) {
-    const Scene a = parse(followScene(kTurning));
+    const Scene a = parseFollowScene(followScene(kTurning));
     ASSERT_EQ(a.pins.size(), 3u);
     EXPECT_EQ(a.pins[0].follow, 1);
     EXPECT_EQ(a.pins[1].follow, -1);
@@ -98,7 +70,7 @@ TEST(PinFollow, KeysRoundTripExactly) {
 
 void expectRefused(const Json& scene, const std::string& key, const std::string& part) {
     try {
-        parse(scene);
+        parseFollowScene(scene);
         ADD_FAILURE() << "accepted; expected an error at " << key;
     } catch (const InputError& e) {
         EXPECT_EQ(e.key(), key) << e.what();
@@ -144,7 +116,7 @@ class PinFollowMotion : public testing::TestWithParam<std::tuple<MotionCase, con
 // the still pin stays put. Every integrator, double to rounding, float to float rounding.
 TEST_P(PinFollowMotion, FollowPinMovesExactlyWithTheColliderPose) {
     const auto& [mc, method] = GetParam();
-    const Scene s = parse(followScene(mc.motion, method));
+    const Scene s = parseFollowScene(followScene(mc.motion, method));
     const Grid g = s.grid();
     const Motion m = s.colliders[1].motion->motion();
     const Capsule cap = *s.colliders[1].as<Capsule>();
@@ -201,7 +173,7 @@ TEST(PinFollow, CpuDoubleMatchesTheReference) {
             Json j = followScene(motion, method);
             j["integrator"]["tolerance"] = 1e-12;  // both CGs to rounding (implicit_euler)
             j["integrator"]["max_iterations"] = 1000;
-            const Scene s = parse(j);
+            const Scene s = parseFollowScene(j);
             ref::Simulation reference(toReference(s));
             auto cpu = makeCpuSolver(s, {Precision::Double, 1});
             double dev = maxDeviationOverExtent(cpu->read(), reference, s.grid().extent());
@@ -221,7 +193,7 @@ TEST(PinFollow, CpuDoubleMatchesTheReference) {
 // The viewer's setPinned: a released follow pin falls free; pinned again it stays where it is;
 // re-pinning a following vertex (as a backend switch does) keeps it following.
 TEST(PinFollow, SetPinnedReleasesAndRepins) {
-    const Scene s = parse(followScene(kWalking));
+    const Scene s = parseFollowScene(followScene(kWalking));
     auto solver = makeCpuSolver(s, {Precision::Double, 1});
     ASSERT_FALSE(solver->step(50).unstable);
     solver->setPinned(0, 0, true);  // already following: keeps following
@@ -242,17 +214,17 @@ TEST(PinFollow, SetPinnedReleasesAndRepins) {
 
 // setParameters takes a changed motion for the same follow pins (the viewer's edits).
 TEST(PinFollow, SetParametersTakesANewMotion) {
-    const Scene s = parse(followScene(kWalking));
+    const Scene s = parseFollowScene(followScene(kWalking));
     auto solver = makeCpuSolver(s, {Precision::Double, 1});
     Json faster = followScene(Json::parse(R"({"type": "linear", "velocity": [0.6, 0, -0.4]})"));
-    solver->setParameters(parse(faster));
+    solver->setParameters(parseFollowScene(faster));
     ASSERT_FALSE(solver->step(100).unstable);
     const glm::dvec3 x0 = s.grid().restPosition(0, 0);
     EXPECT_LT(glm::length(solver->read().positions[0] - (x0 + 0.1 * glm::dvec3(0.6, 0, -0.4))),
               1e-13);
     Json moved = followScene(kWalking);
     moved["pins"][2] = Json::parse("[-1, 0]");  // no longer following
-    EXPECT_THROW(solver->setParameters(parse(moved)), std::invalid_argument);
+    EXPECT_THROW(solver->setParameters(parseFollowScene(moved)), std::invalid_argument);
 }
 
 }  // namespace
@@ -265,7 +237,7 @@ namespace {
 // scene edited in code with a follow out of range holds that pin still instead of reading past
 // the colliders.
 TEST(PinFollow, KeepCollidersRenumbersTheFollows) {
-    const Scene s = parse(followScene(kWalking));
+    const Scene s = parseFollowScene(followScene(kWalking));
     const Scene planeOff = keepColliders(s, {false, true});
     ASSERT_EQ(planeOff.colliders.size(), 1u);
     EXPECT_EQ(planeOff.pins[0].follow, 0);

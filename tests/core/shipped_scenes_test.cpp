@@ -13,6 +13,7 @@
 #include "core/scene_loader.h"
 #include "core/stability.h"
 #include "support/reference_bridge.h"
+#include "support/shipped_outcomes.h"
 
 namespace cloth {
 namespace {
@@ -65,31 +66,7 @@ TEST(ShippedScenes, AllExist) {
 namespace cloth {
 namespace {
 
-// φ − h of collider c at time t at p (docs/colliders.md §1–3): ≥ 0 outside the offset surface.
-double clearance(const Collider& c, double t, const glm::dvec3& p) {
-    const Pose q = c.motion ? poseAt(c.motion->motion(), t) : Pose{};
-    double phi = 0;
-    if (const Plane* s = c.as<Plane>())
-        phi = contact(moved(PlaneT<double>{s->point, s->normal}, q), p).phi;
-    if (const Sphere* s = c.as<Sphere>())
-        phi = contact(moved(SphereT<double>{s->center, s->radius}, q), p).phi;
-    if (const Capsule* s = c.as<Capsule>())
-        phi = contact(moved(CapsuleT<double>{s->a, s->b, s->radius}, q), p).phi;
-    if (const Box* s = c.as<Box>())
-        phi =
-            contact(moved(BoxT<double>{s->center, s->halfExtents, s->rotation.matrix()}, q), p).phi;
-    return phi - c.thickness;
-}
-
-// The smallest clearance of any vertex from any collider at the solver's time.
-double worstClearance(const Scene& scene, const Solver& solver) {
-    double worst = 1e300;
-    const SimState s = solver.read();
-    for (const Collider& c : scene.colliders)
-        for (const glm::dvec3& p : s.positions)
-            worst = std::min(worst, clearance(c, solver.time(), p));
-    return worst;
-}
+using test::worstClearance;
 
 // docs/colliders.md §7: every moving collider's surface speed times Δt, against the smallest
 // thickness the cloth could pass (a capsule's or sphere's radius, a box's smallest half extent,
@@ -138,9 +115,7 @@ TEST(ShippedSceneOutcome, CapeDrapesOverTheTurningFiguresBack) {
     }
     EXPECT_LT(pinError, 1e-12);
     // The hem's middle, turned back into the figure's rest frame: behind the torso, hanging.
-    const Motion turn = scene.colliders[0].motion->motion();
-    const glm::dvec3 hem = s.positions[size_t(g.index(g.nu / 2, g.nv - 1))];
-    const glm::dvec3 local = glm::transpose(poseAt(turn, t).rotation) * hem;
+    const glm::dvec3 local = test::capeHemInFiguresFrame(scene, s, t);
     std::printf(
         "cape: tunnelling margin %.0fx, worst clearance %.3g m, pins off by %.3g m, hem "
         "at (%.3f, %.3f, %.3f) in the figure's frame\n",
@@ -155,14 +130,7 @@ TEST(ShippedSceneOutcome, CapeDrapesOverTheTurningFiguresBack) {
 TEST(ShippedSceneOutcome, TableclothStaysOnTheTable) {
     const Scene scene = loadShippedScene("table");
     auto solver = runToEnd(scene);
-    const SimState s = solver->read();
-    const Grid g = scene.grid();
-    const Box& top = *scene.colliders[0].as<Box>();
-    const double topY = top.center.y + top.halfExtents.y;
-    const glm::dvec3 centre = s.positions[size_t(g.index(g.nu / 2, g.nv / 2))];
-    double lowest = 1e300;
-    for (const glm::dvec3& p : s.positions) lowest = std::min(lowest, p.y);
-    const double clear = worstClearance(scene, *solver);
+    const auto [top, topY, centre, lowest, clear] = test::tableOutcome(scene, *solver);
     std::printf(
         "table: centre at (%.4f, %.4f, %.4f), top at y = %.3f, lowest vertex %.3f m, "
         "worst clearance %.3g m\n",
@@ -175,8 +143,7 @@ TEST(ShippedSceneOutcome, TableclothStaysOnTheTable) {
     // Without friction the longer overhang pulls it off the table.
     Scene slippery = scene;
     slippery.colliders[0].friction = 0;
-    const glm::dvec3 slid =
-        runToEnd(slippery)->read().positions[size_t(g.index(g.nu / 2, g.nv / 2))];
+    const glm::dvec3 slid = test::clothCentre(slippery, runToEnd(slippery)->read());
     std::printf("table without friction: centre at (%.3f, %.3f, %.3f)\n", slid.x, slid.y, slid.z);
     EXPECT_LT(slid.y, topY - 0.1);
 }
@@ -191,19 +158,8 @@ TEST(ShippedSceneOutcome, WindsockIsBlownAlongTheWind) {
     Scene calm = scene;
     calm.wind.reset();
     auto windy = runToEnd(scene), still = runToEnd(calm);
-    const glm::dvec3 w = scene.wind->direction;
-    auto meanAlong = [&](const Solver& solver) {
-        double sum = 0;
-        const SimState s = solver.read();
-        for (const glm::dvec3& p : s.positions) sum += glm::dot(p, w);
-        return sum / double(s.positions.size());
-    };
-    double rest = 0;
-    const Grid g = scene.grid();
-    for (int j = 0; j < g.nv; ++j)
-        for (int i = 0; i < g.nu; ++i) rest += glm::dot(g.restPosition(i, j), w);
-    rest /= double(g.count());
-    const double blown = meanAlong(*windy) - rest, calmShift = meanAlong(*still) - rest;
+    const double blown = test::shiftAlongWind(scene, *windy);
+    const double calmShift = test::shiftAlongWind(scene, *still);
     const double clear = worstClearance(scene, *windy);
     std::printf(
         "windsock: tunnelling margin %.0fx, mean shift along the wind %.3f m (without "

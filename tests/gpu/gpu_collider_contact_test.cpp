@@ -12,53 +12,26 @@
 #include "gpu/gpu_collider_table.h"
 #include "gpu/gpu_test_support.h"
 #include "gpu/gpu_variant.h"
-#include "gpu_collider_cases.h"
+#include "support/collider_cases.h"
+#include "support/contact_scenes.h"
 
 namespace cloth::test {
 namespace {
 
 namespace fs = std::filesystem;
 
-glm::dvec3 mean(const std::vector<glm::dvec3>& v) {
-    glm::dvec3 m(0);
-    for (const glm::dvec3& x : v) m += x;
-    return m / double(v.size());
-}
-
-// A 5×5 cloth, 0.1 m square, lying flat on a box tilted by θ about x (friction c_f, h = 2 mm),
-// released at rest: how far its centre moves in 1 s [m]. collider_solver_test.cpp's scene with
-// springs 200 times softer: its K = 20 N/m puts explicit Euler outside its bound Δt < μ/λ_max
-// (λ_max ≤ 200 N/m, μ = 0.002: 10 µs against Δt = 1 ms), so a sliding cloth there blows up near
-// t = 0.4 s (on the CPU too); here λ_max ≤ 1 N/m and the bound is 2 ms.
+// How far the centre of clothOnTiltedBox(degrees, friction) moves in 1 s [m] on the GPU
+// (support/contact_scenes.h: its springs keep explicit Euler inside its bound, so that a sliding
+// cloth does not blow up).
 double slideOnTiltedBox(double degrees, double friction, StepDispatch dispatch) {
-    const double t = degrees * std::numbers::pi / 180;
-    const double top = 0.05 + 0.002;  // the box's half height + h
-    const glm::dvec3 up(0, std::cos(t), std::sin(t)), along(0, -std::sin(t), std::cos(t));
-    Json j = Json::parse(R"({
-      "cloth": { "resolution": [5, 5], "size": [0.1, 0.1], "mass": 0.001 },
-      "springs": { "structural": 0.1, "shear": 0.025 },
-      "damping": 0.002,
-      "integrator": { "method": "explicit_euler", "dt": 0.001 },
-      "duration": 1.0
-    })");
-    const glm::dvec3 origin = top * up - 0.05 * glm::dvec3(1, 0, 0) - 0.05 * along;
-    j["cloth"]["origin"] = {origin.x, origin.y, origin.z};
-    j["cloth"]["u_axis"] = {1, 0, 0};
-    j["cloth"]["v_axis"] = {along.x, along.y, along.z};
-    j["colliders"] = Json::array({{{"type", "box"},
-                                   {"center", {0, 0, 0}},
-                                   {"half_extents", {1, 0.05, 1}},
-                                   {"rotation", {{"axis", {1, 0, 0}}, {"degrees", degrees}}},
-                                   {"thickness", 0.002},
-                                   {"friction", friction}}});
-    const Scene s = parseScene(j.dump(), "tilted box (test)");
+    const Scene s = parseScene(clothOnTiltedBox(degrees, friction).dump(), "tilted box (test)");
     GpuOptions options;
     options.dispatch = dispatch;
     auto solver = makeGpuSolver(s, options);
-    const glm::dvec3 start = mean(solver->read().positions);
+    const glm::dvec3 start = meanOf(solver->read().positions);
     const StepResult r = solver->step(s.defaultSteps());
     EXPECT_FALSE(r.unstable) << r.reason << " at step " << r.firstBadStep;
-    return glm::length(mean(solver->read().positions) - start);
+    return glm::length(meanOf(solver->read().positions) - start);
 }
 
 class GpuColliderContact : public GpuTest {};
@@ -84,25 +57,13 @@ TEST_F(GpuColliderContact, ClothHoldsBelowTheFrictionAngleAndSlidesAbove) {
 // Law: static friction carries the cloth with a moving collider (v = v_c at a sticking
 // contact), posed by the batch of poses the host uploads.
 TEST_F(GpuColliderContact, MovingBoxCarriesTheClothRestingOnIt) {
-    const Json j = Json::parse(R"({
-      "cloth": { "resolution": [6, 6], "size": [0.2, 0.2], "origin": [-0.1, 0.1021, -0.1],
-                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
-      "springs": { "structural": 20.0, "shear": 5.0 },
-      "damping": 0.002,
-      "integrator": { "method": "explicit_euler", "dt": 0.001 },
-      "duration": 1.0,
-      "colliders": [ { "type": "box", "center": [0, 0, 0], "half_extents": [0.5, 0.1, 0.5],
-                       "thickness": 0.002, "friction": 0.8,
-                       "motion": { "type": "linear", "velocity": [0.3, 0, 0] } } ]
-    })");
-    const Scene s = parseScene(j.dump(), "moving box (test)");
+    const Scene s = parseScene(clothOnMovingBox().dump(), "moving box (test)");
     auto solver = makeGpuSolver(s);
     // Uneven calls, so that runs of steps straddle the pose batches.
     for (long n : {1L, 63L, 70L, 200L, 666L}) ASSERT_FALSE(solver->step(n).unstable);
     const SimState st = solver->read();
-    const glm::dvec3 v = mean(st.velocities);
-    double minY = 1e300;
-    for (const glm::dvec3& p : st.positions) minY = std::min(minY, p.y);
+    const glm::dvec3 v = meanOf(st.velocities);
+    const double minY = lowestY(st.positions);
     std::printf("gpu: box at 0.3 m/s: cloth's mean velocity after 1 s (%.4f, %.4f, %.4f) m/s\n",
                 v.x, v.y, v.z);
     EXPECT_NEAR(v.x, 0.3, 0.01);

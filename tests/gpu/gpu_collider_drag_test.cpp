@@ -5,37 +5,22 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "gpu_test_support.h"
+#include "support/contact_scenes.h"
 
 namespace cloth {
 namespace {
 
-using Json = nlohmann::json;
 using GpuColliderDrag = test::GpuTest;
 
-// collider_drag_test.cpp's 6×6 cloth of 20 cm resting (h = 2 mm above) on a still box whose top
-// is at y = 0.1.
+// support/contact_scenes.h's cloth resting on a still box, as collider_drag_test.cpp runs it.
 Scene clothOnBox() {
-    return parseScene(R"({
-      "cloth": { "resolution": [6, 6], "size": [0.2, 0.2], "origin": [-0.1, 0.1021, -0.1],
-                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
-      "springs": { "structural": 20.0, "shear": 5.0 },
-      "damping": 0.002,
-      "integrator": { "method": "explicit_euler", "dt": 0.001 },
-      "colliders": [ { "type": "box", "center": [0, 0, 0], "half_extents": [0.5, 0.1, 0.5],
-                       "thickness": 0.002, "friction": 0.8 } ]
-    })",
-                      "drag (test)");
+    return parseScene(test::clothOnBox().dump(), "drag (test)");
 }
 
-glm::dvec3 meanOf(const std::vector<glm::dvec3>& v) {
-    glm::dvec3 m(0);
-    for (const glm::dvec3& w : v) m += w;
-    return m / double(v.size());
-}
+using test::meanOf;
 
 // Law: static friction carries the cloth with the dragged box at the drag's velocity; the GPU
 // and the CPU float backend take the same steps (both dispatches).
@@ -57,8 +42,7 @@ TEST_F(GpuColliderDrag, DraggedBoxCarriesTheClothRestingOnItAsOnTheCpu) {
         }
         const SimState st = gpu->read();
         const glm::dvec3 v = meanOf(st.velocities), x1 = meanOf(st.positions);
-        double minY = 1e300;
-        for (const glm::dvec3& p : st.positions) minY = std::min(minY, p.y);
+        const double minY = test::lowestY(st.positions);
         const double dev = test::maxDifferenceOverExtent(st, cpu->read(), 0.2);
         std::printf(
             "gpu drag (%s): mean velocity (%.4f, %.4f, %.4f) m/s, |gpu - cpu float| / "
@@ -93,14 +77,7 @@ TEST_F(GpuColliderDrag, OffsetsPersistAndOutliveSetParameters) {
 
 // A plain sphere (DESIGN.md §2's rule) that is dragged takes the general response with v_c.
 TEST_F(GpuColliderDrag, DraggedPlainSphereMovesItsContactWithIt) {
-    const Scene s = parseScene(R"({
-      "cloth": { "resolution": [3, 3], "size": [0.02, 0.02], "origin": [-0.01, 0.5, -0.01],
-                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1], "mass": 0.001 },
-      "springs": { "structural": 10.0 }, "damping": 0.001, "gravity": [0, 0, 0],
-      "integrator": { "method": "explicit_euler", "dt": 0.001 },
-      "colliders": [ { "type": "sphere", "center": [0, 0, 0], "radius": 0.49 } ]
-    })",
-                               "plain sphere (test)");
+    const Scene s = parseScene(test::kPatchAbovePlainSphere, "plain sphere (test)");
     auto solver = makeGpuSolver(s, {});
     solver->setColliderDrag(0, glm::dvec3(0), glm::dvec3(0, 0.2, 0));
     solver->step(250);

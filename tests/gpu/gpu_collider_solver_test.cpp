@@ -6,7 +6,7 @@
 #include <map>
 
 #include "gpu/gpu_test_support.h"
-#include "gpu_collider_cases.h"
+#include "support/collider_cases.h"
 
 namespace cloth::test {
 namespace {

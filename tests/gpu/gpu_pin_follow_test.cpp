@@ -14,46 +14,28 @@
 #include "core/pin_follow.h"
 #include "core/scene_json.h"
 #include "gpu_test_support.h"
+#include "support/follow_scene.h"
 
 namespace cloth {
 namespace {
 
 using Json = nlohmann::json;
 
-// pin_follow_test.cpp's scene: a 7 × 5 cloth hanging from a capsule that moves by `motion`;
-// pins (0, 0) and (-1, 0) follow the capsule (colliders[1]), (3, 0) is still.
+// pin_follow_test.cpp's scene (support/follow_scene.h), its implicit Euler solved to 1e-6 and
+// its explicit Euler at Δt = 0.5 ms.
 Json followScene(const Json& motion, const char* method) {
-    Json j = Json::parse(R"({
-      "cloth": { "resolution": [7, 5], "size": [0.6, 0.4], "origin": [-0.3, 1.0, 0.1],
-                 "u_axis": [1, 0, 0], "v_axis": [0, -1, 0], "mass": 0.01 },
-      "springs": { "structural": 200, "shear": 50, "bend": 5 }, "damping": 0.02,
-      "pins": [ {"at": [0, 0], "follow": 1}, [3, 0], {"at": [-1, 0], "follow": 1} ],
-      "integrator": { "dt": 0.001, "tolerance": 1e-6, "max_iterations": 200 }, "duration": 0.3,
-      "colliders": [
-        { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0] },
-        { "type": "capsule", "a": [-0.3, 1.08, 0.1], "b": [0.3, 1.08, 0.1], "radius": 0.05,
-          "thickness": 0.005, "friction": 0.3 } ]
-    })");
-    j["integrator"]["method"] = method;
-    j["colliders"][1]["motion"] = motion;
-    if (std::string(method) == "explicit_euler") {  // inside its bound Δt < μ/λ_max (DESIGN.md §2)
-        j["damping"] = 4.0;
+    Json j = test::followScene(motion, method);
+    j["integrator"]["tolerance"] = 1e-6;
+    j["integrator"]["max_iterations"] = 200;
+    if (std::string(method) == "explicit_euler")  // inside its bound Δt < μ/λ_max (DESIGN.md §2)
         j["integrator"]["dt"] = 0.0005;
-    }
     return j;
 }
 
-const Json kTurning = Json::parse(
-    R"({"type": "rotation", "axis": [0, 1, 0], "pivot": [0.05, 0, -0.1],
-        "degrees_per_second": 90})");
-const Json kWalking = Json::parse(R"({"type": "linear", "velocity": [0.3, 0, -0.2]})");
-const Json kSwinging = Json::parse(
-    R"({"type": "oscillation", "axis": [0, 0, 1], "amplitude": 0.1, "frequency": 1.5,
-        "phase_degrees": 30})");
-
-Scene parse(const Json& j) {
-    return parseScene(j.dump(), "follow.json");
-}
+using test::kSwinging;
+using test::kTurning;
+using test::kWalking;
+using test::parseFollowScene;
 
 // The largest |x − pose(x₀)| and |v − v_c| over the scene's follow pins at the solver's time.
 std::pair<double, double> followPinError(const Scene& s, const Solver& solver) {
@@ -79,7 +61,7 @@ Json motionNamed(const std::string& name) {
 // backend does (the pins add no error of their own).
 TEST_P(GpuPinFollow, PinsFollowAndTheRunMatchesTheReferenceAndTheCpu) {
     const auto& [motion, method, dispatch] = GetParam();
-    const Scene s = parse(followScene(motionNamed(motion), method));
+    const Scene s = parseFollowScene(followScene(motionNamed(motion), method));
     GpuOptions o;
     o.dispatch = dispatch;
     auto gpu = makeGpuSolver(s, o);
@@ -134,7 +116,7 @@ INSTANTIATE_TEST_SUITE_P(
 using GpuPinFollowControls = test::GpuTest;
 
 TEST_F(GpuPinFollowControls, SetPinnedReleasesAndRepinsAndSetParametersTakesAMotion) {
-    const Scene s = parse(followScene(kWalking, "symplectic_euler"));
+    const Scene s = parseFollowScene(followScene(kWalking, "symplectic_euler"));
     auto solver = makeGpuSolver(s, {});
     solver->step(50);
     solver->setPinned(0, 0, true);
@@ -155,7 +137,7 @@ TEST_F(GpuPinFollowControls, SetPinnedReleasesAndRepinsAndSetParametersTakesAMot
     auto fresh = makeGpuSolver(s, {});
     Json faster = followScene(Json::parse(R"({"type": "linear", "velocity": [0.6, 0, -0.4]})"),
                               "symplectic_euler");
-    fresh->setParameters(parse(faster));
+    fresh->setParameters(parseFollowScene(faster));
     fresh->step(100);
     EXPECT_LT(glm::length(fresh->read().positions[0] - (x0 + 0.1 * glm::dvec3(0.6, 0, -0.4))),
               1e-6);
@@ -172,7 +154,7 @@ using GpuSolverTime = test::GpuTest;
 // docs/colliders.md §3: a Δt change keeps the time (the poses go on from where they are), and a
 // CPU → GPU switch (read, a new solver, write) keeps the time and so the follow pin's pose.
 TEST_F(GpuSolverTime, DtChangeAndCpuToGpuSwitchKeepThePose) {
-    const Scene s = parse(followScene(kTurning, "symplectic_euler"));
+    const Scene s = parseFollowScene(followScene(kTurning, "symplectic_euler"));
     auto cpu = makeCpuSolver(s, {Precision::Float, 1});
     cpu->step(150);
     auto gpu = makeGpuSolver(s, {});
@@ -182,7 +164,7 @@ TEST_F(GpuSolverTime, DtChangeAndCpuToGpuSwitchKeepThePose) {
     EXPECT_LT(followPinError(s, *gpu).first, 1e-6);
     Json halved = followScene(kTurning, "symplectic_euler");
     halved["integrator"]["dt"] = 0.0005;
-    gpu->setParameters(parse(halved));
+    gpu->setParameters(parseFollowScene(halved));
     EXPECT_DOUBLE_EQ(gpu->time(), 0.151);
     gpu->step(3);
     EXPECT_NEAR(gpu->time(), 0.1525, 1e-15);

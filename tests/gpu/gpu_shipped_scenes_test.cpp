@@ -9,10 +9,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/collider_contact.h"
-#include "core/collider_pose.h"
 #include "core/pin_follow.h"
 #include "gpu_test_support.h"
+#include "support/shipped_outcomes.h"
 
 namespace cloth {
 namespace {
@@ -22,20 +21,7 @@ Scene shipped(const char* name, double seconds) {
                      {"duration=" + std::to_string(seconds)});
 }
 
-// φ − h of collider c at time t at p: ≥ 0 outside its offset surface.
-double clearance(const Collider& c, double t, const glm::dvec3& p) {
-    const ShapeD shape = posedShape(c, t);
-    return std::visit([&](const auto& s) { return contact(s, p).phi; }, shape) - c.thickness;
-}
-
-double worstClearance(const Scene& scene, const Solver& solver) {
-    double worst = 1e300;
-    const SimState s = solver.read();
-    for (const Collider& c : scene.colliders)
-        for (const glm::dvec3& p : s.positions)
-            worst = std::min(worst, clearance(c, solver.time(), p));
-    return worst;
-}
+using test::worstClearance;
 
 std::unique_ptr<Solver> runOnGpu(const Scene& scene) {
     auto solver = makeGpuSolver(scene, {});
@@ -59,9 +45,7 @@ TEST_F(GpuShippedScene, CapeDrapesOverTheTurningFiguresBack) {
         pinError = std::max(
             pinError, glm::length(s.positions[size_t(f.vertex)] - followPinAt(f, t).position));
     const Grid g = scene.grid();
-    const Motion turn = scene.colliders[0].motion->motion();
-    const glm::dvec3 hem = s.positions[size_t(g.index(g.nu / 2, g.nv - 1))];
-    const glm::dvec3 local = glm::transpose(poseAt(turn, t).rotation) * hem;
+    const glm::dvec3 local = test::capeHemInFiguresFrame(scene, s, t);
     std::printf(
         "gpu cape (%.1f s): worst clearance %.3g m, pins off by %.3g m, hem at (%.3f, %.3f, %.3f) "
         "in the figure's frame\n",
@@ -78,18 +62,10 @@ TEST_F(GpuShippedScene, CapeDrapesOverTheTurningFiguresBack) {
 TEST_F(GpuShippedScene, TableclothStaysOnTheTableByFriction) {
     const Scene scene = shipped("table", 3.0);
     auto solver = runOnGpu(scene);
-    const SimState s = solver->read();
-    const Grid g = scene.grid();
-    const Box& top = *scene.colliders[0].as<Box>();
-    const double topY = top.center.y + top.halfExtents.y;
-    const glm::dvec3 centre = s.positions[size_t(g.index(g.nu / 2, g.nv / 2))];
-    double lowest = 1e300;
-    for (const glm::dvec3& p : s.positions) lowest = std::min(lowest, p.y);
-    const double clear = worstClearance(scene, *solver);
+    const auto [top, topY, centre, lowest, clear] = test::tableOutcome(scene, *solver);
     Scene slippery = scene;
     slippery.colliders[0].friction = 0;
-    const glm::dvec3 slid =
-        runOnGpu(slippery)->read().positions[size_t(g.index(g.nu / 2, g.nv / 2))];
+    const glm::dvec3 slid = test::clothCentre(slippery, runOnGpu(slippery)->read());
     std::printf(
         "gpu table (3 s): centre at (%.4f, %.4f, %.4f), top at y = %.3f, lowest vertex %.3f m, "
         "worst clearance %.3g m; frictionless: centre at (%.3f, %.3f, %.3f)\n",
@@ -109,18 +85,8 @@ TEST_F(GpuShippedScene, WindsockIsBlownAlongTheWind) {
     Scene calm = scene;
     calm.wind.reset();
     auto windy = runOnGpu(scene), still = runOnGpu(calm);
-    const glm::dvec3 w = scene.wind->direction;
-    const Grid g = scene.grid();
-    auto meanAlong = [&](const std::vector<glm::dvec3>& xs) {
-        double sum = 0;
-        for (const glm::dvec3& p : xs) sum += glm::dot(p, w);
-        return sum / double(xs.size());
-    };
-    std::vector<glm::dvec3> rest;
-    for (int j = 0; j < g.nv; ++j)
-        for (int i = 0; i < g.nu; ++i) rest.push_back(g.restPosition(i, j));
-    const double blown = meanAlong(windy->read().positions) - meanAlong(rest);
-    const double calmShift = meanAlong(still->read().positions) - meanAlong(rest);
+    const double blown = test::shiftAlongWind(scene, *windy);
+    const double calmShift = test::shiftAlongWind(scene, *still);
     const double clear = worstClearance(scene, *windy);
     double pinError = 0;
     const SimState s = windy->read();

@@ -1,9 +1,12 @@
-// The collider scenes of the GPU collider tests (gpu_collider_solver_test.cpp,
-// gpu_collider_contact_test.cpp): tests/core/collider_solver_test.cpp's shapes, thickness,
-// friction and motions, on a cloth whose Δt is inside explicit Euler's bound so that every
-// integrator runs the same scene.
+// The collider cases the CPU and GPU collider tests share (tests/core/collider_solver_test.cpp,
+// tests/gpu/gpu_collider_solver_test.cpp, tests/gpu/gpu_collider_contact_test.cpp): every shape
+// alone and combined, with thickness, friction and motion; the mesh collider's OBJ; the GPU's
+// falling cloth, whose Δt is inside explicit Euler's bound so that every integrator runs the same
+// scene; and the reference's measure of how deep a vertex is inside a collider.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -35,7 +38,8 @@ inline Json fallingClothOnColliders(const Json& colliders, const char* method) {
     return j;
 }
 
-// An OBJ of a closed box (0.5 × 0.1 × 0.4) in `dir`, for the mesh collider ("slab.obj").
+// An OBJ of a closed box (0.5 × 0.1 × 0.4) in `dir`, written by the project itself, for the mesh
+// collider ("slab.obj").
 inline void writeSlabObj(const std::filesystem::path& dir) {
     writeMeshesObj((dir / "slab.obj").string(),
                    {{"slab", boxMesh({{0, 0, 0}, {0.25, 0.05, 0.2}, glm::dmat3(1)})}});
@@ -47,7 +51,7 @@ struct ColliderCase {
 };
 
 // Each shape alone (plain, then with thickness and friction), each motion, and all five
-// together: tests/core/collider_solver_test.cpp's cases.
+// together. A cloth starting 0.1–0.3 m above them lands within the run.
 inline std::vector<ColliderCase> colliderCases() {
     const Json box = {{"type", "box"},
                       {"center", {0.02, 0.7, 0.01}},
@@ -99,8 +103,9 @@ inline std::vector<ColliderCase> colliderCases() {
 }
 
 // The distance of p inside any collider of the reference at time t, beyond its thickness
-// (≤ 0; 0 when every vertex is on or outside every offset surface φ = h): a probe vertex at rest
-// that the reference's collideMoving() pushes out moves by exactly that much.
+// (≤ 0; 0 when every vertex is on or outside every offset surface φ = h): the reference's own
+// shapes (no code shared with src/). A probe vertex at rest that the reference's collideMoving()
+// pushes out moves by exactly that much.
 inline double worstPenetration(const ref::Params& prm, double t,
                                const std::vector<glm::dvec3>& ps) {
     double worst = 0;

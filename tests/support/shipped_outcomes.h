@@ -1,0 +1,95 @@
+// The outcomes of the shipped collider scenes (docs/colliders.md §10) that the CPU and GPU tests
+// measure alike (tests/core/shipped_scenes_test.cpp, tests/gpu/gpu_shipped_scenes_test.cpp), each
+// on its own backend's solver: how close any vertex is to a collider, where the tablecloth's
+// centre and lowest vertex end, how far the windsock is blown along the wind, and where the
+// cape's hem hangs in the turning figure's frame.
+#pragma once
+
+#include <algorithm>
+#include <glm/glm.hpp>
+#include <variant>
+#include <vector>
+
+#include "core/collider_contact.h"
+#include "core/collider_motion.h"
+#include "core/collider_pose.h"
+#include "core/scene.h"
+#include "core/solver.h"
+
+namespace cloth::test {
+
+// φ − h of collider c at time t at p (docs/colliders.md §1–3): ≥ 0 outside its offset surface.
+inline double clearance(const Collider& c, double t, const glm::dvec3& p) {
+    const ShapeD shape = posedShape(c, t);
+    return std::visit([&](const auto& s) { return contact(s, p).phi; }, shape) - c.thickness;
+}
+
+// The smallest clearance of any vertex from any collider at the solver's time.
+inline double worstClearance(const Scene& scene, const Solver& solver) {
+    double worst = 1e300;
+    const SimState s = solver.read();
+    for (const Collider& c : scene.colliders)
+        for (const glm::dvec3& p : s.positions)
+            worst = std::min(worst, clearance(c, solver.time(), p));
+    return worst;
+}
+
+// The vertex in the middle of the cloth.
+inline glm::dvec3 clothCentre(const Scene& scene, const SimState& s) {
+    const Grid g = scene.grid();
+    return s.positions[size_t(g.index(g.nu / 2, g.nv / 2))];
+}
+
+// The tablecloth at the solver's time: the table top (colliders[0]) and its height, the cloth's
+// centre, its lowest vertex, and the worst clearance.
+struct TableOutcome {
+    Box top;
+    double topY = 0;       // the top face's height [m]
+    glm::dvec3 centre{0};  // [m]
+    double lowest = 0;     // the lowest vertex's y [m]
+    double clear = 0;      // worstClearance [m]
+};
+inline TableOutcome tableOutcome(const Scene& scene, const Solver& solver) {
+    TableOutcome o;
+    const SimState s = solver.read();
+    o.top = *scene.colliders[0].as<Box>();
+    o.topY = o.top.center.y + o.top.halfExtents.y;
+    o.centre = clothCentre(scene, s);
+    o.lowest = 1e300;
+    for (const glm::dvec3& p : s.positions) o.lowest = std::min(o.lowest, p.y);
+    o.clear = worstClearance(scene, solver);
+    return o;
+}
+
+// The mean of the points along the direction w.
+inline double meanAlong(const std::vector<glm::dvec3>& xs, const glm::dvec3& w) {
+    double sum = 0;
+    for (const glm::dvec3& p : xs) sum += glm::dot(p, w);
+    return sum / double(xs.size());
+}
+
+// The grid's rest positions, row by row.
+inline std::vector<glm::dvec3> restPositions(const Grid& g) {
+    std::vector<glm::dvec3> rest;
+    for (int j = 0; j < g.nv; ++j)
+        for (int i = 0; i < g.nu; ++i) rest.push_back(g.restPosition(i, j));
+    return rest;
+}
+
+// How far the cloth of `solver` has moved along the wind of `scene` (its mean displacement along
+// the wind's direction from the rest grid) [m]; `solver` may run the same scene without wind.
+inline double shiftAlongWind(const Scene& scene, const Solver& solver) {
+    const glm::dvec3 w = scene.wind->direction;
+    return meanAlong(solver.read().positions, w) - meanAlong(restPositions(scene.grid()), w);
+}
+
+// The middle of the cape's hem (its last row) at time t, turned back into the figure's rest frame
+// (colliders[0]'s motion undone).
+inline glm::dvec3 capeHemInFiguresFrame(const Scene& scene, const SimState& s, double t) {
+    const Grid g = scene.grid();
+    const Motion turn = scene.colliders[0].motion->motion();
+    const glm::dvec3 hem = s.positions[size_t(g.index(g.nu / 2, g.nv - 1))];
+    return glm::transpose(poseAt(turn, t).rotation) * hem;
+}
+
+}  // namespace cloth::test
