@@ -12,7 +12,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "core/spring_math.h"
+#include "model/spring_math.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // The contact response every collider shares (docs/colliders.md §2), the GLSL twin of
-// src/core/collider_contact.h: push out to the thickness h, remove the normal part of the
+// src/model/collider_contact.h: push out to the thickness h, remove the normal part of the
 // velocity relative to the collider (v_c), Coulomb friction takes at most c_f·|w_n| from the
 // tangential part, static (v = v_c) when that would reverse it.
 

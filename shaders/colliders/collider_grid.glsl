@@ -1,5 +1,5 @@
 // Trilinear sampling of a baked signed-distance grid (docs/colliders.md §4), the GLSL twin of
-// contact(SdfColliderT) in src/core/collider_shapes.h. The including shader defines
+// contact(SdfColliderT) in src/model/collider_shapes.h. The including shader defines
 // `float sdfValue(int index)` first (it owns the buffer the samples live in); sample (i, j, k)
 // has index base + (k·ny + j)·nx + i. Returns vec4(n, φ): n is the normalised analytic gradient
 // of the trilinear interpolant; outside the grid the point is clamped onto it and φ grows by the

@@ -1,5 +1,5 @@
 // Signed distance φ and outward unit normal n of the collider shapes (docs/colliders.md §1): the
-// GLSL twin of src/core/collider_shapes.h, function for function, checked against it by
+// GLSL twin of src/model/collider_shapes.h, function for function, checked against it by
 // tests/gpu/gpu_colliders_test.cpp. Each returns vec4(n, φ); inside is negative. A shape is
 // compiled where the includer defines its HAS_CONTACT_PLANES, HAS_CONTACT_SPHERES, HAS_BOXES or
 // HAS_CAPSULES (the solver's kernels: the scene's shapes only, DESIGN.md §3).

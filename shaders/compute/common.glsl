@@ -1,5 +1,5 @@
 // Stateless physics of DESIGN.md §2: values in, force or new state out; no buffer access.
-// Mirrors src/core/forces.h and src/core/colliders.h function for function.
+// Mirrors src/model/forces.h and src/model/colliders.h function for function.
 
 // Force on a vertex at pk from the spring to pq (seed eq. (2)): F = K (|d| − L) d/|d|,
 // d = pq − pk. A spring squeezed to (almost) zero length has no direction and adds nothing.

@@ -1,4 +1,4 @@
-// The scene's spring families as one table (src/core/grid.h's kSpringOffsets, the seed's Q10):
+// The scene's spring families as one table (src/model/grid.h's kSpringOffsets, the seed's Q10):
 // the force pass and the stiffness product walk the same rows.
 
 #if NUM_SPRING_OFFSETS > 0

@@ -20,7 +20,7 @@ bool frozen(uint step) { return status.firstBadStep < step; }
 // DESIGN.md §2: unstable after a step that leaves a position or velocity non-finite or a speed
 // above max_speed. Only the first invocation to report the earliest step writes the details.
 void checkStability(uint step, uint k, vec3 p, vec3 v) {
-    // As the CPU backend tests it (src/core/cpu_solver.cpp): a sum of the coordinates and |v|²
+    // As the CPU backend tests it (src/cpu/cpu_solver.cpp): a sum of the coordinates and |v|²
     // that overflow float count as non-finite, so both backends stop at the same step.
     float speed2 = dot(v, v);
     bool bad = nonFinite(vec3(p.x + p.y + p.z, speed2, 0.0));

@@ -1,6 +1,6 @@
 // The stiffness operator H = −∂F/∂x of the spring forces, applied without storing it: one gather
 // over the 12-neighbour stencil, like the force pass (docs/integrators.md, implicit_euler).
-// Mirrors src/core/stiffness.h. The including kernel #defines STIFFNESS_VECTOR as the array H
+// Mirrors src/model/stiffness.h. The including kernel #defines STIFFNESS_VECTOR as the array H
 // multiplies: velocities for the right-hand side, cgDirection for A p.
 #include "springs.glsl"
 

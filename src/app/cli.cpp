@@ -3,7 +3,7 @@
 #include <cerrno>
 #include <cstdlib>
 
-#include "core/errors.h"
+#include "model/errors.h"
 
 namespace cloth::app {
 

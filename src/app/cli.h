@@ -5,10 +5,9 @@
 #include <string>
 #include <vector>
 
-namespace cloth::app {
+#include "model/errors.h"
 
-// Exit codes of DESIGN.md §5.
-enum ExitCode { kOk = 0, kInternal = 1, kInvalidInput = 2, kUnstable = 3, kNoGpu = 4 };
+namespace cloth::app {
 
 // Walks argv after the subcommand. Flags are "--name value" or "--name=value".
 class Args {

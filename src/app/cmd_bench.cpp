@@ -2,8 +2,8 @@
 #include <cstdio>
 #include <cstring>
 
-#include "app/bench.h"
-#include "core/errors.h"
+#include "app/bench_flags.h"
+#include "model/errors.h"
 
 namespace cloth::app {
 namespace {

@@ -3,7 +3,7 @@
 #include <thread>
 
 #include "app/cli.h"
-#include "app/solver_factory.h"
+#include "backends/solver_factory.h"
 
 namespace cloth::app {
 

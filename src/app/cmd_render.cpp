@@ -10,10 +10,12 @@
 #include <filesystem>
 
 #include "app/cli.h"
-#include "app/solver_factory.h"
-#include "core/errors.h"
-#include "core/scene_loader.h"
-#include "core/stability.h"
+#include "app/backend_flags.h"
+#include "app/reports.h"
+#include "backends/solver_factory.h"
+#include "model/errors.h"
+#include "scene/scene_loader.h"
+#include "model/stability.h"
 
 #ifdef CLOTH_HAVE_RENDER
 #include "gpu/egl_context.h"
@@ -57,7 +59,7 @@ struct RenderArgs {
     long every = 0;   // --frames: a frame every `every` steps
     double fps = 30;  // --frames: the MP4's frame rate
     int width = 960, height = 720;
-    BackendChoice backend;
+    BackendChoice backend = backendChoiceFromEnvironment();
     std::vector<std::string> sets;
     bool strain = false, wireframe = false, springs = false;
 };

@@ -7,12 +7,14 @@
 
 #include "app/cli.h"
 #include "app/progress.h"
-#include "app/solver_factory.h"
-#include "core/collider_mesh.h"
-#include "core/errors.h"
-#include "core/output.h"
-#include "core/scene_loader.h"
-#include "core/stability.h"
+#include "app/backend_flags.h"
+#include "app/reports.h"
+#include "backends/solver_factory.h"
+#include "model/collider_mesh.h"
+#include "model/errors.h"
+#include "solver/output.h"
+#include "scene/scene_loader.h"
+#include "model/stability.h"
 
 namespace cloth::app {
 namespace {
@@ -42,7 +44,7 @@ exit codes: 0 ok, 1 internal error, 2 invalid input, 3 unstable, 4 GPU unavailab
 
 struct RunOptions {
     std::string scenePath;
-    BackendChoice backend;
+    BackendChoice backend = backendChoiceFromEnvironment();
     long steps = 0;  // 0: the scene's duration
     std::vector<std::string> sets;
     std::string csv, obj, framesDir, colliders;

@@ -2,14 +2,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/backend_flags.h"
 #include "app/cli.h"
-#include "app/solver_factory.h"
-#include "core/collider_limits.h"
-#include "core/collider_speed.h"
-#include "core/collider_validate.h"
-#include "core/errors.h"
-#include "core/scene_loader.h"
-#include "core/stability.h"
+#include "backends/solver_factory.h"
+#include "model/collider_limits.h"
+#include "model/collider_speed.h"
+#include "scene/collider_validate.h"
+#include "model/errors.h"
+#include "scene/scene_loader.h"
+#include "model/stability.h"
 
 namespace cloth::app {
 namespace {
@@ -182,7 +183,7 @@ int validateCommand(Args& args) {
     printModel(scene);
     std::printf("features     %s\n", Features::of(scene).describe().c_str());
     printStability(scene);
-    std::printf("gpu variant  %s\n", gpuVariant(scene).c_str());
+    std::printf("gpu variant  %s\n", gpuVariant(scene, backendChoiceFromEnvironment().gpu).c_str());
     std::printf("valid\n");
     return kOk;
 }

@@ -2,11 +2,13 @@
 #include <cstdio>
 
 #include "app/cli.h"
-#include "app/solver_factory.h"
-#include "core/errors.h"
+#include "app/backend_flags.h"
+#include "app/reports.h"
+#include "backends/solver_factory.h"
+#include "model/errors.h"
 
 #ifdef CLOTH_HAVE_VIEWER
-#include "app/viewer.h"
+#include "viewer/viewer.h"
 #endif
 
 namespace cloth::app {
@@ -35,6 +37,7 @@ exit codes: 0 ok, 1 internal error, 2 invalid input, 4 no window with OpenGL 4.3
 int viewCommand(Args& args) {
 #ifdef CLOTH_HAVE_VIEWER
     ViewerOptions o;
+    o.backend = backendChoiceFromEnvironment();
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();

@@ -5,9 +5,10 @@
 #include <exception>
 #include <string>
 
-#include "app/bench.h"
+#include "app/backend_flags.h"
+#include "app/bench_flags.h"
 #include "app/cli.h"
-#include "core/errors.h"
+#include "model/errors.h"
 
 namespace {
 
@@ -27,6 +28,7 @@ exit codes: 0 ok, 1 internal error, 2 invalid input, 3 unstable simulation, 4 no
 )";
 
 int dispatch(const std::string& command, cloth::app::Args& args) {
+    using namespace cloth;
     using namespace cloth::app;
     if (command == "run") return runCommand(args);
     if (command == "validate") return validateCommand(args);
@@ -40,6 +42,7 @@ int dispatch(const std::string& command, cloth::app::Args& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    using namespace cloth;
     using namespace cloth::app;
     if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
         std::fputs(kUsage, argc < 2 ? stderr : stdout);
@@ -48,6 +51,7 @@ int main(int argc, char** argv) {
     const std::string command = argv[1];
     Args args(command, std::vector<std::string>(argv + 2, argv + argc));
     try {
+        cloth::configureGpu(gpuSetupFromEnvironment());
         return dispatch(command, args);
     } catch (const cloth::InputError& e) {
         std::fprintf(stderr, "clothsim: invalid input: %s\n", e.what());

@@ -11,7 +11,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/errors.h"
+#include "gpu/gpu_options.h"
+#include "model/errors.h"
 
 namespace cloth {
 namespace {
@@ -118,7 +119,7 @@ struct Device {
     bool software;
 };
 
-// The EGL devices in the order to try: CLOTH_EGL_DEVICE's alone, else hardware first.
+// The EGL devices in the order to try: the configured one alone (gpuSetup), else hardware first.
 std::vector<Device> listDevices() {
     auto queryDevices = eglProc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
     auto queryString = eglProc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
@@ -132,14 +133,12 @@ std::vector<Device> listDevices() {
         const bool sw = hasExtension(ext, "EGL_MESA_device_software");
         (sw ? software : hardware).push_back({handles[i], i, sw});
     }
-    if (const char* pick = std::getenv("CLOTH_EGL_DEVICE"); pick != nullptr && *pick != '\0') {
-        char* end = nullptr;
-        const long want = std::strtol(pick, &end, 10);
-        if (*end != '\0' || want < 0 || want >= n)
+    if (const int want = gpuSetup().eglDevice; want >= 0) {
+        if (want >= n)
             throw InputError("", "CLOTH_EGL_DEVICE",
-                             std::string("'") + pick + "' is not a device index in [0, " +
+                             std::to_string(want) + " is not a device index in [0, " +
                                  std::to_string(n - 1) + "]");
-        return {{handles[want], int(want), false}};
+        return {{handles[want], want, false}};
     }
     hardware.insert(hardware.end(), software.begin(), software.end());
     return hardware;

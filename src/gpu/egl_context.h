@@ -1,6 +1,6 @@
 // The headless OpenGL context the GPU backend computes in (DESIGN.md §3: a GL 4.3+ context, no
 // window). One per process, made on first use: EGL's device platform (a hardware device
-// preferred; CLOTH_EGL_DEVICE=N picks device N), else Mesa's surfaceless platform, else the
+// preferred; gpuSetup().eglDevice picks one), else Mesa's surfaceless platform, else the
 // default display. A GL context already current on the calling thread (the viewer's window) is
 // adopted instead, so the solver's buffers live where the renderer draws.
 #pragma once

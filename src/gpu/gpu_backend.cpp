@@ -14,9 +14,9 @@ std::string describeGpu() {
     return GlContext::instance().info().describe();
 }
 
-std::string describeGpuVariant(const Scene& scene) {
+std::string describeGpuVariant(const Scene& scene, const GpuOptions& options) {
     std::string line;
-    for (const auto& [name, value] : gpuDefines(scene, chooseWorkGroup({}, nullptr))) {
+    for (const auto& [name, value] : gpuDefines(scene, chooseWorkGroup({options.workGroupX, options.workGroupY}, nullptr, options.workGroupKey))) {
         if (name == "SPRING_OFFSETS") continue;  // the table rows; NUM_SPRING_OFFSETS says enough
         const bool quote = value.find(' ') != std::string::npos;
         line += (line.empty() ? "" : " ") + name;

@@ -5,8 +5,8 @@
 #include <memory>
 #include <string>
 
-#include "core/scene.h"
-#include "core/solver.h"
+#include "model/scene.h"
+#include "solver/solver.h"
 #include "gpu/gpu_options.h"
 
 namespace cloth {
@@ -20,6 +20,6 @@ std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& opti
 std::string describeGpu();
 
 // The #defines this scene compiles to, one line; no GL needed.
-std::string describeGpuVariant(const Scene& scene);
+std::string describeGpuVariant(const Scene& scene, const GpuOptions& options = {});
 
 }  // namespace cloth

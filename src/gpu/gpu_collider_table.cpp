@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cstring>
 
-#include "core/collider_validate.h"
-#include "core/errors.h"
-#include "core/pin_follow.h"
+#include "model/mesh_sdf.h"
+#include "model/errors.h"
+#include "model/pin_follow.h"
 #include "gpu/gpu_buffers.h"
 
 namespace cloth::gpu {

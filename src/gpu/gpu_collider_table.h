@@ -24,9 +24,9 @@
 #include <variant>
 #include <vector>
 
-#include "core/collider_motion.h"
-#include "core/collider_pose.h"
-#include "core/scene.h"
+#include "model/collider_motion.h"
+#include "model/collider_pose.h"
+#include "model/scene.h"
 #include "gpu/gpu_layout.h"
 #include "gpu/shader_loader.h"
 
@@ -68,7 +68,7 @@ public:
     // The meshes whose samples the table holds, in scene order: equal lists, equal samples.
     std::vector<const void*> sampleSources() const;
     // The poses region for steps first .. first + kPoseBatch − 1 (each in its slot), step s at
-    // time timeOf(s) [s], collider c displaced by drags[c] if it has one (core/collider_pose.h).
+    // time timeOf(s) [s], collider c displaced by drags[c] if it has one (model/collider_pose.h).
     std::vector<glm::vec4> poseBatch(long first, const std::function<double(long)>& timeOf,
                                      const std::vector<std::optional<ColliderDrag>>& drags) const;
 

@@ -1,6 +1,9 @@
-// How the GPU backend runs a scene: the tuning knobs of issue 6 item 4, none of which changes
-// the physics. No GL here: the app's option parsing and the tests include it freely.
+// How the GPU backend runs a scene: work groups, kernels and dispatch, none of which changes the
+// physics; and where the process finds its shaders and device. No GL here: the app's option
+// parsing and the tests include it freely.
 #pragma once
+
+#include <string>
 
 namespace cloth {
 
@@ -24,10 +27,12 @@ inline constexpr long long manyStepsMaxVertices(bool software) {
 }
 
 struct GpuOptions {
-    int workGroupX = 16, workGroupY = 16;  // CLOTH_WORKGROUP=WXxWY overrides
+    int workGroupX = 16, workGroupY = 16;
     int checkEvery = 64;                   // steps between reads of the instability flag
     ForcesKernel forces = ForcesKernel::Global;
     StepDispatch dispatch = StepDispatch::Auto;
+    // What set the work group, as an error names it: the app's CLOTH_WORKGROUP, or the default.
+    std::string workGroupKey = "work-group size";
 };
 
 inline const char* forcesKernelName(ForcesKernel k) {
@@ -39,5 +44,14 @@ inline const char* stepDispatchName(StepDispatch d) {
            : d == StepDispatch::ManySteps ? "many-steps"
                                           : "auto";
 }
+
+// The process's GPU settings, which the app reads from its environment (README, "Environment")
+// and sets once before the first context or shader is made; the library reads no environment.
+struct GpuSetup {
+    std::string shaderDir;  // "": shaders/ next to the executable, else the source tree's
+    int eglDevice = -1;     // >= 0: that EGL device alone (CLOTH_EGL_DEVICE), else hardware first
+};
+void configureGpu(const GpuSetup& setup);
+const GpuSetup& gpuSetup();
 
 }  // namespace cloth

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/pin_follow.h"
+#include "model/errors.h"
+#include "model/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/shader_loader.h"
@@ -91,7 +91,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     if (checkEvery_ < 1)
         throw InputError("", "checkEvery",
                          "must be at least 1, not " + std::to_string(checkEvery_));
-    workGroup_ = chooseWorkGroup({options.workGroupX, options.workGroupY}, &info);
+    workGroup_ = chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
     checkGridFits(scene, workGroup_, info);
     gpu::ColliderTable(scene).checkFits(info.maxStorageBlockSize, scene.source);
     if (forces_ == ForcesKernel::Tiled) checkTileFits(workGroup_, info);

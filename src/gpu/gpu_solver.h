@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/solver.h"
+#include "solver/solver.h"
 #include "gpu/gpu_backend.h"
 #include "gpu/gpu_collider_table.h"
 #include "gpu/gpu_layout.h"

@@ -8,7 +8,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "core/pin_follow.h"
+#include "model/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/gpu_solver.h"

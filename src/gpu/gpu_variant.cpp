@@ -4,8 +4,8 @@
 #include <cstdlib>
 #include <regex>
 
-#include "core/errors.h"
-#include "core/solver.h"
+#include "model/errors.h"
+#include "solver/solver.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_collider_table.h"
 
@@ -40,7 +40,7 @@ std::string integratorDefine(Method m) {
 }
 
 // The rows of kSpringOffsets whose family the scene declares, as GLSL ivec4(di, dj, family,
-// slot): the shader's one spring loop walks exactly these (src/core/grid.h, the seed's Q10).
+// slot): the shader's one spring loop walks exactly these (src/model/grid.h, the seed's Q10).
 std::pair<int, std::string> springTable(const Scene& scene) {
     int count = 0;
     std::string rows;
@@ -54,24 +54,9 @@ std::pair<int, std::string> springTable(const Scene& scene) {
     return {count, rows};
 }
 
-WorkGroup parseWorkGroup(const char* text) {
-    static const std::regex re(R"(^\s*(\d{1,6})\s*[xX]\s*(\d{1,6})\s*$)");
-    std::cmatch m;
-    if (!std::regex_match(text, m, re))
-        throw InputError("", "CLOTH_WORKGROUP",
-                         std::string("'") + text + "' is not of the form WXxWY, e.g. 16x16");
-    return {std::stoi(m[1].str()), std::stoi(m[2].str())};
-}
-
 }  // namespace
 
-WorkGroup chooseWorkGroup(WorkGroup requested, const GpuInfo* info) {
-    std::string key = "work-group size";
-    WorkGroup wg = requested;
-    if (const char* env = std::getenv("CLOTH_WORKGROUP"); env != nullptr && *env != '\0') {
-        wg = parseWorkGroup(env);
-        key = "CLOTH_WORKGROUP";
-    }
+WorkGroup chooseWorkGroup(WorkGroup wg, const GpuInfo* info, const std::string& key) {
     const std::string size = std::to_string(wg.x) + "x" + std::to_string(wg.y);
     if (wg.x < 1 || wg.y < 1) throw InputError("", key, size + ": sizes must be at least 1");
     if (info == nullptr) return wg;

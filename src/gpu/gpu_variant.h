@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
+#include "model/scene.h"
 #include "gpu/gpu_options.h"
 #include "gpu/shader_loader.h"
 
@@ -18,10 +18,10 @@ struct WorkGroup {
     int x = 16, y = 16;
 };
 
-// The work-group size to compile with: CLOTH_WORKGROUP=WXxWY if set, else `requested`. Throws
-// InputError naming CLOTH_WORKGROUP (or the option) when malformed or beyond `info`'s limits;
-// with `info` null only the syntax and positivity are checked.
-WorkGroup chooseWorkGroup(WorkGroup requested, const GpuInfo* info);
+// The work-group size to compile with, checked: InputError naming `key` (where the size came
+// from) when a side is below 1 or beyond `info`'s limits; with `info` null only positivity.
+WorkGroup chooseWorkGroup(WorkGroup requested, const GpuInfo* info,
+                          const std::string& key = GpuOptions{}.workGroupKey);
 
 // Throws InputError (key cloth.resolution) when the grid needs more than the device allows:
 // over min(65535, device limit) work groups along a dimension, or vertex buffers larger than

@@ -1,5 +1,7 @@
 #include "gpu/shader_loader.h"
 
+#include "gpu/gpu_options.h"
+
 #include <GL/glew.h>
 
 #include <cstdlib>
@@ -145,11 +147,23 @@ std::string programLog(GLuint object, bool isProgram) {
     return log.c_str();
 }
 
+GpuSetup& setup() {
+    static GpuSetup s;
+    return s;
+}
+
 }  // namespace
 
+void configureGpu(const GpuSetup& s) {
+    setup() = s;
+}
+
+const GpuSetup& gpuSetup() {
+    return setup();
+}
+
 ShaderDirectory findShaderDirectory() {
-    if (const char* env = std::getenv("CLOTH_SHADER_DIR"); env != nullptr && *env != '\0')
-        return {env, "from CLOTH_SHADER_DIR"};
+    if (!gpuSetup().shaderDir.empty()) return {gpuSetup().shaderDir, "as configured (CLOTH_SHADER_DIR)"};
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec && fs::exists(exe.parent_path() / "shaders" / "compute", ec))

@@ -9,8 +9,9 @@
 
 namespace cloth {
 
-// Where the shaders are: CLOTH_SHADER_DIR, else shaders/ next to the executable, else the
-// source tree's shaders/ (CLOTH_SOURCE_SHADER_DIR). `how` says which, for error messages.
+// Where the shaders are: gpuSetup().shaderDir (the app's CLOTH_SHADER_DIR), else shaders/ next to
+// the executable, else the source tree's shaders/ (CLOTH_SOURCE_SHADER_DIR). `how` says which,
+// for error messages.
 struct ShaderDirectory {
     std::string path;
     std::string how;

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/collider_mesh.h"
+#include "model/collider_mesh.h"
 #include "render/geometry.h"
 #include "render/gl_program.h"
 

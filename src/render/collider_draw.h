@@ -1,6 +1,6 @@
 // Draws a scene's colliders at their pose at one time (the solver's): planes as the fading ground
-// grid, every other shape as the triangle mesh core/collider_mesh.h builds for it, uploaded once
-// per change of shape and placed each frame by its pose (core/collider_pose.h: the motion, then
+// grid, every other shape as the triangle mesh model/collider_mesh.h builds for it, uploaded once
+// per change of shape and placed each frame by its pose (model/collider_pose.h: the motion, then
 // the viewer's drag). Spheres and capsules are drawn 2 % thinner: a cloth resting on one touches
 // it at its vertices only, and its flat triangles would cut into a full-size surface; flat faces
 // are pushed back in depth instead, so a cloth lying on them with no thickness stays in front.
@@ -11,8 +11,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/collider_pose.h"
-#include "core/scene.h"
+#include "model/collider_pose.h"
+#include "model/scene.h"
 #include "render/camera.h"
 
 namespace cloth::render {

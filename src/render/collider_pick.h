@@ -1,5 +1,5 @@
 // Which collider the cursor's ray meets first (the viewer's collider drag, docs/viewer.md): the
-// colliders posed at the solver's time with their drags (core/collider_pose.h), each marched
+// colliders posed at the solver's time with their drags (model/collider_pose.h), each marched
 // along the ray by its signed distance (sphere tracing: exact for the analytic shapes, which are
 // true distances; a mesh's trilinear grid, whose slope can reach √3, is marched inside its grid's
 // box with steps of φ/√3). Planes are not picked: the ground fills the view, and a drag on it
@@ -11,8 +11,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/collider_pose.h"
-#include "core/scene.h"
+#include "model/collider_pose.h"
+#include "model/scene.h"
 #include "render/camera.h"
 
 namespace cloth::render {

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "core/forces.h"
+#include "model/forces.h"
 
 namespace cloth::render {
 

@@ -7,8 +7,8 @@
 #include <glm/glm.hpp>
 #include <vector>
 
-#include "core/mesh_sdf.h"
-#include "core/solver.h"
+#include "model/mesh_sdf.h"
+#include "solver/solver.h"
 
 namespace cloth::render {
 
@@ -27,7 +27,7 @@ ClothIndices clothIndices(int nu, int nv);
 bool packCloth(const SimState& state, std::vector<glm::vec4>& positions,
                std::vector<glm::vec4>& normals);
 
-// A collider's triangle mesh (core/collider_mesh.h) as the renderer draws it: three vertices per
+// A collider's triangle mesh (model/collider_mesh.h) as the renderer draws it: three vertices per
 // triangle, each lit by the area-weighted mean normal of the faces around that vertex that meet
 // the triangle at less than `creaseDegrees` (smooth across a sphere's facets, sharp at a box's
 // edges).

@@ -10,9 +10,9 @@
 #include <optional>
 #include <vector>
 
-#include "core/collider_pose.h"
-#include "core/scene.h"
-#include "core/solver.h"
+#include "model/collider_pose.h"
+#include "model/scene.h"
+#include "solver/solver.h"
 #include "render/camera.h"
 
 namespace cloth::render {
@@ -47,7 +47,7 @@ public:
     void setScene(const Scene& scene);
     // Vertex indices k = j·nu + i to mark as pinned.
     void setPins(const std::vector<std::int64_t>& vertices);
-    // The viewer's collider drags (core/collider_pose.h), by the scene's collider order.
+    // The viewer's collider drags (model/collider_pose.h), by the scene's collider order.
     void setColliderDrags(const std::vector<ColliderDrag>& drags);
     // Takes the solver's current state and time (colliders are drawn at their pose then): binds the
     // GPU solver's buffers (no copy), or reads the CPU solver's state and uploads it. Returns false

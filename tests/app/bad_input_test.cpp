@@ -16,8 +16,8 @@
 #include <typeinfo>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/scene_loader.h"
+#include "model/errors.h"
+#include "scene/scene_loader.h"
 #include "support/bad_scenes.h"
 #include "support/process.h"
 

@@ -1,5 +1,5 @@
 // The command line of DESIGN.md §5 on valid input: run's summary and files, validate's report,
-// info, --help on every subcommand (bench: tests/app/bench_test.cpp).
+// info, --help on every subcommand (bench: tests/bench/bench_test.cpp).
 #include <gtest/gtest.h>
 #include <unistd.h>
 

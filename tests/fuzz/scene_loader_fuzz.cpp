@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "core/errors.h"
-#include "core/scene_loader.h"
+#include "model/errors.h"
+#include "scene/scene_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string input(reinterpret_cast<const char*>(data), size);

@@ -1,5 +1,5 @@
 // Contact laws of docs/colliders.md on the GPU solver, mirroring
-// tests/core/collider_solver_test.cpp: Coulomb friction holds a cloth on a tilted box below the
+// tests/cpu/collider_solver_test.cpp: Coulomb friction holds a cloth on a tilted box below the
 // friction angle and lets it slide above; a moving box carries the cloth resting on it;
 // setParameters moves colliders and changes their thickness and friction without a new kernel; a
 // mesh grid beyond one SSBO is an input error.
@@ -8,7 +8,7 @@
 #include <numbers>
 #include <regex>
 
-#include "core/errors.h"
+#include "model/errors.h"
 #include "gpu/gpu_collider_table.h"
 #include "gpu/gpu_test_support.h"
 #include "gpu/gpu_variant.h"

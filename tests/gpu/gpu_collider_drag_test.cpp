@@ -1,4 +1,4 @@
-// Solver::setColliderDrag on the GPU (docs/colliders.md §3, §9), tests/core/collider_drag_test.cpp
+// Solver::setColliderDrag on the GPU (docs/colliders.md §3, §9), tests/cpu/collider_drag_test.cpp
 // mirrored: a dragged still box (compiled again as moving, the state kept) carries the cloth
 // resting on it, offsets persist and outlive setParameters, a dragged plain sphere takes the
 // general response, an index out of range is refused, and the GPU agrees with the CPU float.
@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "cpu/cpu_backend.h"
 #include "gpu_test_support.h"
 #include "support/contact_scenes.h"
 

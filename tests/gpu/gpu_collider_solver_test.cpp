@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <map>
 
+#include "cpu/cpu_backend.h"
 #include "gpu/gpu_test_support.h"
 #include "support/collider_cases.h"
 
@@ -14,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 // max |p − p_ref| / extent over the run. The CPU float backend reaches 5.7e-4 on
-// tests/core/collider_solver_test.cpp's cases (symplectic Euler, docs/colliders.md §8): float
+// tests/cpu/collider_solver_test.cpp's cases (symplectic Euler, docs/colliders.md §8): float
 // rounding that contact decisions amplify. Here explicit Euler's creep amplifies it more where the
 // cloth slides over the mesh slab's blunt (trilinear) edge: 5.1e-3 on both float backends, the
 // GPU's and the CPU's. So: 2e-3, 1e-2 with a mesh; and never more than 1.5 times the CPU float

@@ -1,5 +1,5 @@
 // The GLSL collider functions (shaders/colliders/) against their C++ twins in float
-// (src/core/collider_shapes.h, collider_contact.h): φ and n of the plane, sphere, box, capsule and
+// (src/model/collider_shapes.h, collider_contact.h): φ and n of the plane, sphere, box, capsule and
 // baked grid, and the response with thickness, friction and collider velocity, over random
 // points on the GPU's own compiler and arithmetic.
 #include <GL/glew.h>
@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include "core/collider_contact.h"
+#include "model/collider_contact.h"
 #include "gpu/shader_loader.h"
 #include "gpu_test_support.h"
 #include "support/box_regions.h"

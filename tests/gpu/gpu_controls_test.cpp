@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "cpu/cpu_backend.h"
 #include "gpu/gpu_test_support.h"
 
 namespace cloth::test {

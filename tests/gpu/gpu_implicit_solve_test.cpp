@@ -1,12 +1,12 @@
 // implicit_euler's conjugate gradient on the GPU (docs/integrators.md): the Δv a step applies
-// solves the linearised backward-Euler system (checked here in double with src/core's stencil),
+// solves the linearised backward-Euler system (checked here in double with src/model's stencil),
 // the grab enters H, a solve that cannot converge is counted as a miss, and the iteration cap is
 // exact although the host reads the residual only every few iterations.
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "core/stiffness.h"
+#include "model/stiffness.h"
 #include "gpu/gpu_test_support.h"
 
 namespace cloth::test {
@@ -38,7 +38,7 @@ Scene clothScene(double stiffness, int maxIterations) {
 
 // |b − A Δv| / |b| of the system ((m + hμ) I + h² H) Δv = h (F − μ v + m g − h H v) at the state
 // `before`, for the Δv = v_after − v_before the step applied; in double, from the stencil of
-// src/core/stiffness.h and the spring law of src/core/forces.h, with the grab's K in H and F.
+// src/model/stiffness.h and the spring law of src/model/forces.h, with the grab's K in H and F.
 double relativeResidual(const Scene& scene, const std::optional<Grab>& grab, const SimState& before,
                         const SimState& after) {
     const Grid g = scene.grid();

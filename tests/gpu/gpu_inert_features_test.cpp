@@ -1,6 +1,6 @@
 // bench speed --features all on the GPU: the inert scene compiles HAS_WIND, the colliders and
 // every spring family into the kernels (its own shader variant) and moves as the declared scene.
-#include "app/bench_features.h"
+#include "bench/bench_features.h"
 #include "gpu/gpu_test_support.h"
 
 namespace cloth::test {

@@ -5,6 +5,7 @@
 // reductions: double on the CPU, a float tree on the GPU).
 #include <cstdio>
 
+#include "cpu/cpu_backend.h"
 #include "gpu/gpu_test_support.h"
 #include "support/integrator_scenes.h"
 

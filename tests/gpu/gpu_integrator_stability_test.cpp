@@ -1,4 +1,4 @@
-// Every integrator on the GPU inside its predicted stability bound (src/core/stability.h,
+// Every integrator on the GPU inside its predicted stability bound (src/model/stability.h,
 // docs/stability.md), and implicit Euler far outside every explicit scheme's: a stiff cloth at
 // the viewer's Δt = 1/60 s.
 #include <cmath>
@@ -6,7 +6,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
-#include "core/stability.h"
+#include "cpu/cpu_backend.h"
+#include "model/stability.h"
 #include "gpu/gpu_test_support.h"
 
 namespace cloth::test {

@@ -24,7 +24,7 @@ constexpr double kCpuFloatContactTolerance = kReferenceTolerance;
 // A cloth that starts tilted and falls: Δt inside explicit Euler's bound Δt < μ/λ_max
 // (DESIGN.md §2), λ_max ≤ 2·4·(200 + 80 + 20) = 2400 N/m, μ = 3 → 1.25 ms > 1 ms.
 // Colliders are axis-aligned at dyadic heights so float and double project alike (see
-// tests/core/reference_parity_test.cpp).
+// tests/cpu/reference_parity_test.cpp).
 Json baseScene() {
     return Json::parse(R"({
       "name": "gpu-parity",

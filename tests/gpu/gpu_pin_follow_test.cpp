@@ -10,9 +10,10 @@
 #include <string>
 #include <tuple>
 
-#include "core/collider_motion.h"
-#include "core/pin_follow.h"
-#include "core/scene_json.h"
+#include "cpu/cpu_backend.h"
+#include "model/collider_motion.h"
+#include "model/pin_follow.h"
+#include "scene/scene_json.h"
 #include "gpu_test_support.h"
 #include "support/follow_scene.h"
 

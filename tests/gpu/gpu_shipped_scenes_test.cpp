@@ -1,6 +1,6 @@
 // The shipped cape, table and windsock scenes (docs/colliders.md §10) on the GPU: the cape and
 // the windsock have follow pins on moving capsules, the table boxes with friction. Shorter than the
-// scenes' own durations (tests/core/shipped_scenes_test.cpp runs those on the CPU): the cape for 2
+// scenes' own durations (tests/scene/shipped_scenes_test.cpp runs those on the CPU): the cape for 2
 // s, by which it lies over the shoulders and hangs down the back, the windsock for 2 s, by which
 // the wind has blown it out.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/pin_follow.h"
+#include "model/pin_follow.h"
 #include "gpu_test_support.h"
 #include "support/shipped_outcomes.h"
 

@@ -9,8 +9,9 @@
 #include <optional>
 #include <string>
 
-#include "core/scene_loader.h"
-#include "core/solver.h"
+#include "scene/scene_loader.h"
+#include "cpu/cpu_backend.h"
+#include "solver/solver.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_backend.h"
 #include "reference/reference.h"
@@ -57,8 +58,24 @@ inline bool gpuRequired() {
     return v != nullptr && std::string(v) == "1";
 }
 
-// Tests of the working tree use its shaders/ unless CLOTH_SHADER_DIR says otherwise: the copy
-// next to the executable is refreshed only when clothsim relinks.
+// The GPU library's shader folder set to `dir` for the scope (configureGpu), then back.
+class ScopedShaderDir {
+public:
+    explicit ScopedShaderDir(const std::string& dir) : saved_(gpuSetup()) {
+        GpuSetup s = saved_;
+        s.shaderDir = dir;
+        configureGpu(s);
+    }
+    ~ScopedShaderDir() { configureGpu(saved_); }
+    ScopedShaderDir(const ScopedShaderDir&) = delete;
+    ScopedShaderDir& operator=(const ScopedShaderDir&) = delete;
+
+private:
+    GpuSetup saved_;
+};
+
+// Tests of the working tree use its shaders/: the copy next to the executable is refreshed only
+// when clothsim relinks.
 class GpuTest : public ::testing::Test {
 protected:
     void SetUp() override {
@@ -67,7 +84,7 @@ protected:
             GTEST_SKIP() << "no GPU context: " << gpuUnavailableReason();
         }
     }
-    ScopedEnv shaders_{"CLOTH_SHADER_DIR", CLOTH_SOURCE_DIR "/shaders", false};
+    ScopedShaderDir shaders_{CLOTH_SOURCE_DIR "/shaders"};
 };
 
 inline SimState runGpu(const Scene& scene, long steps, const GpuOptions& options = {}) {

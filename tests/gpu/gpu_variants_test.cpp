@@ -4,7 +4,7 @@
 // same step, and the buffers hold a 4096² cloth within 100 bytes per vertex.
 #include <nlohmann/json.hpp>
 
-#include "core/errors.h"
+#include "model/errors.h"
 #include "gpu/gpu_solver.h"
 #include "gpu/gpu_test_support.h"
 #include "gpu/gpu_variant.h"

@@ -1,5 +1,5 @@
 // The colliders of docs/colliders.md, written from that page alone and sharing no code with
-// src/: the oracle for core/collider_shapes.h and core/collider_contact.h. Plain loops over the
+// src/: the oracle for model/collider_shapes.h and model/collider_contact.h. Plain loops over the
 // six faces, the clamped segment parameter and the eight grid corners, no glm.
 #pragma once
 

@@ -7,8 +7,8 @@
 
 #include <memory>
 
-#include "core/collider_mesh.h"
-#include "core/collider_validate.h"
+#include "model/collider_mesh.h"
+#include "scene/collider_validate.h"
 
 namespace cloth::render {
 namespace {

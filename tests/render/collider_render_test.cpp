@@ -6,8 +6,9 @@
 #include <optional>
 #include <string>
 
-#include "core/scene_loader.h"
-#include "core/solver.h"
+#include "scene/scene_loader.h"
+#include "cpu/cpu_backend.h"
+#include "solver/solver.h"
 #include "gpu/gpu_test_support.h"
 #include "render/image.h"
 #include "render/image_checks.h"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include "core/collider_mesh.h"
+#include "model/collider_mesh.h"
 
 namespace cloth::render {
 namespace {

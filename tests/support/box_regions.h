@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/collider_shapes.h"
+#include "model/collider_shapes.h"
 
 namespace cloth::test {
 

@@ -1,4 +1,4 @@
-// The collider cases the CPU and GPU collider tests share (tests/core/collider_solver_test.cpp,
+// The collider cases the CPU and GPU collider tests share (tests/cpu/collider_solver_test.cpp,
 // tests/gpu/gpu_collider_solver_test.cpp, tests/gpu/gpu_collider_contact_test.cpp): every shape
 // alone and combined, with thickness, friction and motion; the mesh collider's OBJ; the GPU's
 // falling cloth, whose Δt is inside explicit Euler's bound so that every integrator runs the same
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "core/collider_mesh.h"
-#include "core/scene_loader.h"
+#include "model/collider_mesh.h"
+#include "scene/scene_loader.h"
 #include "reference/reference_colliders.h"
 #include "support/process.h"
 

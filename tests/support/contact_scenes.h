@@ -1,5 +1,5 @@
-// Small contact scenes the CPU and GPU collider tests share (tests/core/collider_solver_test.cpp,
-// tests/core/collider_drag_test.cpp and their GPU twins): a cloth resting on a box, still or
+// Small contact scenes the CPU and GPU collider tests share (tests/cpu/collider_solver_test.cpp,
+// tests/cpu/collider_drag_test.cpp and their GPU twins): a cloth resting on a box, still or
 // moving; a cloth on a tilted box with friction; a vertex patch above a plain sphere; and the
 // means and extremes they measure.
 #pragma once

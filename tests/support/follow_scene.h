@@ -1,11 +1,11 @@
-// The follow-pin scene the CPU and GPU pin tests share (tests/core/pin_follow_test.cpp,
+// The follow-pin scene the CPU and GPU pin tests share (tests/cpu/pin_follow_test.cpp,
 // tests/gpu/gpu_pin_follow_test.cpp; docs/colliders.md §5) and the capsule motions it runs.
 #pragma once
 
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 
 namespace cloth::test {
 

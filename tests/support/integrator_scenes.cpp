@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <variant>
 
-#include "core/scene_loader.h"
+#include "scene/scene_loader.h"
 #include "reference/reference.h"
 #include "support/reference_bridge.h"
 

@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "core/scene.h"
-#include "core/solver.h"
+#include "model/scene.h"
+#include "solver/solver.h"
 #include "support/damped_spring.h"
 
 namespace cloth {

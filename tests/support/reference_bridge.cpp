@@ -5,9 +5,9 @@
 #include <type_traits>
 #include <variant>
 
-#include "core/collider_validate.h"
-#include "core/pin_follow.h"
-#include "core/scene_loader.h"
+#include "scene/collider_validate.h"
+#include "model/pin_follow.h"
+#include "scene/scene_loader.h"
 
 namespace cloth {
 namespace {

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
-#include "core/solver.h"
+#include "model/scene.h"
+#include "solver/solver.h"
 #include "reference/reference.h"
 
 namespace cloth {

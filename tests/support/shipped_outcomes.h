@@ -1,5 +1,5 @@
 // The outcomes of the shipped collider scenes (docs/colliders.md §10) that the CPU and GPU tests
-// measure alike (tests/core/shipped_scenes_test.cpp, tests/gpu/gpu_shipped_scenes_test.cpp), each
+// measure alike (tests/scene/shipped_scenes_test.cpp, tests/gpu/gpu_shipped_scenes_test.cpp), each
 // on its own backend's solver: how close any vertex is to a collider, where the tablecloth's
 // centre and lowest vertex end, how far the windsock is blown along the wind, and where the
 // cape's hem hangs in the turning figure's frame.
@@ -10,11 +10,11 @@
 #include <variant>
 #include <vector>
 
-#include "core/collider_contact.h"
-#include "core/collider_motion.h"
-#include "core/collider_pose.h"
-#include "core/scene.h"
-#include "core/solver.h"
+#include "model/collider_contact.h"
+#include "model/collider_motion.h"
+#include "model/collider_pose.h"
+#include "model/scene.h"
+#include "solver/solver.h"
 
 namespace cloth::test {
 

@@ -1,5 +1,5 @@
 // Evaluates the GLSL collider functions of shaders/colliders/ at a buffer of points, for
-// tests/gpu/gpu_colliders_test.cpp to compare with src/core/collider_shapes.h and
+// tests/gpu/gpu_colliders_test.cpp to compare with src/model/collider_shapes.h and
 // collider_contact.h. Per point k (input: p, v, v_c as vec4s 3k..3k+2) it writes eight vec4s:
 // plane, sphere, box, capsule and grid contacts (n, φ); then p and v after the box's response
 // (w = 1 if it touched) and p after the sphere's.

@@ -1,0 +1,31 @@
+// The backend flags `run`, `render` and `view` share, and the environment variables that tune a
+// backend: the app reads them here and hands the libraries plain options.
+#pragma once
+
+#include <string>
+
+#include "app/cli.h"
+#include "backends/solver_factory.h"
+
+namespace cloth::app {
+
+// --backend cpu|gpu, --precision float|double, --threads N: true when `flag` was one of them
+// (its value then taken from `args` into `choice`).
+bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice);
+
+Backend parseBackend(const std::string& flag, const std::string& value);
+Precision parsePrecision(const std::string& flag, const std::string& value);
+
+// The choice as the environment tunes it (README, "Environment"): CLOTH_CPU_ISA picks the CPU's
+// row kernels, CLOTH_WORKGROUP=WXxWY the GPU's work group. Throws InputError naming the variable
+// for a bad value.
+BackendChoice backendChoiceFromEnvironment();
+
+// The process's GPU settings from CLOTH_SHADER_DIR and CLOTH_EGL_DEVICE (InputError naming the
+// variable for a bad value); main() hands them to the GPU library before any command runs.
+GpuSetup gpuSetupFromEnvironment();
+
+// CLOTH_BENCH_DIR: the bench plots' gnuplot scripts, or "" (bench/ found by the bench library).
+std::string benchDirFromEnvironment();
+
+}  // namespace cloth::app

@@ -1,0 +1,26 @@
+// The flags every bench subcommand shares, read from the command line into bench/'s options.
+#pragma once
+
+#include <string>
+
+#include "app/cli.h"
+#include "bench/bench.h"
+#include "bench/bench_speed_gpu.h"
+
+namespace cloth::app {
+
+int benchCommand(Args& args);           // cmd_bench.cpp: bench accuracy|stability|speed
+int benchAccuracyCommand(Args& args);   // cmd_bench_accuracy.cpp
+int benchStabilityCommand(Args& args);  // cmd_bench_stability.cpp
+int benchSpeedCommand(Args& args);      // cmd_bench_speed.cpp
+
+// Takes flag `f` if it is one of the common ones (--backend, --methods, --set, --out, --label,
+// --threads, --quick) and returns true; false leaves it to the subcommand.
+bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o);
+
+// --workgroups LIST, --gpu-forces global|tiled|both, --gpu-dispatch LIST, --check-every N,
+// --pass-times: true when `flag` was one of them (its value taken from `args` into `o`).
+// InputError naming the flag for a bad value.
+bool parseGpuSweepFlag(const std::string& flag, Args& args, GpuSweepOptions& o);
+
+}  // namespace cloth::app

@@ -1,0 +1,35 @@
+#include "app/reports.h"
+
+#include <cstdio>
+
+#include "model/stability.h"
+
+namespace cloth::app {
+
+void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r,
+                    const std::string& consequence) {
+    const double dt = scene.integrator.dt;
+    if (r.firstBadStep == r.lastBadStep)
+        std::fprintf(stderr, "clothsim: %s: unstable at step %ld (t = %.6g s): %s\n",
+                     scene.source.c_str(), r.firstBadStep, r.firstBadStep * dt, r.reason.c_str());
+    else
+        std::fprintf(stderr,
+                     "clothsim: %s: unstable between steps %ld and %ld (t = %.6g..%.6g s): %s\n",
+                     scene.source.c_str(), r.firstBadStep, r.lastBadStep, r.firstBadStep * dt,
+                     r.lastBadStep * dt, r.reason.c_str());
+    std::fprintf(stderr, "clothsim: %s [%s]; %s\n", stabilityAdvice(scene).c_str(),
+                 solver.name().c_str(), consequence.c_str());
+}
+
+void reportSolveMisses(const Scene& scene, const Solver& solver) {
+    const SolveStats& s = solver.solveStats();
+    if (s.misses == 0) return;
+    std::fprintf(stderr,
+                 "clothsim: %s: warning: %ld of %ld implicit solves stopped at "
+                 "integrator.max_iterations = %d before |r| <= %g |b| (first at step %ld, worst "
+                 "relative residual %.3g); raise integrator.max_iterations or lower dt\n",
+                 scene.source.c_str(), s.misses, s.solves, scene.integrator.maxIterations,
+                 scene.integrator.tolerance, s.firstMissStep, s.worstResidual);
+}
+
+}  // namespace cloth::app

@@ -1,0 +1,20 @@
+// What the app says on stderr about a run's physics: instability (exit 3) and implicit solves
+// that stopped at their iteration cap.
+#pragma once
+
+#include <string>
+
+#include "model/scene.h"
+#include "solver/solver.h"
+
+namespace cloth::app {
+
+// Says on stderr that the run became unstable (DESIGN.md §5, exit 3): the step or step range,
+// the simulated time, what went wrong, a stable Δt or damping, and `consequence`.
+void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r,
+                    const std::string& consequence);
+
+// A warning on stderr when implicit Euler's CG stopped at its cap in any step (never silent).
+void reportSolveMisses(const Scene& scene, const Solver& solver);
+
+}  // namespace cloth::app

@@ -1,0 +1,223 @@
+#include "cpu/cpu_colliders.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "model/mesh_sdf.h"
+
+namespace cloth {
+namespace {
+
+template <typename T>
+Vec3<T> cast(const glm::dvec3& v) {
+    return Vec3<T>(v);
+}
+
+// Rounding slack of the row culls: far more than the few ulps by which the cull's arithmetic
+// can differ from the response's, far less than anything physical.
+template <typename T>
+constexpr T kCullSlack = T(64) * std::numeric_limits<T>::epsilon();
+
+template <typename T>
+T boundRadius2(T radius) {
+    const T r = radius * (T(1) + kCullSlack<T>)+kCullSlack<T>;
+    return r * r;
+}
+
+// The posed shape in T, and the sphere that bounds where it can touch (thickness h included).
+template <typename T>
+void setPosed(CpuCollider<T>& c, const PlaneT<double>& s, double) {
+    c.shape = PlaneT<T>{cast<T>(s.point), cast<T>(s.normal)};
+}
+template <typename T>
+void setPosed(CpuCollider<T>& c, const SphereT<double>& s, double h) {
+    c.shape = SphereT<T>{cast<T>(s.center), T(s.radius)};
+    c.boundCenter = cast<T>(s.center);
+    c.boundRadius2 = boundRadius2(T(s.radius + h));
+}
+template <typename T>
+void setPosed(CpuCollider<T>& c, const BoxT<double>& s, double h) {
+    c.shape = BoxT<T>{cast<T>(s.center), cast<T>(s.halfExtents), Mat3<T>(s.rotation)};
+    c.boundCenter = cast<T>(s.center);
+    c.boundRadius2 = boundRadius2(T(glm::length(s.halfExtents) + h));
+}
+template <typename T>
+void setPosed(CpuCollider<T>& c, const CapsuleT<double>& s, double h) {
+    c.shape = CapsuleT<T>{cast<T>(s.a), cast<T>(s.b), T(s.radius)};
+    c.boundCenter = cast<T>(0.5 * (s.a + s.b));
+    c.boundRadius2 = boundRadius2(T(0.5 * glm::length(s.b - s.a) + s.radius + h));
+}
+// Outside the grid φ grows with the distance from it (collider_shapes.h), and on its border φ is
+// about the band, more than h: the grid's box bounds the contact (one cell of slack for the
+// interpolation).
+template <typename T>
+void setPosed(CpuCollider<T>& c, const SdfColliderT<double>& s, double h) {
+    c.shape = SdfColliderT<T>{s.grid, Mat3<T>(s.rotation), cast<T>(s.translation)};
+    const SdfGrid& g = *s.grid;
+    const glm::dvec3 half = 0.5 * g.cell * glm::dvec3(g.count - 1);
+    c.boundCenter = cast<T>(s.rotation * (g.origin + half) + s.translation);
+    c.boundRadius2 = boundRadius2(T(glm::length(half) + g.cell + h));
+}
+
+// Whether any vertex of the row may touch: branch-free, so the compiler vectorises it; the
+// response itself then decides per vertex, so the result is the same bits as without the cull.
+template <typename T>
+bool rowMayTouch(const CpuCollider<T>& c, ConstRow3<T> x, int n) {
+    int hits = 0;
+    if (const PlaneT<T>* pl = std::get_if<PlaneT<T>>(&c.shape)) {
+        const Vec3<T> q = pl->point, m = pl->normal;
+        const T h = c.params.thickness;
+        const T qMag = std::abs(q.x) + std::abs(q.y) + std::abs(q.z) + std::abs(h);
+        for (int i = 0; i < n; ++i) {
+            const T s = (x.x[i] - q.x) * m.x + (x.y[i] - q.y) * m.y + (x.z[i] - q.z) * m.z;
+            const T mag = std::abs(x.x[i]) + std::abs(x.y[i]) + std::abs(x.z[i]) + qMag;
+            hits |= int(s < h + kCullSlack<T> * mag);
+        }
+        return hits != 0;
+    }
+    const Vec3<T> b = c.boundCenter;
+    const T r2 = c.boundRadius2;
+    for (int i = 0; i < n; ++i) {
+        const T dx = x.x[i] - b.x, dy = x.y[i] - b.y, dz = x.z[i] - b.z;
+        hits |= int(dx * dx + dy * dy + dz * dz < r2);
+    }
+    return hits != 0;
+}
+
+}  // namespace
+
+template <typename T>
+void CpuColliders<T>::take(const Scene& scene) {
+    std::vector<std::optional<ColliderDrag>> drags;
+    if (rest_.size() == scene.colliders.size())
+        for (const Rest& r : rest_) drags.push_back(r.drag);  // the viewer's drags persist
+    rest_.clear();
+    posed_.clear();
+    meshes_.clear();
+    anyMoving_ = false;
+    for (const Collider& c : scene.colliders) {
+        if (const MeshCollider* m = c.as<MeshCollider>()) meshes_.push_back(m->baked);
+        Rest r{restShape(c.shape), std::nullopt, std::nullopt};
+        if (c.motion) r.motion = c.motion->motion();
+        CpuCollider<T> p;
+        p.params = {T(c.thickness), T(c.friction)};
+        p.plain = c.plain();
+        p.moving = c.motion.has_value();
+        anyMoving_ = anyMoving_ || p.moving;
+        std::visit([&](const auto& s) { setPosed(p, s, c.thickness); }, r.shape);
+        rest_.push_back(std::move(r));
+        posed_.push_back(p);
+    }
+    for (std::size_t k = 0; k < drags.size(); ++k) {
+        rest_[k].drag = drags[k];
+        if (drags[k]) setMoving(k);
+    }
+}
+
+template <typename T>
+void CpuColliders<T>::setMoving(std::size_t k) {
+    posed_[k].moving = true;
+    posed_[k].plain = false;  // a dragged plane or sphere: the general response, with v_c
+    anyMoving_ = true;
+}
+
+template <typename T>
+void CpuColliders<T>::drag(int index, const ColliderDrag& drag) {
+    if (index < 0 || std::size_t(index) >= rest_.size())
+        throw std::invalid_argument("setColliderDrag: collider " + std::to_string(index) +
+                                    " does not exist (the scene has " +
+                                    std::to_string(rest_.size()) + ")");
+    rest_[std::size_t(index)].drag = drag;
+    setMoving(std::size_t(index));
+}
+
+// The pose at time t: the motion's, then the drag's translation (collider_pose.h's rule).
+template <typename T>
+void CpuColliders<T>::pose(double t) noexcept {
+    for (std::size_t k = 0; k < rest_.size(); ++k) {
+        const Rest& r = rest_[k];
+        if (!r.motion && !r.drag) continue;
+        CpuCollider<T>& c = posed_[k];
+        Pose q = r.motion ? poseAt(*r.motion, t) : Pose{};
+        RigidVelocity w = r.motion ? velocityAt(*r.motion, t) : RigidVelocity{};
+        if (r.drag) {
+            q.translation += r.drag->at(t);
+            w.linear += r.drag->velocity;
+        }
+        std::visit([&](const auto& s) { setPosed(c, moved(s, q), double(c.params.thickness)); },
+                   r.shape);
+        c.linear = cast<T>(w.linear);
+        c.angular = cast<T>(w.angular);
+        c.origin = cast<T>(w.origin);
+    }
+}
+
+// The row kernel's view of a plane or sphere.
+template <typename T>
+ContactRow<T> contactRow(const CpuCollider<T>& c, Row3<T> x, Row3<T> v) {
+    ContactRow<T> r{x,
+                    v,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    0,
+                    c.params.thickness,
+                    c.params.friction,
+                    c.moving,
+                    c.linear.x,
+                    c.linear.y,
+                    c.linear.z,
+                    c.angular.x,
+                    c.angular.y,
+                    c.angular.z,
+                    c.origin.x,
+                    c.origin.y,
+                    c.origin.z};
+    if (const PlaneT<T>* p = std::get_if<PlaneT<T>>(&c.shape)) {
+        r.cx = p->point.x, r.cy = p->point.y, r.cz = p->point.z;
+        r.nx = p->normal.x, r.ny = p->normal.y, r.nz = p->normal.z;
+    } else if (const SphereT<T>* s = std::get_if<SphereT<T>>(&c.shape)) {
+        r.cx = s->center.x, r.cy = s->center.y, r.cz = s->center.z;
+        r.radius = s->radius;
+    }
+    return r;
+}
+
+template <typename T>
+void CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const {
+    for (const CpuCollider<T>& c : posed_) {
+        if (!rowMayTouch(c, ConstRow3<T>(x), n)) continue;
+        if (std::holds_alternative<PlaneT<T>>(c.shape)) {
+            kernels.planeContact(contactRow(c, x, v), n);
+            continue;
+        }
+        if (std::holds_alternative<SphereT<T>>(c.shape)) {
+            kernels.sphereContact(contactRow(c, x, v), n);
+            continue;
+        }
+        std::visit(
+            [&](const auto& s) {
+                for (int i = 0; i < n; ++i) {
+                    Vec3<T> p(x.x[i], x.y[i], x.z[i]), w(v.x[i], v.y[i], v.z[i]);
+                    applyOne(c, s, p, w);
+                    x.x[i] = p.x;
+                    x.y[i] = p.y;
+                    x.z[i] = p.z;
+                    v.x[i] = w.x;
+                    v.y[i] = w.y;
+                    v.z[i] = w.z;
+                }
+            },
+            c.shape);
+    }
+}
+
+template class CpuColliders<float>;
+template class CpuColliders<double>;
+
+}  // namespace cloth

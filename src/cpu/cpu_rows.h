@@ -1,0 +1,129 @@
+// The CPU backend's row kernels: loops over one grid row (or part of one) of structure-of-arrays
+// data, vectorised by the compiler across the row. cpu/isa/cpu_rows_isa.cpp is compiled once
+// per instruction set (generic x86-64, AVX2+FMA, AVX-512) and the solver picks one at run time:
+// the best the CPU has, or the one its options name (the app takes it from CLOTH_CPU_ISA). All of
+// them compute the same operations in the same order per vertex (model/spring_math.h), so they
+// give the same bits.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+
+namespace cloth {
+
+// `scalar` is not a kernel set: it is the first CPU backend's vertex-by-vertex path, kept as
+// the oracle the row kernels are tested against bit for bit.
+enum class CpuIsa { Auto, Scalar, Generic, Avx2, Avx512 };
+
+const char* cpuIsaName(CpuIsa isa);
+bool cpuIsaSupported(CpuIsa isa);  // by this CPU (Auto and Scalar always)
+// "auto", "scalar", "generic", "avx2", "avx512" → the set; nullopt for another name.
+std::optional<CpuIsa> cpuIsaFromName(const std::string& name);
+// Auto → the widest the CPU supports. Throws InputError (key CLOTH_CPU_ISA, exit 2) for an
+// instruction set this CPU lacks.
+CpuIsa resolveCpuIsa(CpuIsa requested);
+
+// Three component arrays of a row, already offset to its first element.
+template <typename T>
+struct Row3 {
+    T* x;
+    T* y;
+    T* z;
+    Row3 operator+(std::ptrdiff_t d) const { return {x + d, y + d, z + d}; }
+};
+template <typename T>
+struct ConstRow3 {
+    const T* x;
+    const T* y;
+    const T* z;
+    ConstRow3(const T* x_, const T* y_, const T* z_) : x(x_), y(y_), z(z_) {}
+    ConstRow3(const Row3<T>& r) : x(r.x), y(r.y), z(r.z) {}  // NOLINT: a row is readable
+    ConstRow3 operator+(std::ptrdiff_t d) const { return {x + d, y + d, z + d}; }
+};
+
+// One Euler update of a row: the state in (xIn, v), the force f, the new positions into xOut
+// (v in place). Parameters in SI units; inverseMass 1/kg, one mass per cloth (DESIGN.md §2).
+template <typename T>
+struct EulerRow {
+    ConstRow3<T> xIn, f;
+    Row3<T> v, xOut;
+    T h, damping, inverseMass, gx, gy, gz;
+};
+
+// Row j's whole 12-neighbour gather over a run of columns where every neighbour exists: p the
+// vertices, q[s] and c[s] the neighbour and the coefficient of spring s of the offset table
+// (model/grid.h kSpringOffsets), all at the run's first column. The springs to the rows above
+// (kComputedInGather) have their coefficients computed in the same loop, from stiffness[s] and
+// restLength[s], and stored through out[s] for the rows above: their square roots and divisions
+// then overlap the gather's arithmetic.
+template <typename T>
+struct GatherRow {
+    ConstRow3<T> p{nullptr, nullptr, nullptr};
+    ConstRow3<T> q[12]{
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+        {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr}};
+    const T* c[12]{};
+    T* out[12]{};
+    T stiffness[12]{}, restLength[12]{};
+};
+// (0, 1), (1, 1), (−1, 1), (0, 2): the upward springs that are not within the row.
+inline constexpr bool kComputedInGather[12] = {false, false, true,  false, true, true,
+                                               false, false, false, false, true, false};
+
+// A plane or sphere collider on a row of positions x and velocities v (cpu/cpu_colliders.h),
+// with the response of model/collider_contact.h lane by lane: thickness h, friction c_f, and
+// when `moving`, the collider's velocity v_c = linear + angular × (p − origin) at each vertex.
+template <typename T>
+struct ContactRow {
+    Row3<T> x, v;
+    T cx, cy, cz;  // the plane's point or the sphere's centre [m]
+    T nx, ny, nz;  // the plane's unit normal
+    T radius;      // the sphere's [m]
+    T thickness, friction;
+    bool moving;
+    T lx, ly, lz, ax, ay, az, ox, oy, oz;  // linear [m/s], angular [rad/s], origin [m]
+};
+
+// Every kernel runs over n elements from the given (already offset) pointers.
+template <typename T>
+struct RowKernels {
+    // c_i = springCoefficient(q_i − p_i, K, L): one spring per element, shared by its two ends.
+    void (*coefficients)(ConstRow3<T> p, ConstRow3<T> q, T stiffness, T restLength, T* c, int n);
+    // f_i += c_i (q_i − p_i): one spring of the 12-neighbour gather.
+    void (*accumulate)(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n);
+    // f_i = Σ_s c_s,i (q_s,i − p_i) over the modelled families in table order, f in registers:
+    // the same sums as accumulate spring by spring. Indexed by the families modelled, bit 0
+    // structural, 1 shear, 2 bend.
+    void (*gather[8])(Row3<T> f, const GatherRow<T>& row, int n);
+    // f_i += wind on the normal from a = right_i − left_i, b = up_i − down_i.
+    void (*wind)(Row3<T> f, ConstRow3<T> left, ConstRow3<T> right, ConstRow3<T> down,
+                 ConstRow3<T> up, T wx, T wy, T wz, T strength, int n);
+    void (*explicitEuler)(const EulerRow<T>& row, int n);
+    void (*symplecticEuler)(const EulerRow<T>& row, int n);
+    // Whether any element is unstable (spring_math.h badVertex).
+    bool (*anyBad)(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n);
+    // collide() of model/collider_contact.h for a plane or a sphere, branch-free: the same bits.
+    void (*planeContact)(const ContactRow<T>& row, int n);
+    void (*sphereContact)(const ContactRow<T>& row, int n);
+};
+
+template <typename T>
+const RowKernels<T>& rowKernels(CpuIsa isa);  // Generic, Avx2 or Avx512
+
+// What each instruction set's translation unit defines.
+#define CLOTH_DECLARE_ROW_KERNELS(ns)                       \
+    namespace ns {                                          \
+    template <typename T>                                   \
+    const RowKernels<T>& rowKernels();                      \
+    extern template const RowKernels<float>& rowKernels();  \
+    extern template const RowKernels<double>& rowKernels(); \
+    }
+CLOTH_DECLARE_ROW_KERNELS(isa_generic)
+CLOTH_DECLARE_ROW_KERNELS(isa_avx2)
+CLOTH_DECLARE_ROW_KERNELS(isa_avx512)
+#undef CLOTH_DECLARE_ROW_KERNELS
+
+}  // namespace cloth

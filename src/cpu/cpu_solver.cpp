@@ -1,0 +1,388 @@
+#include "cpu/cpu_solver.h"
+
+#include <barrier>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "cpu/cpu_solver_vertex.h"
+#include "model/forces.h"
+
+namespace cloth {
+namespace {
+
+template <typename T>
+Vec3<T> cast(const glm::dvec3& v) {
+    return Vec3<T>(v);
+}
+
+// Vertices below this count run on one thread: a barrier costs more than their whole step.
+constexpr std::int64_t kMinVerticesPerThread = 4096;
+
+int chooseThreads(int requested, std::int64_t vertices) {
+    if (requested > 0) return requested;
+    const int hw = std::max(1u, std::thread::hardware_concurrency());
+    return int(std::clamp<std::int64_t>(vertices / kMinVerticesPerThread, 1, hw));
+}
+
+}  // namespace
+
+template <typename T>
+CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
+    : grid_(scene.grid()), features_(Features::of(scene)), isa_(resolveCpuIsa(isa)) {
+    if (isa_ != CpuIsa::Scalar) kernels_ = &rowKernels<T>(isa_);
+    const std::int64_t n = grid_.count();
+    const int nu = grid_.nu, nv = grid_.nv;
+    x_.assign(n, Vec3<T>(0));
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) x_.set(grid_.index(i, j), cast<T>(grid_.restPosition(i, j)));
+    v_.assign(n, Vec3<T>(0));
+    pinned_.assign(n, 0);
+    pinPosition_.assign(std::size_t(n), Vec3<T>(0));
+    for (const Pin& p : scene.pins) setPinned(p.i, p.j, true);
+    takeFollowPins(scene);
+    method_ = scene.integrator.method;
+    takeParameters(scene);
+    if (fused())
+        xNext_ = x_;
+    else
+        f_.assign(n, Vec3<T>(0));
+    if (method_ == Method::Rk4)
+        for (auto* a : {&x0_, &v0_, &sumX_, &sumV_}) a->assign(n, Vec3<T>(0));
+    if (method_ == Method::ImplicitEuler)
+        for (auto* a : {&dv_, &r_, &p_, &ap_}) a->assign(n, Vec3<T>(0));
+    // Bands of whole rows, on chunk boundaries (reduce()), so each row's sweep is one thread's.
+    const int chunkRows = int(std::max<std::int64_t>(1, kChunk / nu));
+    chunk_ = std::int64_t(chunkRows) * nu;
+    const int chunks = (nv + chunkRows - 1) / chunkRows;
+    for (auto& p : partials_) p.assign(std::size_t(chunks), 0.0);
+    const int t = int(std::min<std::int64_t>(chooseThreads(threads, n), chunks));
+    bands_.resize(std::size_t(t));
+    for (int b = 0; b < t; ++b) {
+        Band& band = bands_[std::size_t(b)];
+        band.rowBegin = std::min(nv, int(std::int64_t(chunks) * b / t) * chunkRows);
+        band.rowEnd = std::min(nv, int(std::int64_t(chunks) * (b + 1) / t) * chunkRows);
+        band.begin = std::int64_t(band.rowBegin) * nu;
+        band.end = std::int64_t(band.rowEnd) * nu;
+        if (kernels_) {
+            band.coefficients.assign(std::size_t(3) * upwardSprings_ * std::size_t(nu), T(0));
+            if (fused()) band.force.assign(nu, Vec3<T>(0));
+        }
+    }
+    pool_ = std::make_unique<WorkerPool>(t);
+}
+
+template <typename T>
+bool CpuSolver<T>::fused() const {
+    return kernels_ && (method_ == Method::ExplicitEuler || method_ == Method::SymplecticEuler);
+}
+
+// Everything a scene sets that leaves the grid, the pins and the features as they are.
+template <typename T>
+void CpuSolver<T>::takeParameters(const Scene& scene) {
+    grid_ = scene.grid();
+    Solver::setStepDt(scene.integrator.dt);
+    springs_ = activeSprings<T>(scene);
+    rowSprings_.clear();
+    upwardSprings_ = families_ = 0;
+    for (const Spring& sp : springs_) {
+        const bool upward = sp.dj > 0 || (sp.dj == 0 && sp.di > 0);
+        int table = 0;
+        while (kSpringOffsets[table].di != sp.di || kSpringOffsets[table].dj != sp.dj) ++table;
+        families_ |= 1 << int(kSpringOffsets[table].family);
+        rowSprings_.push_back({sp.di, sp.dj, sp.stiffness, sp.restLength, upward,
+                               upward ? upwardSprings_++ : -1, table});
+    }
+    for (RowSpring& r : rowSprings_)  // a family's springs come in pairs ±(di, dj)
+        for (const RowSpring& u : rowSprings_)
+            if (!r.upward && u.upward && u.di == -r.di && u.dj == -r.dj) r.slot = u.slot;
+    tolerance_ = scene.integrator.tolerance;
+    maxIterations_ = scene.integrator.maxIterations;
+    forcesValid_ = false;
+    inverseMass_ = T(1.0 / scene.cloth.mass);
+    dt_t_ = T(scene.integrator.dt);
+    damping_ = T(scene.damping);
+    gravity_ = cast<T>(scene.gravity);
+    maxSpeed_ = scene.maxSpeed;
+    maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
+    windStrength_ = scene.wind ? T(scene.wind->strength) : T(0);
+    windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
+    colliders_.take(scene);
+}
+
+template <typename T>
+void CpuSolver<T>::setParameters(const Scene& scene) {
+    if (scene.cloth.nu != grid_.nu || scene.cloth.nv != grid_.nv)
+        throw std::invalid_argument("setParameters: the grid size differs; build a new solver");
+    if (!(Features::of(scene) == features_))
+        throw std::invalid_argument("setParameters: the features differ; build a new solver");
+    if (scene.integrator.method != method_)
+        throw std::invalid_argument("setParameters: the integrator differs; build a new solver");
+    if (!samePins(scene))
+        throw std::invalid_argument("setParameters: the pins differ; use setPinned");
+    takeParameters(scene);
+    follows_ = followPins(scene);  // the same vertices and colliders, the motions may differ
+}
+
+template <typename T>
+void CpuSolver<T>::write(const SimState& state) {
+    if (state.nu != grid_.nu || state.nv != grid_.nv ||
+        std::int64_t(state.positions.size()) != x_.size() ||
+        std::int64_t(state.velocities.size()) != v_.size())
+        throw std::invalid_argument("write: the state is for another grid");
+    for (std::int64_t k = 0; k < x_.size(); ++k) {
+        x_.set(k, cast<T>(state.positions[std::size_t(k)]));
+        v_.set(k, cast<T>(state.velocities[std::size_t(k)]));
+        if (pinned_[k]) pinPosition_[k] = x_.get(k);  // a pin holds the vertex where it now is
+    }
+    Solver::setTime(state.time);
+    forcesValid_ = false;
+    for (Band& b : bands_) {  // a written state starts afresh, as on the GPU
+        b.badVertex = -1;
+        b.reason.clear();
+    }
+}
+
+template <typename T>
+void CpuSolver<T>::setGrab(const std::optional<Grab>& grab) {
+    if (grab && (grab->vertex < 0 || grab->vertex >= grid_.count()))
+        throw std::invalid_argument("setGrab: vertex outside the grid");
+    if (grab)
+        grab_ = GrabT{grab->vertex, cast<T>(grab->target), T(grab->stiffness)};
+    else
+        grab_.reset();
+    forcesValid_ = false;
+}
+
+// Out of the hot loop: the message for the first bad vertex of a band.
+template <typename T>
+void CpuSolver<T>::reportBad(Band& band, std::int64_t k, const Vec3<T>& p, T speed2) const {
+    char buf[160];
+    const int i = int(k % grid_.nu), j = int(k / grid_.nu);
+    if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2))
+        std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
+    else
+        std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
+                      double(std::sqrt(speed2)), maxSpeed_, i, j);
+    band.badVertex = k;
+    band.reason = buf;
+}
+
+template <typename T>
+bool CpuSolver<T>::advance(Band& band, const Team& team, long stepNumber, bool& haveForces) {
+    switch (method_) {
+        case Method::ExplicitEuler:
+            return stepEuler(band, team, false);
+        case Method::SymplecticEuler:
+            return stepEuler(band, team, true);
+        case Method::Verlet:
+            return stepVerlet(band, team, haveForces);
+        case Method::Rk4:
+            return stepRk4(band, team);
+        case Method::ImplicitEuler:
+            return stepImplicit(band, team, stepNumber);
+    }
+    return false;
+}
+
+// explicit_euler, the seed's scheme (DESIGN.md §2, seed eq. (6)): x moves with the old
+// velocity. symplectic_euler: with the new one.
+template <typename T>
+bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
+    if (fused()) return stepEulerFused(band, symplectic);
+    computeForcesScalar(band.begin, band.end);
+    team.sync();
+    const T h = dt_t_;
+    for (std::int64_t k = band.begin; k < band.end; ++k) {
+        Vec3<T> p = x_.get(k), v = v_.get(k);
+        const Vec3<T> a = acceleration(k, v);
+        if (!symplectic) p += h * v;
+        v += h * a;
+        if (symplectic) p += h * v;
+        if (!finishVertex(band, k, p, v)) return false;
+    }
+    return true;
+}
+
+// Velocity Verlet, kick–drift–kick, the second kick's damping taken at v_{n+1} (trapezoidal):
+// v_{n+1} = (v_half + h/2 (F_{n+1}/m + g)) / (1 + hμ/(2m)). F_{n+1} stays in f_ for the next step.
+template <typename T>
+bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
+    if (!haveForces) {
+        computeForces(band);
+        team.sync();
+    }
+    const T h = dt_t_, half = T(0.5) * dt_t_;
+    for (std::int64_t k = band.begin; k < band.end; ++k) {  // kick and drift
+        const Vec3<T> v0 = v_.get(k);
+        Vec3<T> v = v0 + half * acceleration(k, v0);
+        Vec3<T> p = x_.get(k) + h * v;
+        constrainVertex(k, p, v);
+    }
+    team.sync();
+    computeForces(band);  // F(x_{n+1}); the kick reads only its own vertex
+    haveForces = true;
+    bool ok = true;
+    const T w = inverseMass_;
+    for (std::int64_t k = band.begin; k < band.end && ok; ++k) {  // kick
+        Vec3<T> v = (v_.get(k) + half * (f_.get(k) * w + gravity_)) / (T(1) + half * damping_ * w);
+        if (pinned_[k]) v = pinVelocity(k);
+        v_.set(k, v);
+        const T speed2 = glm::dot(v, v);
+        const Vec3<T> p = x_.get(k);
+        if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2) || speed2 > maxSpeed2_)
+            ok = finishVertex(band, k, p, v);  // reports it (pins and colliders are no-ops now)
+    }
+    return ok;
+}
+
+// Classic RK4 on y = (x, v): stage s evaluates f at the stage state in x_, v_; the start
+// (x0_, v0_) and the sums k1 + 2k2 + 2k3 (sumX_, sumV_) carry across the stages.
+template <typename T>
+bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
+    const T h = dt_t_, half = T(0.5) * dt_t_, sixth = dt_t_ / T(6);
+    for (int stage = 0; stage < 4; ++stage) {
+        computeForces(band);
+        team.sync();
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            const Vec3<T> v = v_.get(k);
+            const Vec3<T> a = acceleration(k, v);
+            if (stage == 0) {
+                x0_[k] = x_.get(k);
+                v0_[k] = v;
+                sumX_[k] = v;
+                sumV_[k] = a;
+            } else if (stage < 3) {
+                sumX_[k] += T(2) * v;
+                sumV_[k] += T(2) * a;
+            }
+            if (stage == 3) {
+                if (!finishVertex(band, k, x0_[k] + sixth * (sumX_[k] + v),
+                                  v0_[k] + sixth * (sumV_[k] + a)))
+                    return false;
+                continue;
+            }
+            const T c = stage == 2 ? h : half;  // the next stage's point: y_n + c k
+            if (pinned_[k]) {  // at the end of the step's pose (follow pins) in every stage
+                x_.set(k, pinPosition_[k]);
+                v_.set(k, pinVelocity(k));
+            } else {
+                x_.set(k, x0_[k] + c * v);
+                v_.set(k, v0_[k] + c * a);
+            }
+        }
+        if (stage < 3) team.sync();
+    }
+    return true;
+}
+
+template <typename T>
+StepResult CpuSolver<T>::step(long n) {
+    StepResult result;
+    if (bands_.size() == 1) {
+        Band& band = bands_[0];
+        bool haveForces = forcesValid_;
+        for (long s = 0; s < n; ++s) {
+            ++result.stepsTaken;
+            poseColliders(steps_ + s + 1);
+            const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
+            if (fused()) std::swap(x_, xNext_);  // the fused sweep always completes its step
+            if (!ok) break;
+        }
+    } else {
+        result = stepThreaded(n);
+    }
+    forcesValid_ = method_ == Method::Verlet && result.stepsTaken > 0;
+    steps_ += result.stepsTaken;
+    for (const Band& b : bands_) {  // bands are in vertex order: the first bad one is the lowest
+        if (b.badVertex < 0) continue;
+        result.unstable = true;
+        result.firstBadStep = result.lastBadStep = steps_;
+        result.reason = b.reason;
+        forcesValid_ = false;
+        break;
+    }
+    return result;
+}
+
+template <typename T>
+StepResult CpuSolver<T>::stepThreaded(long n) {
+    // Every vertex's update reads only its own force and the previous positions, and dot
+    // products sum fixed chunks in order, so the result is bit-identical to a serial run
+    // whatever the number of threads.
+    std::barrier sync(std::ptrdiff_t(bands_.size()));
+    const Team team{&sync};
+    // The end of a step: once every band is done, the fused sweep's new positions become x_.
+    // The moving colliders are posed for the next step there too, while every thread waits.
+    long posed = steps_ + 1;
+    poseColliders(posed);
+    auto swapPositions = [this, &posed]() noexcept {
+        if (fused()) std::swap(x_, xNext_);
+        poseColliders(++posed);
+    };
+    std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
+    std::atomic<bool> bad{false};
+    long taken = 0;
+    const bool forcesValid = forcesValid_;
+    pool_->run([&](int t) {
+        Band& band = bands_[t];
+        bool haveForces = forcesValid;
+        long s = 0;
+        while (s < n) {
+            if (!advance(band, team, steps_ + s + 1, haveForces))
+                bad.store(true, std::memory_order_relaxed);
+            ++s;
+            stepEnd.arrive_and_wait();
+            if (bad.load(std::memory_order_relaxed)) break;
+        }
+        if (t == 0) taken = s;
+    });
+    StepResult r;
+    r.stepsTaken = taken;
+    return r;
+}
+
+template <typename T>
+SimState CpuSolver<T>::read() const {
+    SimState s;
+    s.nu = grid_.nu;
+    s.nv = grid_.nv;
+    s.positions.resize(std::size_t(x_.size()));
+    s.velocities.resize(std::size_t(v_.size()));
+    for (std::int64_t k = 0; k < x_.size(); ++k) {
+        s.positions[std::size_t(k)] = x_.get(k);
+        s.velocities[std::size_t(k)] = v_.get(k);
+    }
+    s.time = time();
+    return s;
+}
+
+template <typename T>
+std::size_t CpuSolver<T>::allocatedBytes() const {
+    std::size_t vectors = 0;
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_}) vectors += std::size_t(a->size());
+    for (const auto* a :
+         {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
+        vectors += a->size();
+    return vectors * sizeof(Vec3<T>) + pinned_.size();
+}
+
+template <typename T>
+std::size_t CpuSolver<T>::scratchBytes() const {
+    std::size_t bytes = 0;
+    for (const Band& b : bands_)
+        bytes += (b.coefficients.size() + 3 * std::size_t(b.force.size())) * sizeof(T);
+    return bytes;
+}
+
+template <typename T>
+std::string CpuSolver<T>::name() const {
+    const int t = int(bands_.size());
+    return std::string("cpu ") + (sizeof(T) == 4 ? "float" : "double") + " " + cpuIsaName(isa_) +
+           ", " + std::to_string(t) + (t == 1 ? " thread" : " threads");
+}
+
+template class CpuSolver<float>;
+template class CpuSolver<double>;
+
+}  // namespace cloth

@@ -1,0 +1,178 @@
+// The CPU backend: DESIGN.md §2 in float or double, threads over bands of vertex rows, with the
+// five integrators of docs/integrators.md. State is structure-of-arrays (cpu/cpu_soa.h); the
+// force pass runs row by row through vectorised kernels (cpu/cpu_rows.h) picked for the CPU at
+// run time, and explicit/symplectic Euler fuse forces and update in one sweep over the rows
+// (docs/performance.md, "CPU: SIMD layout, vectorised gather, fused passes").
+#pragma once
+
+#include <atomic>
+#include <barrier>
+#include <memory>
+#include <variant>
+#include <vector>
+
+#include "cpu/cpu_colliders.h"
+#include "cpu/cpu_rows.h"
+#include "cpu/cpu_soa.h"
+#include "model/pin_follow.h"
+#include "solver/solver.h"
+#include "model/stiffness.h"
+#include "cpu/worker_pool.h"
+
+namespace cloth {
+
+template <typename T>
+class CpuSolver final : public Solver {
+public:
+    // isa: which row kernels; Auto picks the CPU's best or CLOTH_CPU_ISA (cpu/cpu_rows.h).
+    CpuSolver(const Scene& scene, int threads, CpuIsa isa = CpuIsa::Auto);
+
+    StepResult step(long n) override;
+    SimState read() const override;
+    Features features() const override { return features_; }
+    std::string name() const override;
+    CpuIsa isa() const { return isa_; }
+    // Bytes of the per-vertex arrays it holds (bench/bench_speed_model.h cpuBytesPerVertex models
+    // them), and of the threads' scratch rows.
+    std::size_t allocatedBytes() const;
+    std::size_t scratchBytes() const;
+
+    void write(const SimState& state) override;
+    void setPinned(int i, int j, bool pinned) override;
+    void setGrab(const std::optional<Grab>& grab) override;
+    void setParameters(const Scene& scene) override;
+    void setColliderDrag(int index, const glm::dvec3& offset, const glm::dvec3& velocity) override {
+        colliders_.drag(index, {offset, velocity, time()});
+    }
+
+private:
+    using Spring = StencilSpring<T>;
+    // reduce() sums chunks of whole rows, about this many vertices, each in order, then the
+    // chunks in order; bands start on chunk boundaries, so a dot product has the same bits for
+    // any thread count.
+    static constexpr std::int64_t kChunk = 1024;
+    // A thread's rows [rowBegin, rowEnd) = vertices [begin, end), what it found wrong, and its
+    // scratch rows. Cache-line aligned: no two threads write to one line of their bands.
+    struct alignas(64) Band {
+        std::int64_t begin = 0, end = 0;
+        int rowBegin = 0, rowEnd = 0;
+        std::int64_t badVertex = -1;
+        std::string reason;
+        int reductions = 0;  // dot products taken so far: picks the partial-sum slot
+        // Spring coefficients of the last 3 rows (row j in slot j % 3), one array of nu per
+        // upward spring: each spring's sqrt and division are done once for its two ends.
+        AlignedVector<T> coefficients;
+        Soa3<T> force;  // one row of forces (the fused Euler sweep)
+    };
+    // A spring of the offset table as the row pass sees it: "upward" springs (dj > 0, or dj = 0
+    // and di > 0) have their coefficients computed; the others read those of their reverse.
+    struct RowSpring {
+        int di, dj;
+        T stiffness, restLength;
+        bool upward;
+        int slot;   // the coefficient array of this spring's upward direction
+        int table;  // its index in kSpringOffsets
+    };
+    // The threads of one step(n) call: sync() is a barrier between passes (none when serial).
+    struct Team {
+        std::barrier<>* barrier = nullptr;
+        void sync() const {
+            if (barrier) barrier->arrive_and_wait();
+        }
+    };
+
+    struct GrabT {
+        std::int64_t vertex;
+        Vec3<T> target;
+        T stiffness;
+    };
+
+    void takeParameters(const Scene& scene);
+    void computeForces(Band& band);  // pass 1: F(x) into f_ for the band's rows
+    void computeForcesScalar(std::int64_t begin, std::int64_t end);  // the same, vertex by vertex
+    // The row pass: spring coefficients of rows rowBegin − 2 … rowEnd − 1 into the band's ring,
+    // rowDone(j) after row j's are in; forceRow gathers row j's forces from the ring.
+    template <typename RowDone>
+    void sweepRows(Band& band, const RowDone& rowDone);
+    void coefficientRow(Band& band, int j, bool gatherLater);
+    // Rows two or more from the border, wide enough to have columns that are too: one gather.
+    bool interiorRow(int j) const { return j >= 2 && j < grid_.nv - 2 && grid_.nu >= 5; }
+    void forceRow(Band& band, int j, Row3<T> f);
+    const T* coefficientAt(const Band& band, const RowSpring& s, int j, int i) const;
+    bool stepEulerFused(Band& band, bool symplectic);
+    bool reportFirstBad(Band& band, std::int64_t begin, std::int64_t end);
+    // One step of the scene's integrator over this band's vertices; false if it went unstable.
+    bool advance(Band& band, const Team& team, long stepNumber, bool& haveForces);
+    bool stepEuler(Band& band, const Team& team, bool symplectic);
+    bool stepVerlet(Band& band, const Team& team, bool& haveForces);
+    bool stepRk4(Band& band, const Team& team);
+    bool stepImplicit(Band& band, const Team& team, long stepNumber);
+    // The end of every step: pins, colliders in scene order, then the instability check.
+    bool finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
+    void constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v);  // pins, then colliders
+    void collideVertex(Vec3<T>& p, Vec3<T>& v) const;              // colliders in scene order
+    [[gnu::cold, gnu::noinline]] void reportBad(Band& band, std::int64_t k, const Vec3<T>& p,
+                                                T speed2) const;
+    Vec3<T> acceleration(std::int64_t k, const Vec3<T>& v) const;
+    // Σ over all vertices of one value per vertex, the same bits whatever the thread count:
+    // fixed chunks summed in order.
+    template <typename PerVertex>
+    double reduce(Band& band, const Team& team, const PerVertex& value);
+    void systemProduct(const Band& band, const std::vector<Vec3<T>>& p, std::vector<Vec3<T>>& out);
+    bool fused() const;  // explicit/symplectic Euler on row kernels: forces and update in one sweep
+    void recordSolve(long stepNumber, int iterations, double residual, bool converged);
+    StepResult stepThreaded(long n);
+
+    Grid grid_;
+    Features features_;
+    std::vector<Spring> springs_;
+    std::vector<RowSpring> rowSprings_;
+    int upwardSprings_ = 0;
+    int families_ = 0;  // bit f: family f is modelled (RowKernels::gather)
+    Method method_;
+    CpuIsa isa_;
+    const RowKernels<T>* kernels_ = nullptr;  // null on the scalar path
+    // x_, v_: the state. The fused Euler sweep writes the new positions into xNext_ (neighbours
+    // still read the old ones) and the two swap at the end of the step; it needs no f_.
+    Soa3<T> x_, v_, f_, xNext_;
+    std::vector<Vec3<T>> pinPosition_;
+    std::vector<std::int64_t> pinList_;  // the pinned vertices, ascending
+    // Pins that follow a collider (model/pin_follow.h), posed with the colliders; their velocity
+    // per vertex, sized only when there are any (every other pin's is 0).
+    std::vector<FollowPin> follows_;
+    std::vector<Vec3<T>> pinVelocity_;
+    Vec3<T> pinVelocity(std::int64_t k) const {
+        return pinVelocity_.empty() ? Vec3<T>(0) : pinVelocity_[std::size_t(k)];
+    }
+    void takeFollowPins(const Scene& scene);      // (cpu_pins.cpp)
+    bool samePins(const Scene& scene) const;      // the grid's pins and follows equal the scene's
+    void poseFollowPins(double t) noexcept;       // at time t [s]; allocates nothing
+    std::vector<Vec3<T>> x0_, v0_, sumX_, sumV_;  // rk4: the step's start and Σ k_i
+    std::vector<Vec3<T>> dv_, r_, p_, ap_;        // implicit_euler: CG vectors
+    std::vector<double> partials_[2];             // per chunk, for reduce()
+    std::int64_t chunk_ = kChunk;                 // vertices per chunk: whole rows
+    double tolerance_ = 0;
+    int maxIterations_ = 0;
+    bool forcesValid_ = false;  // verlet: f_ holds F(x) of the current state
+    T inverseMass_;             // 1/m: one mass per cloth (DESIGN.md §2)
+    std::vector<std::uint8_t> pinned_;
+    T dt_t_, damping_, maxSpeed2_, windStrength_;
+    Vec3<T> gravity_, windDirection_;
+    CpuColliders<T> colliders_;
+    // Poses the moving colliders and the pins that follow them at the end of step `stepNumber`
+    // (1-based), before it is taken.
+    void poseColliders(long stepNumber) noexcept {
+        const double t = Solver::timeAt(stepNumber);
+        if (colliders_.anyMoving()) colliders_.pose(t);
+        if (!follows_.empty()) poseFollowPins(t);
+    }
+    double maxSpeed_;
+    std::optional<GrabT> grab_;
+    std::vector<Band> bands_;
+    std::unique_ptr<WorkerPool> pool_;
+};
+
+extern template class CpuSolver<float>;
+extern template class CpuSolver<double>;
+
+}  // namespace cloth

@@ -1,0 +1,251 @@
+// The row kernels of cpu/cpu_rows.h for one instruction set: CMake compiles this file once per
+// set with CLOTH_ISA_NS naming the namespace and that set's -m flags, plus -ffp-contract=off (no
+// FMA: the same bits as the scalar path), -fno-math-errno (sqrt vectorises) and
+// -fno-trapping-math (a conditional division vectorises without AVX-512 masks). Plain loops over
+// restrict-qualified arrays: the compiler vectorises each across the row. No standard-library
+// templates here, so no out-of-line copy compiled for a wider ISA can leak into generic code.
+#include <cmath>
+#include <type_traits>
+
+#include "cpu/cpu_rows.h"
+#include "model/spring_math.h"
+
+#ifndef CLOTH_ISA_NS
+#error "CLOTH_ISA_NS names the instruction set this file is compiled for"
+#endif
+
+// The loop's arrays do not overlap (each is a restrict parameter or a distinct row): GCC may
+// vectorise without run-time alias checks. Clang (the fuzzer's build) has no such pragma.
+#if defined(__GNUC__) && !defined(__clang__)
+#define CLOTH_IVDEP _Pragma("GCC ivdep")
+#else
+#define CLOTH_IVDEP
+#endif
+
+namespace cloth::CLOTH_ISA_NS {
+namespace {
+
+// Every array a parameter of its own, restrict-qualified: GCC then knows the stores do not
+// alias the loads and vectorises (positions may alias each other: they are only read).
+template <typename T>
+void coefficientLoop(const T* __restrict px, const T* __restrict py, const T* __restrict pz,
+                     const T* __restrict qx, const T* __restrict qy, const T* __restrict qz,
+                     T stiffness, T restLength, T* __restrict c, int n) {
+    for (int i = 0; i < n; ++i)
+        c[i] =
+            springCoefficient(qx[i] - px[i], qy[i] - py[i], qz[i] - pz[i], stiffness, restLength);
+}
+template <typename T>
+void coefficients(ConstRow3<T> p, ConstRow3<T> q, T stiffness, T restLength, T* c, int n) {
+    coefficientLoop(p.x, p.y, p.z, q.x, q.y, q.z, stiffness, restLength, c, n);
+}
+
+template <typename T>
+void accumulateLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict px,
+                    const T* __restrict py, const T* __restrict pz, const T* __restrict qx,
+                    const T* __restrict qy, const T* __restrict qz, const T* __restrict c, int n) {
+    for (int i = 0; i < n; ++i) {
+        fx[i] += c[i] * (qx[i] - px[i]);
+        fy[i] += c[i] * (qy[i] - py[i]);
+        fz[i] += c[i] * (qz[i] - pz[i]);
+    }
+}
+template <typename T>
+void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
+    accumulateLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, c, n);
+}
+
+template <typename T, int kFamilies>
+void gather(Row3<T> f, const GatherRow<T>& g, int n) {
+    T* __restrict fx = f.x;
+    T* __restrict fy = f.y;
+    T* __restrict fz = f.z;
+    CLOTH_IVDEP
+    for (int i = 0; i < n; ++i) {
+        const T px = g.p.x[i], py = g.p.y[i], pz = g.p.z[i];
+        T x = T(0), y = T(0), z = T(0);
+#pragma GCC unroll 12
+        for (int s = 0; s < 12; ++s) {
+            if (!((kFamilies >> (s / 4)) & 1)) continue;  // springs 4f … 4f+3 are family f
+            T c;
+            if (kComputedInGather[s]) {
+                c = springCoefficient(g.q[s].x[i] - px, g.q[s].y[i] - py, g.q[s].z[i] - pz,
+                                      g.stiffness[s], g.restLength[s]);
+                g.out[s][i] = c;
+            } else {
+                c = g.c[s][i];
+            }
+            x += c * (g.q[s].x[i] - px);
+            y += c * (g.q[s].y[i] - py);
+            z += c * (g.q[s].z[i] - pz);
+        }
+        fx[i] = x;
+        fy[i] = y;
+        fz[i] = z;
+    }
+}
+
+template <typename T>
+void windLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict lx,
+              const T* __restrict ly, const T* __restrict lz, const T* __restrict rx,
+              const T* __restrict ry, const T* __restrict rz, const T* __restrict dx,
+              const T* __restrict dy, const T* __restrict dz, const T* __restrict ux,
+              const T* __restrict uy, const T* __restrict uz, T wx, T wy, T wz, T strength, int n) {
+    for (int i = 0; i < n; ++i) {
+        T nx, ny, nz;
+        unitNormal(rx[i] - lx[i], ry[i] - ly[i], rz[i] - lz[i], ux[i] - dx[i], uy[i] - dy[i],
+                   uz[i] - dz[i], nx, ny, nz);
+        addWind(nx, ny, nz, wx, wy, wz, strength, fx[i], fy[i], fz[i]);
+    }
+}
+template <typename T>
+void wind(Row3<T> f, ConstRow3<T> left, ConstRow3<T> right, ConstRow3<T> down, ConstRow3<T> up,
+          T wx, T wy, T wz, T strength, int n) {
+    windLoop(f.x, f.y, f.z, left.x, left.y, left.z, right.x, right.y, right.z, down.x, down.y,
+             down.z, up.x, up.y, up.z, wx, wy, wz, strength, n);
+}
+
+template <typename T, bool kSymplectic>
+void eulerLoop(const T* __restrict xx, const T* __restrict xy, const T* __restrict xz,
+               const T* __restrict fx, const T* __restrict fy, const T* __restrict fz,
+               T* __restrict vx, T* __restrict vy, T* __restrict vz, T* __restrict px,
+               T* __restrict py, T* __restrict pz, T h, T mu, T w, T gx, T gy, T gz, int n) {
+    for (int i = 0; i < n; ++i) {
+        T x = xx[i], y = xy[i], z = xz[i];
+        T u = vx[i], v = vy[i], s = vz[i];
+        eulerComponent<T, kSymplectic>(x, u, fx[i], h, mu, w, gx);
+        eulerComponent<T, kSymplectic>(y, v, fy[i], h, mu, w, gy);
+        eulerComponent<T, kSymplectic>(z, s, fz[i], h, mu, w, gz);
+        px[i] = x;
+        py[i] = y;
+        pz[i] = z;
+        vx[i] = u;
+        vy[i] = v;
+        vz[i] = s;
+    }
+}
+template <typename T, bool kSymplectic>
+void euler(const EulerRow<T>& r, int n) {
+    eulerLoop<T, kSymplectic>(r.xIn.x, r.xIn.y, r.xIn.z, r.f.x, r.f.y, r.f.z, r.v.x, r.v.y, r.v.z,
+                              r.xOut.x, r.xOut.y, r.xOut.z, r.h, r.damping, r.inverseMass, r.gx,
+                              r.gy, r.gz, n);
+}
+
+template <typename T>
+bool anyBad(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n) {
+    const T* __restrict px = x.x, * __restrict py = x.y, * __restrict pz = x.z;
+    const T* __restrict vx = v.x, * __restrict vy = v.y, * __restrict vz = v.z;
+    int bad = 0;
+    for (int i = 0; i < n; ++i)
+        bad |= int(badVertex(px[i], py[i], pz[i], vx[i], vy[i], vz[i], maxSpeed2));
+    return bad != 0;
+}
+
+// model/collider_contact.h's collide() for a plane (kSphere false) or a sphere, every lane
+// computed and the result selected, in the same operations and order as the scalar code
+// (glm's dot is (x + y) + z, its cross a.y·b.z − b.y·a.z, ...): the same bits.
+template <typename T, bool kSphere, bool kFriction, bool kMoving>
+void contactLoop(T* __restrict px, T* __restrict py, T* __restrict pz, T* __restrict vx,
+                 T* __restrict vy, T* __restrict vz, const ContactRow<T>& r, int n) {
+    // Every parameter in a local: loads through r inside the loop would stop the vectoriser.
+    const T cx = r.cx, cy = r.cy, cz = r.cz, h = r.thickness, cf = r.friction, radius = r.radius;
+    const T mx = r.nx, my = r.ny, mz = r.nz;
+    const T lx = r.lx, ly = r.ly, lz = r.lz, ax = r.ax, ay = r.ay, az = r.az;
+    const T ox0 = r.ox, oy0 = r.oy, oz0 = r.oz;
+    const T shell = radius + h;
+    // The six arrays are distinct (restrict); say so to GCC, which otherwise versions the loop
+    // for aliasing and gives up past ten checks.
+    CLOTH_IVDEP
+    for (int i = 0; i < n; ++i) {
+        const T x = px[i], y = py[i], z = pz[i];
+        T phi, nx, ny, nz;
+        if constexpr (kSphere) {
+            const T rx = x - cx, ry = y - cy, rz = z - cz;
+            const T len = std::sqrt((rx * rx + ry * ry) + rz * rz);
+            phi = len - radius;
+            const bool away = len > T(0);
+            nx = away ? rx / len : T(0);
+            ny = away ? ry / len : T(1);
+            nz = away ? rz / len : T(0);
+        } else {
+            nx = mx;
+            ny = my;
+            nz = mz;
+            phi = ((x - cx) * nx + (y - cy) * ny) + (z - cz) * nz;
+        }
+        T ux = T(0), uy = T(0), uz = T(0);  // v_c at the vertex, before its projection
+        if constexpr (kMoving) {
+            const T dx = x - ox0, dy = y - oy0, dz = z - oz0;
+            ux = lx + (ay * dz - dy * az);
+            uy = ly + (az * dx - dz * ax);
+            uz = lz + (ax * dy - dx * ay);
+        }
+        const bool touch = phi < h;
+        T qx, qy, qz;
+        if constexpr (kSphere) {
+            qx = cx + shell * nx;
+            qy = cy + shell * ny;
+            qz = cz + shell * nz;
+        } else {
+            const T push = h - phi;
+            qx = x + push * nx;
+            qy = y + push * ny;
+            qz = z + push * nz;
+        }
+        const T v0x = vx[i], v0y = vy[i], v0z = vz[i];
+        const T wx = v0x - ux, wy = v0y - uy, wz = v0z - uz;
+        const T wn = (wx * nx + wy * ny) + wz * nz;
+        T ox = v0x - wn * nx, oy = v0y - wn * ny, oz = v0z - wn * nz;
+        if constexpr (kFriction) {
+            const T tx = wx - wn * nx, ty = wy - wn * ny, tz = wz - wn * nz;
+            const T slide = std::sqrt((tx * tx + ty * ty) + tz * tz);
+            const T budget = cf * std::fabs(wn);
+            const bool stick = slide <= budget;
+            const T k = budget / slide;
+            ox = stick ? ux : ox - k * tx;
+            oy = stick ? uy : oy - k * ty;
+            oz = stick ? uz : oz - k * tz;
+        }
+        px[i] = touch ? qx : x;
+        py[i] = touch ? qy : y;
+        pz[i] = touch ? qz : z;
+        vx[i] = touch ? ox : v0x;
+        vy[i] = touch ? oy : v0y;
+        vz[i] = touch ? oz : v0z;
+    }
+}
+template <typename T, bool kSphere>
+void contact(const ContactRow<T>& r, int n) {
+    const bool friction = r.friction > T(0);
+    auto run = [&](auto kFriction, auto kMoving) {
+        contactLoop<T, kSphere, decltype(kFriction)::value, decltype(kMoving)::value>(
+            r.x.x, r.x.y, r.x.z, r.v.x, r.v.y, r.v.z, r, n);
+    };
+    using Yes = std::true_type;
+    using No = std::false_type;
+    if (friction && r.moving) return run(Yes{}, Yes{});
+    if (friction) return run(Yes{}, No{});
+    if (r.moving) return run(No{}, Yes{});
+    run(No{}, No{});
+}
+
+}  // namespace
+
+template <typename T>
+const RowKernels<T>& rowKernels() {
+    static const RowKernels<T> kernels{&coefficients<T>,
+                                       &accumulate<T>,
+                                       {&gather<T, 0>, &gather<T, 1>, &gather<T, 2>, &gather<T, 3>,
+                                        &gather<T, 4>, &gather<T, 5>, &gather<T, 6>, &gather<T, 7>},
+                                       &wind<T>,
+                                       &euler<T, false>,
+                                       &euler<T, true>,
+                                       &anyBad<T>,
+                                       &contact<T, false>,
+                                       &contact<T, true>};
+    return kernels;
+}
+template const RowKernels<float>& rowKernels();
+template const RowKernels<double>& rowKernels();
+
+}  // namespace cloth::CLOTH_ISA_NS

@@ -1,0 +1,71 @@
+// The contact response every collider shares (docs/colliders.md §2): push the vertex out to the
+// thickness h, cancel the normal part of its velocity relative to the collider, and let Coulomb
+// friction take at most c_f·|normal velocity removed| from the tangential part. With h = 0,
+// c_f = 0 and a still collider it is DESIGN.md §2's rule, bit for bit (model/colliders.h).
+#pragma once
+
+#include <cmath>
+
+#include "model/collider_shapes.h"
+#include "model/colliders.h"
+
+namespace cloth {
+
+template <typename T>
+struct ContactParamsT {
+    T thickness = 0;  // h: the cloth stops at φ = h [m], ≥ 0
+    T friction = 0;   // c_f: Coulomb coefficient, ≥ 0 (dimensionless)
+};
+
+// The velocity part, for a vertex in contact with normal n and a collider whose surface moves at
+// v_c there: w = v − v_c, w_n = ⟨w, n⟩ n is removed; w_t = w − w_n keeps
+// max(0, 1 − c_f |⟨w, n⟩| / |w_t|) of itself; v ← v_c + w_t'. Computed as v − w_n − (lost part
+// of w_t), which is the same number in exact arithmetic and the seed's v − ⟨v, n⟩ n in floating
+// point when v_c = 0 and c_f = 0. Static friction sets v = v_c exactly.
+template <typename T>
+void respondVelocity(Vec3<T>& v, const Vec3<T>& n, const Vec3<T>& vc, T friction) {
+    const Vec3<T> w = v - vc;
+    const T wn = glm::dot(w, n);
+    v -= wn * n;
+    if (!(friction > T(0))) return;
+    const Vec3<T> wt = w - wn * n;
+    const T wtLen = glm::length(wt);
+    const T budget = friction * std::abs(wn);  // the most speed friction can take
+    if (wtLen <= budget) {
+        v = vc;  // static: sliding would reverse
+    } else {
+        v -= (budget / wtLen) * wt;
+    }
+}
+
+// The whole response for a vertex at (p, v) against a contact (φ, n) of a collider moving at v_c:
+// if φ < h, p ← p + (h − φ) n and the velocity is filtered as above. Returns whether it touched.
+template <typename T>
+bool respond(const ContactT<T>& c, const ContactParamsT<T>& params, const Vec3<T>& vc, Vec3<T>& p,
+             Vec3<T>& v) {
+    if (!(c.phi < params.thickness)) return false;
+    p += (params.thickness - c.phi) * c.normal;
+    respondVelocity(v, c.normal, vc, params.friction);
+    return true;
+}
+
+// Plane, box, capsule, grid: the generic response above.
+template <typename T, typename Shape>
+bool collide(const Shape& shape, const ContactParamsT<T>& params, const Vec3<T>& vc, Vec3<T>& p,
+             Vec3<T>& v) {
+    return respond(contact(shape, p), params, vc, p, v);
+}
+
+// The sphere places the vertex at c + (R + h) n, on the shell to rounding, rather than adding
+// (h − φ) n (which would differ from DESIGN.md §2's c + R n in the last bits).
+template <typename T>
+bool collide(const SphereT<T>& sphere, const ContactParamsT<T>& params, const Vec3<T>& vc,
+             Vec3<T>& p, Vec3<T>& v) {
+    const ContactT<T> c = contact(sphere, p);
+    if (!(c.phi < params.thickness)) return false;
+    p = sphere.center + (sphere.radius + params.thickness) * c.normal;
+    respondVelocity(v, c.normal, vc, params.friction);
+    return true;
+}
+
+}  // namespace cloth

@@ -1,0 +1,168 @@
+// A validated scene: what the simulation models, in SI units (DESIGN.md §4). Only what the file
+// declares is here; a family of stiffness 0, an absent wind or an empty collider list is not
+// modelled at all.
+#pragma once
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "model/collider_motion.h"
+#include "model/grid.h"
+
+namespace cloth {
+
+// The integrators of docs/integrators.md. explicit_euler is the seed's scheme (DESIGN.md §2).
+enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler };
+
+inline constexpr Method kMethods[] = {Method::ExplicitEuler, Method::SymplecticEuler,
+                                      Method::Verlet, Method::Rk4, Method::ImplicitEuler};
+
+const char* methodName(Method m);  // "explicit_euler", ...
+std::optional<Method> methodFromName(const std::string& name);
+std::string methodList();               // "explicit_euler, symplectic_euler, ..."
+int forceEvaluationsPerStep(Method m);  // spring-force passes one step costs (implicit: + CG)
+
+struct ClothSpec {
+    int nu = 2, nv = 2;                         // vertices along u and v
+    glm::dvec2 size{1, 1};                      // extent along û and v̂ [m]
+    glm::dvec3 origin{0};                       // position of vertex (0, 0) [m]
+    glm::dvec3 uAxis{1, 0, 0}, vAxis{0, 0, 1};  // normalised by the loader
+    double mass = 1;                            // per vertex [kg]
+};
+
+struct SpringStiffness {
+    double structural = 0, shear = 0, bend = 0;  // [N/m]; 0 = family not modelled
+    double of(Family f) const;
+};
+
+struct IntegratorSpec {
+    Method method = Method::ExplicitEuler;
+    double dt = 1e-3;  // [s]
+    int substeps = 1;  // steps per displayed frame in the viewer
+    // implicit_euler only: the conjugate gradient stops at |r| <= tolerance·|b| or after
+    // maxIterations (then the step goes on with the last iterate and the miss is reported).
+    double tolerance = 1e-5;
+    int maxIterations = 200;
+};
+
+struct Plane {
+    glm::dvec3 point{0}, normal{0, 1, 0};  // normal is unit length
+};
+struct Sphere {
+    glm::dvec3 center{0};
+    double radius = 1;  // [m]
+};
+
+// {"axis": [x, y, z], "degrees": a} (docs/colliders.md §1): kept as written (the axis
+// normalised) so that a saved scene loads back bit for bit; matrix() is local → world.
+struct AxisAngle {
+    glm::dvec3 axis{0, 0, 1};  // unit length
+    double degrees = 0;
+    glm::dmat3 matrix() const;
+};
+
+// docs/colliders.md §1: an oriented box and a capsule.
+struct Box {
+    glm::dvec3 center{0};
+    glm::dvec3 halfExtents{0.5};  // > 0 [m]
+    AxisAngle rotation;
+};
+struct Capsule {
+    glm::dvec3 a{0}, b{0, 1, 0};  // end points of the axis [m]
+    double radius = 0.1;          // [m]
+};
+
+// A closed OBJ baked once at load into a signed-distance grid (docs/colliders.md §4). The bake
+// is shared, so copying a Scene stays cheap.
+struct BakedMesh;
+struct MeshCollider {
+    std::string file;  // the OBJ as the scene names it (relative to the scene's folder)
+    std::string path;  // the OBJ's absolute path, which a saved scene writes
+    double cell = 0.01, band = 0.05;  // grid spacing and margin [m]
+    glm::dvec3 translation{0};
+    AxisAngle rotation;  // about the OBJ's origin, before the translation
+    std::shared_ptr<const BakedMesh> baked;
+};
+
+// A motion in the scene's units (docs/colliders.md §3); motion() gives collider_motion.h's.
+struct ColliderMotion {
+    MotionType type = MotionType::Linear;
+    glm::dvec3 velocity{0};    // linear [m/s]
+    glm::dvec3 axis{0, 1, 0};  // rotation, oscillation (unit)
+    glm::dvec3 pivot{0};       // rotation [m]
+    double degreesPerSecond = 0;
+    double amplitude = 0, frequency = 0, phaseDegrees = 0;  // oscillation [m], [Hz], [°]
+    Motion motion() const;
+};
+
+using ColliderShape = std::variant<Plane, Sphere, Box, Capsule, MeshCollider>;
+
+// One collider: its shape at t = 0, the contact parameters of docs/colliders.md §2, and how it
+// moves. A plane or sphere with thickness 0, friction 0 and no motion is DESIGN.md §2's.
+struct Collider {
+    ColliderShape shape;
+    double thickness = 0;  // h [m]
+    double friction = 0;   // c_f
+    std::optional<ColliderMotion> motion;
+
+    Collider() = default;
+    template <typename S>
+    requires std::is_constructible_v<ColliderShape, S> Collider(S s)
+        : shape(std::move(s)) {}  // NOLINT: a bare shape is a collider
+    template <typename S>
+    const S* as() const {
+        return std::get_if<S>(&shape);
+    }
+    template <typename S>
+    S* as() {
+        return std::get_if<S>(&shape);
+    }
+    bool plain() const { return thickness == 0 && friction == 0 && !motion; }
+};
+
+const char* colliderTypeName(const ColliderShape& shape);  // "plane", "sphere", "box", ...
+
+struct Wind {
+    glm::dvec3 direction{1, 0, 0};  // unit length
+    double strength = 0;            // K_w [N]
+};
+
+// A pinned vertex: held where it is, or, with `follow` ≥ 0, carried by that collider's motion
+// (the collider's pose at t applied to the vertex's grid position; docs/colliders.md §5).
+struct Pin {
+    int i, j;         // resolved grid indices (negative ones in the file count from the end)
+    int follow = -1;  // index in Scene::colliders of a collider with a motion, or -1: still
+};
+
+struct Scene {
+    std::string name;
+    std::string source;  // the file it was loaded from, for messages
+    ClothSpec cloth;
+    SpringStiffness springs;
+    double damping = 0;  // μ [N·s/m]
+    glm::dvec3 gravity{0, -9.81, 0};
+    std::vector<Pin> pins;
+    IntegratorSpec integrator;
+    std::vector<Collider> colliders;
+    std::optional<Wind> wind;
+    double maxSpeed = 1e4;  // [m/s]; faster is reported as unstable
+    double duration = 1;    // simulated time `run` covers without --steps [s]
+
+    Grid grid() const;
+    long defaultSteps() const;  // round(duration / dt), at least 1
+    int planeCount() const;
+    int sphereCount() const;
+    template <typename S>
+    int count() const {
+        int n = 0;
+        for (const Collider& c : colliders) n += c.as<S>() != nullptr;
+        return n;
+    }
+};
+
+}  // namespace cloth

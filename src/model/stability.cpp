@@ -1,0 +1,177 @@
+#include "model/stability.h"
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "model/stiffness.h"
+
+namespace cloth {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// |R(z)| ≤ 1 for RK4's amplification R(z) = 1 + z + z²/2 + z³/6 + z⁴/24.
+bool rk4Stable(std::complex<double> z) {
+    const std::complex<double> r = 1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6 + z / 24.0)));
+    return std::abs(r) <= 1.0 + 1e-12;
+}
+
+// The mode x'' = −ω² x − c x' has eigenvalues −c/2 ± sqrt(c²/4 − ω²).
+bool rk4ModeStable(double h, double w2, double c) {
+    const std::complex<double> disc = std::sqrt(std::complex<double>(c * c / 4 - w2, 0));
+    return rk4Stable(h * (-c / 2 + disc)) && rk4Stable(h * (-c / 2 - disc));
+}
+
+// Largest h with every mode ω² in [0, w2max] stable, by bisection (RK4's region is an interval
+// along each ray; 64 sampled ω² cover the modes between the rigid and the stiffest one).
+double rk4Dt(double w2max, double c) {
+    if (w2max <= 0 && c <= 0) return kInf;
+    auto stable = [&](double h) {
+        for (int s = 0; s <= 64; ++s)
+            if (!rk4ModeStable(h, w2max * s / 64.0, c)) return false;
+        return true;
+    };
+    double lo = 0, hi = 1;
+    while (stable(hi)) {
+        lo = hi;
+        hi *= 2;
+        if (hi > 1e30) return kInf;
+    }
+    for (int it = 0; it < 100; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (stable(mid) ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+}  // namespace
+
+// Rayleigh-quotient power iteration on H at the rest state.
+StiffMode stiffestMode(const Scene& scene, int iterations) {
+    const Grid g = scene.grid();
+    const std::int64_t n = g.count();
+    std::vector<std::uint8_t> pinned(std::size_t(n), 0);
+    for (const Pin& p : scene.pins) pinned[std::size_t(g.index(p.i, p.j))] = 1;
+    const std::size_t size = std::size_t(n);
+    std::vector<glm::dvec3> x(size), p(size), y(size);
+    for (int j = 0; j < g.nv; ++j)
+        for (int i = 0; i < g.nu; ++i) {
+            const std::size_t k = std::size_t(g.index(i, j));
+            x[k] = g.restPosition(i, j);
+            // Sign patterns alternating along u, along v and along both: the stiffest modes of
+            // a stencil like this one; plus a ripple so that no mode starts at zero.
+            const double su = (i % 2 == 0) ? 1.0 : -1.0, sv = (j % 2 == 0) ? 1.0 : -1.0;
+            const double r = 0.1 * std::sin(0.7 * i + 1.3 * j);
+            const glm::dvec3 start = su * g.u + sv * g.v + su * sv * glm::cross(g.u, g.v);
+            p[k] = pinned[k] ? glm::dvec3(0) : start + glm::dvec3(r, -r, 0.5 * r);
+        }
+    StiffMode mode;
+    const auto springs = activeSprings<double>(scene);
+    if (springs.empty()) return mode;
+    for (int it = 0; it < iterations; ++it) {
+        stiffnessProduct(g.nu, g.nv, springs, x.data(), p.data(), pinned.data(), y.data(), 0, n);
+        double pp = 0, py = 0, yy = 0;
+        for (std::size_t k = 0; k < p.size(); ++k) {
+            pp += glm::dot(p[k], p[k]);
+            py += glm::dot(p[k], y[k]);
+            yy += glm::dot(y[k], y[k]);
+        }
+        if (!(pp > 0) || !(yy > 0)) break;
+        mode.lambda = std::max(mode.lambda, py / pp);
+        const double scale = 1 / std::sqrt(yy);
+        for (std::size_t k = 0; k < p.size(); ++k) p[k] = y[k] * scale;
+    }
+    mode.shape = std::move(p);
+    return mode;
+}
+
+double methodDt(Method method, double lambda, double mass, double damping) {
+    const double c = damping / mass, w2 = lambda / mass;
+    const double drag = damping > 0 ? 2 / c : kInf;  // the rigid mode: |1 − cΔt| ≤ 1
+    switch (method) {
+        case Method::ExplicitEuler:
+            // det = 1 − cΔt + (λ/m)Δt² < 1  ⇔  Δt < μ/λ.
+            if (lambda <= 0) return drag;
+            return std::min(damping / lambda, drag);
+        case Method::SymplecticEuler:
+            return w2 > 0 ? (-c + std::sqrt(c * c + 4 * w2)) / w2 : drag;
+        case Method::Verlet:
+            return w2 > 0 ? 2 / std::sqrt(w2) : kInf;
+        case Method::Rk4:
+            return rk4Dt(w2, c);
+        case Method::ImplicitEuler:
+            return kInf;
+    }
+    return 0;
+}
+
+double StabilityBound::safeDt(Method method) const {
+    return methodDt(method, lambdaMax, mass, damping);
+}
+
+double StabilityBound::tightDt(Method method) const {
+    return methodDt(method, lambdaPower > 0 ? lambdaPower : lambdaMax, mass, damping);
+}
+
+StabilityBound estimateStability(const Scene& scene, int powerIterations) {
+    const Grid g = scene.grid();
+    std::vector<std::uint8_t> pinned(std::size_t(g.count()), 0);
+    for (const Pin& p : scene.pins) pinned[std::size_t(g.index(p.i, p.j))] = 1;
+    double lambda = 0;
+    for (int j = 0; j < g.nv; ++j) {
+        for (int i = 0; i < g.nu; ++i) {
+            if (pinned[std::size_t(g.index(i, j))]) continue;
+            double row = 0;  // |diagonal| + Σ |off-diagonal| of this vertex's 3×3 block row
+            for (const SpringOffset& o : kSpringOffsets) {
+                const int qi = i + o.di, qj = j + o.dj;
+                if (!g.contains(qi, qj)) continue;
+                const double k = scene.springs.of(o.family);
+                row += pinned[std::size_t(g.index(qi, qj))] ? k : 2 * k;
+            }
+            lambda = std::max(lambda, row);
+        }
+    }
+    StabilityBound b;
+    b.lambdaMax = lambda;
+    b.mass = scene.cloth.mass;
+    b.damping = scene.damping;
+    if (powerIterations > 0) b.lambdaPower = stiffestMode(scene, powerIterations).lambda;
+    b.explicitEulerDt = b.safeDt(Method::ExplicitEuler);
+    b.symplecticEulerDt = b.safeDt(Method::SymplecticEuler);
+    return b;
+}
+
+double stableDt(const Scene& scene) {
+    return estimateStability(scene).safeDt(scene.integrator.method);
+}
+
+std::string stabilityAdvice(const Scene& scene) {
+    const StabilityBound b = estimateStability(scene);
+    const double bound = stableDt(scene);
+    char buf[300];
+    if (std::isinf(bound)) {
+        std::snprintf(buf, sizeof buf,
+                      "%s is stable at any dt for the linear spring model; an unstable run "
+                      "points at the nonlinear terms or the wind: try a smaller dt",
+                      methodName(scene.integrator.method));
+    } else if (bound > 0) {
+        std::snprintf(buf, sizeof buf,
+                      "predicted stable dt < %.3g s for %s (lambda_max <= %.4g N/m, damping %g); "
+                      "try --set integrator.dt=%.2g",
+                      bound, methodName(scene.integrator.method), b.lambdaMax, scene.damping,
+                      0.5 * bound);
+    } else {
+        std::snprintf(buf, sizeof buf,
+                      "explicit Euler has no stable dt without damping (every spring mode grows); "
+                      "at dt = %g s it needs damping > lambda_max*dt = %.3g N*s/m: try --set "
+                      "damping=%.2g, or another integrator (--set integrator.method=\"verlet\")",
+                      scene.integrator.dt, b.lambdaMax * scene.integrator.dt,
+                      2 * b.lambdaMax * scene.integrator.dt);
+    }
+    return buf;
+}
+
+}  // namespace cloth

@@ -1,0 +1,71 @@
+// The stiffness operator H = −∂F/∂x of the spring forces, applied without storing it: one gather
+// over the 12-neighbour stencil, like the force pass. Implicit Euler's conjugate gradient and the
+// power iteration of the stability prediction both use it (docs/integrators.md).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "model/forces.h"
+#include "model/scene.h"
+
+namespace cloth {
+
+// One active entry of kSpringOffsets: a family the scene models.
+template <typename T>
+struct StencilSpring {
+    int di, dj;
+    std::int64_t indexOffset;  // dj·nu + di
+    T stiffness, restLength;
+};
+
+template <typename T>
+std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
+    const Grid g = scene.grid();
+    std::vector<StencilSpring<T>> springs;
+    for (const SpringOffset& o : kSpringOffsets) {
+        const double k = scene.springs.of(o.family);
+        if (k > 0)
+            springs.push_back(
+                {o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di, T(k), T(g.restLength(o.di, o.dj))});
+    }
+    return springs;
+}
+
+// out_k = (H p)_k = Σ_s J_s(x) (p_k − p_q) for k in [begin, end), with J_s clamped
+// (springJacobianTimes). Rows of pinned vertices are 0: a pin is a constraint, not a DOF; the
+// caller keeps p = 0 there, which removes the pinned columns too.
+template <typename T>
+Vec3<T> positionAt(const Vec3<T>* x, std::int64_t k) {
+    return x[k];
+}
+
+// x and p: a Vec3<T> array or anything positionAt(x, k) reads (the CPU's Soa3).
+template <typename T, typename Positions, typename Vectors>
+void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
+                      const Positions& x, const Vectors& p, const std::uint8_t* pinned,
+                      Vec3<T>* out, std::int64_t begin, std::int64_t end) {
+    int i = int(begin % nu), j = int(begin / nu);
+    for (std::int64_t k = begin; k < end; ++k) {
+        Vec3<T> y(0);
+        if (!pinned[k]) {
+            const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
+            for (const StencilSpring<T>& s : springs) {
+                if (!interior) {
+                    const int qi = i + s.di, qj = j + s.dj;
+                    if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+                }
+                const std::int64_t q = k + s.indexOffset;
+                y += springJacobianTimes(positionAt(x, k), positionAt(x, q), s.stiffness,
+                                         s.restLength, positionAt(p, k) - positionAt(p, q));
+            }
+        }
+        out[k] = y;
+        if (++i == nu) {
+            i = 0;
+            ++j;
+        }
+    }
+}
+
+}  // namespace cloth

@@ -1,0 +1,50 @@
+#include "solver/solver.h"
+
+#include <tuple>
+
+
+namespace cloth {
+
+const char* backendName(Backend b) {
+    return b == Backend::Cpu ? "cpu" : "gpu";
+}
+const char* precisionName(Precision p) {
+    return p == Precision::Float ? "float" : "double";
+}
+
+Features Features::of(const Scene& scene) {
+    Features f;
+    f.structural = scene.springs.structural > 0;
+    f.shear = scene.springs.shear > 0;
+    f.bend = scene.springs.bend > 0;
+    f.wind = scene.wind.has_value() && scene.wind->strength != 0;
+    f.planes = scene.planeCount();
+    f.spheres = scene.sphereCount();
+    f.boxes = scene.count<Box>();
+    f.capsules = scene.count<Capsule>();
+    f.meshes = scene.count<MeshCollider>();
+    for (const Collider& c : scene.colliders) f.contactExtras += !c.plain();
+    return f;
+}
+
+std::string Features::describe() const {
+    std::string springs;
+    for (auto [on, name] : {std::pair{structural, "structural"}, {shear, "shear"}, {bend, "bend"}})
+        if (on) {
+            if (!springs.empty()) springs += '+';
+            springs += name;
+        }
+    std::string s = springs.empty() ? "no springs" : springs;
+    if (wind) s += ", wind";
+    for (auto [n, one, many] : {std::tuple{planes, "plane", "planes"},
+                                {spheres, "sphere", "spheres"},
+                                {boxes, "box", "boxes"},
+                                {capsules, "capsule", "capsules"},
+                                {meshes, "mesh", "meshes"}})
+        if (n) s += ", " + std::to_string(n) + " " + (n == 1 ? one : many);
+    if (contactExtras)
+        s += ", " + std::to_string(contactExtras) + " with thickness, friction or motion";
+    return s;
+}
+
+}  // namespace cloth

@@ -1,0 +1,132 @@
+// The one interface both backends implement (DESIGN.md §1): step(n), read(), features().
+#pragma once
+
+#include <glm/glm.hpp>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "model/scene.h"
+
+namespace cloth {
+
+enum class Backend { Cpu, Gpu };
+enum class Precision { Float, Double };
+
+const char* backendName(Backend b);
+const char* precisionName(Precision p);
+
+// State copied out of a solver, in double whatever the solver computes in.
+struct SimState {
+    int nu = 0, nv = 0;
+    std::vector<glm::dvec3> positions;   // [m], index k = j·nu + i
+    std::vector<glm::dvec3> velocities;  // [m/s]
+    double time = 0;  // [s] the solver's time (Solver::time()): write() carries it on
+};
+
+// What step(n) did. A run is unstable at the first step after which a position or velocity is
+// not finite or a speed exceeds max_speed (DESIGN.md §2); the solver stops there. A backend that
+// checks only every few steps (the GPU) reports the range the first bad step lies in.
+struct StepResult {
+    long stepsTaken = 0;  // steps completed by this call
+    bool unstable = false;
+    long firstBadStep = 0;  // 1-based global step numbers bracketing the first bad step
+    long lastBadStep = 0;
+    std::string reason;  // e.g. "speed 1.2e+04 m/s > max_speed 1e+04 at vertex (3, 7)"
+};
+
+// The features a scene declares, which decide what a solver computes (and on the GPU, compiles).
+struct Features {
+    bool structural = false, shear = false, bend = false, wind = false;
+    int planes = 0, spheres = 0, boxes = 0, capsules = 0, meshes = 0;
+    // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
+    int contactExtras = 0;
+    static Features of(const Scene& scene);
+    bool operator==(const Features&) const = default;
+    std::string describe() const;  // "structural+shear+bend, wind, 1 plane, 1 sphere, 2 boxes"
+};
+
+// A spring from one vertex to a point the user drags (the viewer's grab): F = K (target − x).
+struct Grab {
+    std::int64_t vertex = 0;  // k = j·nu + i
+    glm::dvec3 target{0};     // [m]
+    double stiffness = 0;     // [N/m]
+};
+
+// implicit_euler's conjugate-gradient solves since the solver was made (all zero for the other
+// integrators). A solve that reaches max_iterations is a miss: the step goes on with its last
+// iterate, and callers report the misses.
+struct SolveStats {
+    long solves = 0;
+    long iterations = 0;       // summed over solves
+    int mostIterations = 0;    // in one solve
+    long misses = 0;           // solves that stopped at max_iterations
+    long firstMissStep = 0;    // 1-based step of the first miss
+    double worstResidual = 0;  // largest final |r|/|b| of a miss
+};
+
+class Solver {
+public:
+    virtual ~Solver() = default;
+    // Advances up to n steps with no round trip to the caller; stops at the first unstable step.
+    virtual StepResult step(long n) = 0;
+    virtual SimState read() const = 0;
+    virtual Features features() const = 0;
+    virtual std::string name() const = 0;  // "cpu double, 2 threads", "gpu float (llvmpipe)"
+
+    // Interactive control (the viewer). Each takes effect from the next step.
+    // Replaces positions and velocities (same grid) and sets the time to state.time: carries a
+    // run across backends, moving colliders and follow pins where they were.
+    virtual void write(const SimState& state) = 0;
+    // Pins vertex (i, j) where it is now (zero velocity), or releases it.
+    virtual void setPinned(int i, int j, bool pinned) = 0;
+    // Adds the grab spring to the forces pass, or removes it (nullopt).
+    virtual void setGrab(const std::optional<Grab>& grab) = 0;
+    // Takes the scene's parameters (stiffnesses, damping, mass, gravity, wind, collider
+    // placement, dt, max_speed) without rebuilding. The grid, pins and Features::of(scene)
+    // must equal the solver's; otherwise it throws std::invalid_argument and the caller
+    // builds a new solver (and write()s the state into it).
+    virtual void setParameters(const Scene& scene) = 0;
+    // The viewer's collider drag (docs/colliders.md §3): from the next step collider `index`
+    // (scene order) is displaced by offset + velocity·(t − t_now) on top of its own motion, and
+    // its surface moves at `velocity` more, so the contact carries the cloth. Offsets persist;
+    // velocity 0 leaves it where it is.
+    virtual void setColliderDrag(int index, const glm::dvec3& offset,
+                                 const glm::dvec3& velocity) = 0;
+    long stepsDone() const { return steps_; }
+    // Steps done and the time back to 0.
+    void resetStepCount() { steps_ = originStep_ = 0, timeOrigin_ = 0; }
+    // The simulated time [s]: t₀ + (steps − step₀)·Δt, re-based when Δt changes, so that the
+    // moving colliders, follow pins and drags posed by it go on continuously.
+    double time() const { return timeAt(steps_); }
+    const SolveStats& solveStats() const { return solveStats_; }
+
+protected:
+    // The time at the end of step `step` (1-based): the poses of that step. Bit for bit
+    // double(step)·Δt while Δt has not changed and no time was written.
+    double timeAt(long step) const { return timeOrigin_ + double(step - originStep_) * dt_; }
+    // Δt from the next step on; the time now stays where it is.
+    void setStepDt(double dt) {
+        if (dt == dt_) return;
+        timeOrigin_ = time();
+        originStep_ = steps_;
+        dt_ = dt;
+    }
+    // The time now becomes t [s] (write()); the same time changes nothing, not even a bit.
+    void setTime(double t) {
+        if (t == time()) return;
+        timeOrigin_ = t;
+        originStep_ = steps_;
+    }
+
+    long steps_ = 0;
+    SolveStats solveStats_;
+    double dt_ = 0;
+
+private:
+    double timeOrigin_ = 0;  // [s] t₀, the time at step originStep_
+    long originStep_ = 0;
+};
+
+}  // namespace cloth

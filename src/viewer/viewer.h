@@ -1,0 +1,26 @@
+// The interactive viewer (`clothsim view`): a GLFW window with a GL 4.3+ core context that the
+// GPU solver computes in and the renderer draws from, and a Dear ImGui control panel.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "backends/solver_factory.h"
+
+namespace cloth::app {
+
+struct ViewerOptions {
+    std::string scenePath = "scenes/drape.json";
+    std::vector<std::string> sets;  // --set KEY.PATH=JSON, applied through applyParameters()
+    BackendChoice backend;
+    int width = 1280, height = 800;
+    bool vsync = true;
+    int frames = 0;          // > 0: run this many frames, then exit (tests, screenshots)
+    std::string screenshot;  // written after the last frame when frames > 0
+};
+
+// Runs the window until it is closed (or `frames` have been drawn). Throws GpuUnavailable when
+// no window with a 4.3 context can be made, InputError for a bad scene.
+int runViewer(const ViewerOptions& options);
+
+}  // namespace cloth::app

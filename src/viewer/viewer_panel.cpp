@@ -1,0 +1,186 @@
+// The control panel. Every parameter edit goes through one call, session.applyParameters(),
+// the same path `view --set` and the tests take.
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "viewer/viewer_session.h"
+#include "viewer/viewer_ui.h"
+#include "viewer/viewer_widgets.h"
+#include "model/stability.h"
+
+namespace cloth::app {
+namespace {
+
+const ImVec4 kWarn{1.0f, 0.8f, 0.2f, 1.0f}, kError{1.0f, 0.35f, 0.3f, 1.0f};
+
+void sceneSection(ViewerSession& session, ViewerUi& ui) {
+    const std::string current = session.params().scene.name + ".json";
+    if (ImGui::BeginCombo("scene", current.c_str())) {
+        for (const std::string& f : ui.sceneFiles)
+            if (ImGui::Selectable(f.c_str(), f == current)) ui.loadRequest = f;
+        ImGui::EndCombo();
+    }
+}
+
+void runControls(ViewerSession& session, ViewerUi& ui) {
+    if (ImGui::Button(session.paused() ? "Run (space)" : "Pause (space)"))
+        session.setPaused(!session.paused());
+    ImGui::SameLine();
+    if (ImGui::Button("Step (N)")) ui.stepOnce = true;
+    ImGui::SameLine();
+    if (ImGui::Button("Reset (R)")) session.reset();
+    ImGui::SameLine();
+    ImGui::Checkbox("v-sync", &ui.vsync);
+
+    BackendChoice b = session.backend();
+    int backend = b.backend == Backend::Gpu ? 1 : 0, precision = b.precision == Precision::Float;
+    bool changed = ImGui::RadioButton("CPU", &backend, 0);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("GPU", &backend, 1);
+    if (backend == 0) {
+        ImGui::SameLine(0, 24);
+        changed |= ImGui::RadioButton("double", &precision, 0);
+        ImGui::SameLine();
+        changed |= ImGui::RadioButton("float", &precision, 1);
+    }
+    if (!changed) return;
+    b.backend = backend == 1 ? Backend::Gpu : Backend::Cpu;
+    b.precision = precision == 1 ? Precision::Float : Precision::Double;
+    try {
+        session.setBackend(b);
+        ui.message.clear();
+    } catch (const std::exception& e) {
+        ui.message = e.what();
+    }
+}
+
+// The integrator (docs/integrators.md), Δt and substeps, with the stability bound of
+// DESIGN.md §2 and a warning before it is crossed.
+bool timeSection(ViewerParams& p) {
+    IntegratorSpec& in = p.scene.integrator;
+    bool changed = false;
+    if (ImGui::BeginCombo("integrator", methodName(in.method))) {
+        for (Method m : kMethods)
+            if (ImGui::Selectable(methodName(m), m == in.method) && m != in.method) {
+                in.method = m;
+                changed = true;
+            }
+        ImGui::EndCombo();
+    }
+    changed |= logSlider("dt [s]", in.dt, 1e-6, 1e-1, "%.3e");
+    changed |= ImGui::SliderInt("substeps", &in.substeps, 1, 2000, "%d",
+                                ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    const double bound = stableDt(p.effective());
+    if (std::isinf(bound)) {
+        ImGui::Text("stable at any dt (linearised); CG tolerance %.0e", in.tolerance);
+    } else if (bound <= 0) {
+        ImGui::TextColored(kWarn, "no stable dt: explicit Euler needs damping > 0");
+    } else if (in.dt >= bound) {
+        ImGui::TextColored(kError, "dt %.3g s is past the stability bound %.3g s", in.dt, bound);
+    } else if (in.dt >= 0.8 * bound) {
+        ImGui::TextColored(kWarn, "dt is %.0f%% of the stability bound %.3g s", 100 * in.dt / bound,
+                           bound);
+    } else {
+        ImGui::Text("stability bound: dt < %.3g s", bound);
+    }
+    return changed;
+}
+
+bool forcesSection(ViewerParams& p) {
+    Scene& s = p.scene;
+    bool changed = logSlider("structural [N/m]", s.springs.structural, 0, 1e5);
+    changed |= logSlider("shear [N/m]", s.springs.shear, 0, 1e5);
+    changed |= logSlider("bend [N/m]", s.springs.bend, 0, 1e5);
+    changed |= logSlider("damping [N s/m]", s.damping, 0, 100);
+    changed |= logSlider("mass [kg]", s.cloth.mass, 1e-5, 100);
+    changed |= dragVec3("gravity [m/s2]", s.gravity, 0.05f);
+    bool wind = s.wind.has_value();
+    if (ImGui::Checkbox("wind", &wind)) {
+        s.wind = wind ? std::optional<Wind>(Wind{{1, 0, 0}, 0.1}) : std::nullopt;
+        changed = true;
+    }
+    if (s.wind) {
+        glm::dvec3 d = s.wind->direction;
+        if (dragVec3("direction", d, 0.02f, -1, 1)) {
+            s.wind->direction = unitOr(d, s.wind->direction);
+            changed = true;
+        }
+        changed |= logSlider("strength [N]", s.wind->strength, 0, 100);
+    }
+    return changed;
+}
+
+bool clothSection(ViewerParams& p, ViewerSession& session, ViewerUi& ui) {
+    ClothSpec& c = p.scene.cloth;
+    if (ui.resolution[0] == 0) {
+        ui.resolution[0] = c.nu;
+        ui.resolution[1] = c.nv;
+    }
+    ImGui::InputInt2("resolution", ui.resolution);
+    ui.resolution[0] = std::clamp(ui.resolution[0], 1, 1024);
+    ui.resolution[1] = std::clamp(ui.resolution[1], 1, 1024);
+    bool changed = false;
+    if (ImGui::Button("Rebuild cloth") && ui.resolution[0] * ui.resolution[1] >= 2) {
+        c.nu = ui.resolution[0];
+        c.nv = ui.resolution[1];
+        changed = true;
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Clear pins")) session.clearPins();
+    ImGui::Text("%zu pinned; Ctrl+click a vertex to pin/unpin", session.params().scene.pins.size());
+    ImGui::TextDisabled("drag a vertex to pull it");
+    return changed;
+}
+
+}  // namespace
+
+void drawPanel(ViewerSession& session, ViewerUi& ui) {
+    ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(ImGui::GetIO().DisplaySize.y)),
+                             ImGuiCond_Always);
+    ImGui::Begin("clothsim", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize);
+    ImGui::PushItemWidth(170);
+    sceneSection(session, ui);
+    runControls(session, ui);
+    ViewerParams p = session.params();
+    bool changed = false;
+    if (ImGui::CollapsingHeader("Time step", ImGuiTreeNodeFlags_DefaultOpen))
+        changed |= timeSection(p);
+    if (ImGui::CollapsingHeader("Forces", ImGuiTreeNodeFlags_DefaultOpen))
+        changed |= forcesSection(p);
+    if (ImGui::CollapsingHeader("Colliders", ImGuiTreeNodeFlags_DefaultOpen))
+        changed |= drawCollidersSection(p, session);
+    if (ImGui::CollapsingHeader("Cloth and pins")) changed |= clothSection(p, session, ui);
+    if (changed) {
+        p.scene.pins = session.params().scene.pins;  // pins change through togglePin only
+        try {
+            session.applyParameters(p);
+        } catch (const std::exception& e) {
+            ui.message = e.what();
+        }
+    }
+    drawDisplaySection(ui);
+    drawDiagnosticsSection(session, ui);
+    drawOutputSection(session, ui);
+    ImGui::PopItemWidth();
+    ImGui::End();
+}
+
+void drawInstabilityNotice(ViewerSession& session) {
+    if (!session.unstable()) return;
+    const ImVec2 size = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(size.x * 0.5f + kPanelWidth * 0.5f, size.y * 0.4f),
+                            ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+    ImGui::SetNextWindowSize(ImVec2(460, 0));
+    ImGui::Begin("The simulation became unstable", nullptr,
+                 ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoMove);
+    ImGui::TextColored(kError, "Stopped: positions or velocities left the finite range.");
+    ImGui::TextWrapped("%s", session.instability().c_str());
+    if (ImGui::Button("Reset", ImVec2(120, 0))) session.reset();
+    ImGui::End();
+}
+
+}  // namespace cloth::app

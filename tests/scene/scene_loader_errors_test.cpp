@@ -1,0 +1,145 @@
+// The scene loader refuses malformed input with an InputError naming the file and key path
+// (DESIGN.md §4); the command-line side of the same cases is in tests/app/bad_input_test.cpp.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <typeinfo>
+#include <vector>
+
+#include "model/errors.h"
+#include "scene/scene_loader.h"
+#include "support/bad_scenes.h"
+
+namespace cloth {
+namespace {
+
+namespace fs = std::filesystem;
+using test::BadScene;
+using test::kBadDir;
+using test::kGoodScene;
+using test::loadManifest;
+using test::readFile;
+
+// ---- the loader itself: InputError with the key path --------------------------------------
+
+std::string goodText() {
+    return readFile(kGoodScene);
+}
+
+// The good scene with the value at `pointer` (JSON pointer) replaced by `value`.
+std::string with(const std::string& pointer, const nlohmann::json& value) {
+    auto j = nlohmann::json::parse(goodText());
+    j[nlohmann::json::json_pointer(pointer)] = value;
+    return j.dump();
+}
+
+// The InputError parseScene throws, failing the test if it throws nothing or something else.
+InputError parseError(const std::string& text, const std::vector<std::string>& overrides = {}) {
+    try {
+        parseScene(text, "mem.json", overrides);
+    } catch (const InputError& e) {
+        return e;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "threw " << typeid(e).name() << " not InputError: " << e.what();
+        return InputError("", "", "");
+    }
+    ADD_FAILURE() << "accepted:\n" << text.substr(0, 400);
+    return InputError("", "", "");
+}
+
+TEST(ParseScene, GoodSceneLoadsWithResolvedPinsAndUnitAxes) {
+    const Scene s = parseScene(goodText(), "mem.json");
+    EXPECT_EQ(s.cloth.nu, 4);
+    EXPECT_EQ(s.cloth.nv, 3);
+    ASSERT_EQ(s.pins.size(), 2u);
+    EXPECT_EQ(s.pins[1].i, 3);  // -1 counts from the end
+    EXPECT_EQ(s.pins[1].j, 0);
+    EXPECT_DOUBLE_EQ(s.integrator.dt, 0.001);
+    EXPECT_EQ(s.colliders.size(), 2u);
+}
+
+TEST(ParseScene, ThrowsInputErrorWithKeyPath) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {with("/integrator/dt", -1), "integrator.dt"},
+        {with("/integrator/dt", 0), "integrator.dt"},
+        {with("/integrator/dt", "NaN"), "integrator.dt"},
+        {with("/cloth/resolution", {1, 1}), "cloth.resolution"},
+        {with("/cloth/resolution", {100000, 100000}), "cloth.resolution"},
+        {with("/cloth/resolution", {2147483647, 2}), "cloth.resolution"},
+        {with("/cloth/mass", -1), "cloth.mass"},
+        {with("/springs/bnd", 3), "springs.bnd"},
+        {with("/colliders/1/radius", 0), "colliders[1].radius"},
+        {with("/colliders/1/type", "cylinder"), "colliders[1].type"},
+        {with("/pins/1", {4, 0}), "pins[1]"},
+        {with("/pins/1", {-5, 0}), "pins[1]"},
+        {with("/wind/direction", {0, 0, 0}), "wind.direction"},
+        {with("/colour", "red"), "colour"},
+    };
+    for (const auto& [text, key] : cases) {
+        SCOPED_TRACE(key);
+        const InputError e = parseError(text);
+        EXPECT_EQ(e.key(), key) << e.what();
+        EXPECT_EQ(e.file(), "mem.json") << e.what();
+        EXPECT_FALSE(e.reason().empty());
+    }
+}
+
+TEST(ParseScene, NotJsonNamesSourceWithoutKey) {
+    for (const std::string text : {"", "{", "[1, 2]", "{\"dt\": 1e999}", "null"}) {
+        SCOPED_TRACE(text);
+        const InputError e = parseError(text);
+        EXPECT_EQ(e.file(), "mem.json") << e.what();
+        EXPECT_FALSE(e.reason().empty());
+    }
+}
+
+TEST(ParseScene, BadOverridesThrowInputErrorWithKeyPath) {
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"integrator.dt=-1", "integrator.dt"},
+        {"integrator.dt=notjson", "integrator.dt"},
+        {"springs.bnd=3", "springs.bnd"},
+    };
+    for (const auto& [set, key] : cases) {
+        SCOPED_TRACE(set);
+        EXPECT_EQ(parseError(goodText(), {set}).key(), key);
+    }
+    parseError(goodText(), {"nokey"});
+}
+
+TEST(LoadScene, MissingFileAndDirectoryThrowInputError) {
+    for (const fs::path& p : {kBadDir / "no_such_scene.json", kBadDir}) {
+        SCOPED_TRACE(p.string());
+        try {
+            loadScene(p.string());
+            ADD_FAILURE() << "accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.file(), p.string()) << e.what();
+        }
+    }
+}
+
+TEST(LoadScene, EveryBadSceneThrowsInputError) {
+    for (const BadScene& b : loadManifest()) {
+        SCOPED_TRACE(b.file);
+        const std::string path = (kBadDir / b.file).string();
+        try {
+            loadScene(path);
+            ADD_FAILURE() << "accepted";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.file(), path) << e.what();
+            if (!b.keys.empty()) {
+                EXPECT_TRUE(std::any_of(b.keys.begin(), b.keys.end(), [&](const std::string& k) {
+                    return e.key().rfind(k, 0) == 0;  // "cloth.resolution[0]" names it too
+                })) << e.what();
+            }
+        } catch (const std::exception& e) {
+            ADD_FAILURE() << "threw " << typeid(e).name() << " not InputError: " << e.what();
+        }
+    }
+}
+
+}  // namespace
+}  // namespace cloth

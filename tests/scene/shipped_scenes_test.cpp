@@ -1,0 +1,175 @@
+// Every shipped scene sits inside its integrator's predicted stability bound (DESIGN.md §2) and
+// stays stable, on the CPU in double and in float, for its whole duration. The collider scenes
+// (docs/colliders.md §10) keep their moving colliders far inside the tunnelling limit and end
+// with the outcome they show: the cape on the turning figure's back, the tablecloth on the table,
+// the windsock blown along the wind.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "cpu/cpu_backend.h"
+#include "model/collider_motion.h"
+#include "model/collider_speed.h"
+#include "solver/diagnostics.h"
+#include "scene/scene_loader.h"
+#include "model/stability.h"
+#include "support/reference_bridge.h"
+#include "support/shipped_outcomes.h"
+
+namespace cloth {
+namespace {
+
+std::vector<std::string> shippedScenes() {
+    std::vector<std::string> paths;
+    for (const auto& e : std::filesystem::directory_iterator(CLOTH_SOURCE_DIR "/scenes"))
+        if (e.path().extension() == ".json") paths.push_back(e.path().string());
+    std::sort(paths.begin(), paths.end());
+    return paths;
+}
+
+class ShippedScene : public testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedScene, TimeStepIsInsideThePredictedBound) {
+    const Scene scene = loadScene(GetParam());
+    EXPECT_LT(scene.integrator.dt, stableDt(scene)) << stabilityAdvice(scene);
+}
+
+TEST_P(ShippedScene, StaysStableForItsWholeDuration) {
+    const Scene scene = loadScene(GetParam());
+    for (Precision p : {Precision::Double, Precision::Float}) {
+        auto solver = makeCpuSolver(scene, {p, 2});
+        const StepResult r = solver->step(scene.defaultSteps());
+        EXPECT_FALSE(r.unstable) << precisionName(p) << ": " << r.reason;
+        EXPECT_EQ(r.stepsTaken, scene.defaultSteps());
+        const SimState s = solver->read();
+        EXPECT_TRUE(allFinite(s));
+        // Settled or settling: nothing moves anywhere near max_speed.
+        for (const glm::dvec3& v : s.velocities) ASSERT_LT(glm::length(v), 10.0);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, ShippedScene, testing::ValuesIn(shippedScenes()),
+                         [](const testing::TestParamInfo<std::string>& param) {
+                             return std::filesystem::path(param.param).stem().string();
+                         });
+
+TEST(ShippedScenes, AllExist) {
+    for (const char* name :
+         {"spring", "chain", "hanging", "drape", "flag", "cape", "table", "windsock"})
+        EXPECT_TRUE(
+            std::filesystem::exists(std::string(CLOTH_SOURCE_DIR "/scenes/") + name + ".json"))
+            << name;
+}
+
+}  // namespace
+}  // namespace cloth
+
+namespace cloth {
+namespace {
+
+using test::worstClearance;
+
+// docs/colliders.md §7: every moving collider's surface speed times Δt, against the smallest
+// thickness the cloth could pass (a capsule's or sphere's radius, a box's smallest half extent,
+// plus h). The shipped scenes stay 100 times inside it.
+double tunnellingMargin(const Scene& scene) {
+    double margin = 1e300;
+    for (const Collider& c : scene.colliders) {
+        const double travel = maxMotionSpeed(c) * scene.integrator.dt;
+        if (travel == 0) continue;
+        double thin = c.thickness;
+        if (const Capsule* k = c.as<Capsule>()) thin += k->radius;
+        if (const Sphere* k = c.as<Sphere>()) thin += k->radius;
+        if (const Box* k = c.as<Box>())
+            thin += std::min({k->halfExtents.x, k->halfExtents.y, k->halfExtents.z});
+        margin = std::min(margin, thin / travel);
+    }
+    return margin;
+}
+
+std::unique_ptr<Solver> runToEnd(const Scene& scene) {
+    auto solver = makeCpuSolver(scene, {Precision::Double, 2});
+    const StepResult r = solver->step(scene.defaultSteps());
+    EXPECT_FALSE(r.unstable) << r.reason;
+    return solver;
+}
+
+// The cape drapes over the turning figure's back: no vertex inside the body, the follow-pinned
+// top edge exactly where the shoulders' pose puts it, the hem behind the torso (in the figure's
+// turning frame) and below the shoulders.
+TEST(ShippedSceneOutcome, CapeDrapesOverTheTurningFiguresBack) {
+    const Scene scene = loadShippedScene("cape");
+    const double margin = tunnellingMargin(scene);
+    EXPECT_GT(margin, 100.0);
+    auto solver = runToEnd(scene);
+    const double t = solver->time();
+    const SimState s = solver->read();
+    const double clear = worstClearance(scene, *solver);
+    EXPECT_GT(clear, -1e-9);
+    const Grid g = scene.grid();
+    double pinError = 0;
+    for (const Pin& p : scene.pins) {
+        ASSERT_GE(p.follow, 0);
+        const Motion m = scene.colliders[size_t(p.follow)].motion->motion();
+        const glm::dvec3 want = poseAt(m, t).apply(g.restPosition(p.i, p.j));
+        pinError = std::max(pinError, glm::length(s.positions[size_t(g.index(p.i, p.j))] - want));
+    }
+    EXPECT_LT(pinError, 1e-12);
+    // The hem's middle, turned back into the figure's rest frame: behind the torso, hanging.
+    const glm::dvec3 local = test::capeHemInFiguresFrame(scene, s, t);
+    std::printf(
+        "cape: tunnelling margin %.0fx, worst clearance %.3g m, pins off by %.3g m, hem "
+        "at (%.3f, %.3f, %.3f) in the figure's frame\n",
+        margin, clear, pinError, local.x, local.y, local.z);
+    EXPECT_LT(local.z, -0.14);
+    EXPECT_LT(local.y, 1.0);
+}
+
+// The tablecloth falls onto the table top and friction keeps it there although it hangs further
+// over one edge: its centre ends on the top, its edges hang below it, no vertex is inside; with
+// the top's friction set to 0 the same cloth slides off.
+TEST(ShippedSceneOutcome, TableclothStaysOnTheTable) {
+    const Scene scene = loadShippedScene("table");
+    auto solver = runToEnd(scene);
+    const auto [top, topY, centre, lowest, clear] = test::tableOutcome(scene, *solver);
+    std::printf(
+        "table: centre at (%.4f, %.4f, %.4f), top at y = %.3f, lowest vertex %.3f m, "
+        "worst clearance %.3g m\n",
+        centre.x, centre.y, centre.z, topY, lowest, clear);
+    EXPECT_LT(std::abs(centre.x - top.center.x), top.halfExtents.x - 0.2);
+    EXPECT_LT(std::abs(centre.z - top.center.z), top.halfExtents.z - 0.2);
+    EXPECT_NEAR(centre.y, topY + scene.colliders[0].thickness, 2e-3);
+    EXPECT_LT(lowest, topY - 0.1);
+    EXPECT_GT(clear, -1e-9);
+    // Without friction the longer overhang pulls it off the table.
+    Scene slippery = scene;
+    slippery.colliders[0].friction = 0;
+    const glm::dvec3 slid = test::clothCentre(slippery, runToEnd(slippery)->read());
+    std::printf("table without friction: centre at (%.3f, %.3f, %.3f)\n", slid.x, slid.y, slid.z);
+    EXPECT_LT(slid.y, topY - 0.1);
+}
+
+// The windsock on its swinging pole: stable, nothing inside the pole or the ground, the tunnelling
+// margin kept, and blown along the wind (its mean displacement along the wind's direction,
+// against the same run without wind).
+TEST(ShippedSceneOutcome, WindsockIsBlownAlongTheWind) {
+    const Scene scene = loadShippedScene("windsock");
+    const double margin = tunnellingMargin(scene);
+    EXPECT_GT(margin, 100.0);
+    Scene calm = scene;
+    calm.wind.reset();
+    auto windy = runToEnd(scene), still = runToEnd(calm);
+    const double blown = test::shiftAlongWind(scene, *windy);
+    const double calmShift = test::shiftAlongWind(scene, *still);
+    const double clear = worstClearance(scene, *windy);
+    std::printf(
+        "windsock: tunnelling margin %.0fx, mean shift along the wind %.3f m (without "
+        "wind %.3f m), worst clearance %.3g m\n",
+        margin, blown, calmShift, clear);
+    EXPECT_GT(blown, 0.05);
+    EXPECT_GT(blown, calmShift + 0.3);
+    EXPECT_GT(clear, -1e-9);
+}
+
+}  // namespace
+}  // namespace cloth

@@ -1,0 +1,242 @@
+// The viewer: its session (the panel's applyParameters path, backend switches carrying the state,
+// pins, grab, reset, instability) in-process, and the real window under Xvfb on both backends,
+// looked at through its screenshot.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+#include "viewer/viewer_session.h"
+#include "model/errors.h"
+#include "scene/scene_loader.h"
+#include "render/image_checks.h"
+#include "support/process.h"
+
+namespace cloth {
+namespace {
+
+namespace fs = std::filesystem;
+using app::ViewerParams;
+using app::ViewerSession;
+
+const std::string kScenes = CLOTH_SOURCE_DIR "/scenes/";
+
+Scene smallScene(const std::string& name) {
+    return loadScene(kScenes + name + ".json",
+                     {"cloth.resolution=[8,6]", "integrator.substeps=50"});
+}
+
+double maxDifference(const SimState& a, const SimState& b) {
+    double worst = 0;
+    for (std::size_t k = 0; k < a.positions.size(); ++k)
+        worst = std::max(worst, glm::length(a.positions[k] - b.positions[k]));
+    return worst;
+}
+
+SimState afterFrames(ViewerSession& s, int frames) {
+    for (int f = 0; f < frames; ++f) s.advance();
+    return s.solver().read();
+}
+
+TEST(ViewerSession, AParameterSetThroughThePanelPathChangesTheSimulation) {
+    ViewerSession plain(smallScene("hanging"), {});
+    ViewerSession edited(smallScene("hanging"), {});
+    ViewerParams p = edited.params();
+    p.scene.gravity = {0, -3, 0};
+    p.scene.damping = 0.2;
+    const int before = edited.rebuilds();
+    edited.applyParameters(p);
+    EXPECT_EQ(edited.rebuilds(), before) << "gravity and damping are taken live";
+    EXPECT_EQ(edited.params().scene.gravity.y, -3);
+    EXPECT_GT(maxDifference(afterFrames(plain, 10), afterFrames(edited, 10)), 1e-4);
+}
+
+TEST(ViewerSession, SwitchingAFeatureOnBuildsANewSolverAndCarriesTheState) {
+    ViewerSession s(smallScene("hanging"), {});
+    const SimState before = afterFrames(s, 5);
+    ViewerParams p = s.params();
+    p.scene.wind = Wind{{1, 0, 0}, 0.2};
+    const int rebuilds = s.rebuilds();
+    s.applyParameters(p);
+    EXPECT_EQ(s.rebuilds(), rebuilds + 1);
+    EXPECT_EQ(maxDifference(before, s.solver().read()), 0.0);
+    EXPECT_TRUE(s.solver().features().wind);
+    EXPECT_NEAR(s.simTime(), 5 * 50 * p.scene.integrator.dt, 1e-12);
+}
+
+TEST(ViewerSession, SwitchingAColliderOffRemovesItFromTheSolver) {
+    ViewerSession s(smallScene("drape"), {});
+    ViewerParams p = s.params();
+    p.colliderOn[1] = false;  // the sphere
+    s.applyParameters(p);
+    EXPECT_EQ(s.solver().features().spheres, 0);
+    EXPECT_EQ(s.params().scene.colliders.size(), 2u) << "kept, switched off";
+}
+
+TEST(ViewerSession, ResolutionChangeRebuildsTheClothAtRest) {
+    ViewerSession s(smallScene("hanging"), {});
+    afterFrames(s, 3);
+    ViewerParams p = s.params();
+    p.scene.cloth.nu = 12;
+    p.scene.cloth.nv = 9;
+    s.applyParameters(p);
+    const SimState st = s.solver().read();
+    EXPECT_EQ(st.nu, 12);
+    EXPECT_EQ(st.nv, 9);
+    EXPECT_EQ(s.totalSteps(), 0);
+    ASSERT_EQ(s.params().scene.pins.size(), 2u);  // the two corners, mapped onto the new grid
+    EXPECT_EQ(s.params().scene.pins[1].i, 11);
+}
+
+TEST(ViewerSession, PinsHoldAndTheGrabPulls) {
+    ViewerSession s(smallScene("hanging"), {});
+    const std::int64_t k = 5 * 8 + 4;  // (4, 5), a free vertex
+    s.togglePin(k);
+    const glm::dvec3 pinned = s.solver().read().positions[std::size_t(k)];
+    afterFrames(s, 5);
+    EXPECT_EQ(s.solver().read().positions[std::size_t(k)], pinned);
+    s.togglePin(k);
+    const std::int64_t g = 5 * 8 + 1;
+    const glm::dvec3 start = s.solver().read().positions[std::size_t(g)];
+    const glm::dvec3 target = start + glm::dvec3(0, 0.5, 0);
+    s.grab(g, target);
+    afterFrames(s, 10);
+    const glm::dvec3 end = s.solver().read().positions[std::size_t(g)];
+    EXPECT_LT(glm::length(end - target), glm::length(start - target));
+    s.release();
+    EXPECT_FALSE(s.grabbed().has_value());
+}
+
+TEST(ViewerSession, BackendSwitchCarriesTheState) {
+    ViewerSession s(smallScene("hanging"), {});
+    const SimState before = afterFrames(s, 4);
+    s.setBackend({Backend::Cpu, Precision::Float, 1});
+    EXPECT_LT(maxDifference(before, s.solver().read()), 1e-6);
+    try {
+        s.setBackend({Backend::Gpu, Precision::Float, 0});
+    } catch (const GpuUnavailable& e) {
+        if (test::gpuRequiredByEnvironment()) FAIL() << e.what();
+        GTEST_SKIP() << "no GPU: " << e.what();
+    }
+    EXPECT_LT(maxDifference(before, s.solver().read()), 1e-6);
+    afterFrames(s, 2);
+    EXPECT_EQ(s.totalSteps(), 6 * 50);
+}
+
+// A box collider with thickness and friction (docs/colliders.md §9): the switch to the GPU
+// carries the state and the session goes on there.
+TEST(ViewerSession, BackendSwitchRunsBoxCollidersOnTheGpu) {
+    ViewerSession s(
+        loadScene(kScenes + "hanging.json", {"cloth.resolution=[8,6]", "integrator.substeps=50",
+                                             R"(colliders=[{"type":"box","center":[0,0,0],)"
+                                             R"("half_extents":[1,0.1,1],"thickness":0.01,)"
+                                             R"("friction":0.5}])"}),
+        {});
+    const SimState before = afterFrames(s, 2);
+    try {
+        s.setBackend({Backend::Gpu, Precision::Float, 0});
+    } catch (const GpuUnavailable& e) {
+        if (test::gpuRequiredByEnvironment()) FAIL() << e.what();
+        GTEST_SKIP() << "no GPU: " << e.what();
+    }
+    EXPECT_EQ(s.backend().backend, Backend::Gpu);
+    EXPECT_LT(maxDifference(before, s.solver().read()), 1e-6);
+    afterFrames(s, 1);
+    EXPECT_EQ(s.totalSteps(), 3 * 50);
+}
+
+TEST(ViewerSession, InstabilityStopsTheRunUntilReset) {
+    ViewerSession s(smallScene("hanging"), {});
+    ViewerParams p = s.params();
+    p.scene.integrator.dt = 0.01;
+    s.applyParameters(p);
+    for (int f = 0; f < 20 && !s.unstable(); ++f) s.advance();
+    ASSERT_TRUE(s.unstable());
+    EXPECT_NE(s.instability().find("unstable at step"), std::string::npos) << s.instability();
+    EXPECT_EQ(s.advance(), 0);
+    s.sampleDiagnostics();
+    EXPECT_TRUE(s.history().energy.empty()) << "nothing non-finite is plotted";
+    p.scene.integrator.dt = 2e-5;
+    s.applyParameters(p);
+    EXPECT_FALSE(s.unstable());
+    EXPECT_EQ(s.advance(), 50);
+}
+
+// ---- the real window, under Xvfb -----------------------------------------------------------
+
+std::string xvfbRun() {
+    for (const char* dir : {"/usr/bin", "/usr/local/bin"}) {
+        const std::string p = std::string(dir) + "/xvfb-run";
+        if (access(p.c_str(), X_OK) == 0) return p;
+    }
+    return "";
+}
+
+// Runs the viewer under its own Xvfb. xvfb-run -a picks a free display number from -n on; two
+// runs starting together may still pick the same one, so a failed server start is retried.
+void viewScreenshot(const std::string& backend, const fs::path& png) {
+    const std::string xvfb = xvfbRun();
+    if (xvfb.empty()) {
+        if (test::gpuRequiredByEnvironment()) FAIL() << "CLOTH_REQUIRE_GPU=1 but no xvfb-run";
+        GTEST_SKIP() << "xvfb-run not installed";
+    }
+    test::ProcessResult r;
+    for (int attempt = 0; attempt < 3; ++attempt) {
+        const int display = 100 + int(getpid() % 300) * 3 + attempt + (backend == "gpu" ? 1000 : 0);
+        r = test::runProcess({xvfb, "-a", "-n", std::to_string(display), "-s",
+                              "-screen 0 1280x800x24", CLOTH_EXE, "view", kScenes + "drape.json",
+                              "--backend", backend, "--frames", "12", "--screenshot", png.string()},
+                             120);
+        if (r.exitCode == 0 || r.err.find("Xvfb failed to start") == std::string::npos) break;
+    }
+    CLOTH_SKIP_IF_NO_GL(r);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+}
+
+TEST(ViewerCommand, HelpAndBadInputNeedNoDisplay) {
+    auto r = test::runProcess({CLOTH_EXE, "view", "--help"}, 30);
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+    EXPECT_NE(r.out.find("usage: clothsim view"), std::string::npos);
+    r = test::runProcess({CLOTH_EXE, "render", "--help"}, 30);
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+    r = test::runProcess({CLOTH_EXE, "view", kScenes + "missing.json"}, 30);
+    EXPECT_EQ(r.exitCode, 2) << test::describe(r);
+    r = test::runProcess({CLOTH_EXE, "view", kScenes + "drape.json", "--set", "damping=-1"}, 30);
+    EXPECT_EQ(r.exitCode, 2) << test::describe(r);
+    EXPECT_NE(r.err.find("damping"), std::string::npos) << r.err;
+    r = test::runProcess({CLOTH_EXE, "view", "--screenshot", "x.png"}, 30);
+    EXPECT_EQ(r.exitCode, 2) << "--screenshot needs --frames: " << test::describe(r);
+}
+
+class ViewerWindow : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ViewerWindow, DrapeScreenshotShowsClothSphereAndGround) {
+    const fs::path d = fs::temp_directory_path() / "clothsim_viewer_test" / GetParam();
+    fs::remove_all(d);
+    fs::create_directories(d);
+    const fs::path png = d / "view.png";
+    viewScreenshot(GetParam(), png);
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
+    const test::Picture p = test::loadPng(png.string());
+    ASSERT_EQ(p.width, 1280);
+    ASSERT_EQ(p.height, 800);
+    const test::ColourCounts view = test::countColours(p, 400);  // right of the panel
+    EXPECT_GT(view.back, view.total / 20) << "the cloth, seen from above";
+    EXPECT_GT(view.sphere, view.total / 50) << "the sphere under it";
+    EXPECT_GT(view.grey, view.total / 10) << "the ground";
+    const test::ColourCounts panel = test::countColours(test::Picture{
+        400, p.height, [&] {
+            std::vector<std::uint8_t> left;
+            for (int y = 0; y < p.height; ++y)
+                left.insert(left.end(), p.rgb.begin() + std::ptrdiff_t(y) * p.width * 3,
+                            p.rgb.begin() + (std::ptrdiff_t(y) * p.width + 400) * 3);
+            return left;
+        }()});
+    EXPECT_GT(panel.distinct, 10) << "the control panel is drawn";
+    fs::remove_all(d);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ViewerWindow, ::testing::Values("cpu", "gpu"));
+
+}  // namespace
+}  // namespace cloth
