@@ -1,4 +1,4 @@
-// forces.comp's shared-memory tile (FORCES_TILED, issue 6 item 4): the work group loads the
+// forces.comp's shared-memory tile (FORCES_TILED, docs/performance.md): the work group loads the
 // positions of its WX × WY vertices and a 2-vertex halo (the bend springs' reach) once, as vec4
 // loads, and the gather reads its 12 neighbours and the normal's 4 from shared memory instead of
 // the SSBO. Same values, same arithmetic: the forces are bit for bit those of the plain pass.

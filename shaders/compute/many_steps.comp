@@ -1,5 +1,5 @@
 // Many steps in one dispatch, for small cloths whose steps cost more in dispatches than in work
-// (issue 6 item 4; explicit_euler and symplectic_euler). One work group holds the whole grid,
+// (docs/performance.md; explicit_euler and symplectic_euler). One work group holds the whole grid,
 // each invocation a strided set of vertices, and runs uStepCount steps: pass 1 (forces.glsl) for
 // all vertices, a barrier, pass 2 (euler_step.glsl), a barrier. The physics are the per-pass
 // kernels' own functions; the buffers are coherent so that the group sees its own writes.

@@ -138,7 +138,7 @@ int runCommand(Args& args) {
         const auto t0 = Clock::now();
         const StepResult r = solver->step(n);
         stepSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
-        deviceSeconds += deviceSecondsPerStep(*solver) * double(r.stepsTaken);
+        deviceSeconds += solver->deviceReport().secondsPerStep * double(r.stepsTaken);
         if (r.unstable) {
             progress.finish();
             reportUnstable(scene, *solver, r, "nothing was written for the unstable state");
@@ -165,7 +165,7 @@ int runCommand(Args& args) {
                     solver->name().c_str());
         if (deviceSeconds > 0)
             std::printf("gpu time %.4g ms/step (%s), %.3g vertex-steps/s of GPU time\n",
-                        1e3 * deviceSeconds / double(total), deviceTimingSource(*solver).c_str(),
+                        1e3 * deviceSeconds / double(total), solver->deviceReport().timing.c_str(),
                         vertexSteps / deviceSeconds);
         const SolveStats& cg = solver->solveStats();
         if (cg.solves > 0)

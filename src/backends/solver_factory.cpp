@@ -1,140 +1,90 @@
 #include "backends/solver_factory.h"
 
-#include <cstdio>
-
-#include "model/errors.h"
-#include "model/stability.h"
-
 #include "cpu/cpu_backend.h"
+#include "model/errors.h"
 
-// CMake defines CLOTH_GPU_BUILT when it builds the GPU backend (CLOTH_GPU=ON).
+// CMake defines CLOTH_GPU_BUILT when it builds the GPU backend (CLOTH_GPU=ON): this is the one
+// place that asks.
 #ifdef CLOTH_GPU_BUILT
-#include "gpu/egl_context.h"
 #include "gpu/gpu_backend.h"
 #include "gpu/gpu_bandwidth.h"
-#include "gpu/gpu_solver.h"
-#include "gpu/gpu_variant.h"
 #endif
 
 namespace cloth {
+namespace {
+
+// The GPU backend's entry points (gpu/gpu_backend.h), or none in a build without it.
+struct GpuEntry {
+    std::unique_ptr<Solver> (*make)(const Scene&, const GpuOptions&);
+    std::string (*describe)();
+    std::string (*variant)(const Scene&, const GpuOptions&);
+    std::optional<std::string> (*sizeRefusal)(const Scene&, const GpuOptions&);
+    double (*copyBandwidth)(std::size_t, int);
+    std::string (*renderer)();
+};
+
+const GpuEntry* gpuEntry() {
+#ifdef CLOTH_GPU_BUILT
+    static constexpr GpuEntry gpu{makeGpuSolver,   describeGpu,
+                                  describeGpuVariant, gpuGridRefusal,
+                                  measureGpuCopyBandwidth, gpuRendererName};
+    return &gpu;
+#else
+    return nullptr;
+#endif
+}
+
+constexpr const char* kNoGpuBuilt = "this clothsim was built without the GPU backend";
+
+const GpuEntry& requireGpu() {
+    if (gpuEntry() == nullptr) throw GpuUnavailable(kNoGpuBuilt);
+    return *gpuEntry();
+}
+
+}  // namespace
 
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice) {
     if (choice.backend == Backend::Cpu)
         return makeCpuSolver(scene, CpuOptions{choice.precision, choice.threads, choice.isa});
-#ifdef CLOTH_GPU_BUILT
-    return makeGpuSolver(scene, choice.gpu);
-#else
-    throw GpuUnavailable("this clothsim was built without the GPU backend");
-#endif
+    return requireGpu().make(scene, choice.gpu);
 }
 
-double deviceSecondsPerStep([[maybe_unused]] const Solver& solver) {
-#ifdef CLOTH_GPU_BUILT
-    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->lastSecondsPerStep();
-#endif
-    return 0;
+std::optional<std::string> gpuSizeRefusal(const Scene& scene, const GpuOptions& options) {
+    return requireGpu().sizeRefusal(scene, options);
 }
 
-std::string deviceTimingSource([[maybe_unused]] const Solver& solver) {
-#ifdef CLOTH_GPU_BUILT
-    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->timingSource();
-#endif
-    return "";
-}
-
-std::string gpuVariantWord([[maybe_unused]] const Solver& solver) {
-#ifdef CLOTH_GPU_BUILT
-    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver))
-        return std::to_string(gpu->workGroup().x) + "x" + std::to_string(gpu->workGroup().y) + "/" +
-               forcesKernelName(gpu->forcesKernel());
-#endif
-    return "";
-}
-
-std::string gpuDispatchWord([[maybe_unused]] const Solver& solver) {
-#ifdef CLOTH_GPU_BUILT
-    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver))
-        return stepDispatchName(gpu->manySteps() ? StepDispatch::ManySteps : StepDispatch::PerStep);
-#endif
-    return "";
-}
-
-std::optional<std::string> gpuSizeRefusal([[maybe_unused]] const Scene& scene,
-                                          [[maybe_unused]] const GpuOptions& options) {
-#ifdef CLOTH_GPU_BUILT
-    const GpuInfo& info = GlContext::instance().info();
-    try {
-        checkGridFits(scene, chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey),
-                      info);
-    } catch (const InputError& e) {
-        return e.reason();
-    }
-    return std::nullopt;
-#else
-    throw GpuUnavailable("this clothsim was built without the GPU backend");
-#endif
-}
-
-GpuPassTimes gpuPassTimes([[maybe_unused]] Solver& solver, [[maybe_unused]] int repeats) {
-    GpuPassTimes t;
-#ifdef CLOTH_GPU_BUILT
-    if (auto* gpu = dynamic_cast<GpuSolver*>(&solver)) {
-        t.forces = gpu->timePass(Kernel::Forces, repeats);
-        t.integrate = gpu->timePass(Kernel::Integrate, repeats);
-        const std::size_t bytes = std::size_t(solver.read().positions.size()) * 16;
-        t.copy = 2.0 * double(bytes) / measureGpuCopyBandwidth(bytes, repeats);
-    }
-#endif
+GpuPassTimes gpuPassTimes(Solver& solver, int repeats) {
+    const PassTimes passes = solver.timePasses(repeats);
+    GpuPassTimes t{passes.forces, passes.integrate, 0};
+    const std::size_t bytes = std::size_t(solver.read().positions.size()) * 16;
+    t.copy = 2.0 * double(bytes) / gpuCopyBandwidth(bytes, repeats);
     return t;
 }
 
-std::size_t gpuBufferBytes([[maybe_unused]] const Solver& solver) {
-#ifdef CLOTH_GPU_BUILT
-    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) return gpu->bufferBytes();
-#endif
-    return 0;
-}
-
-double gpuCopyBandwidth([[maybe_unused]] std::size_t bytes, [[maybe_unused]] int repeats) {
-#ifdef CLOTH_GPU_BUILT
-    return measureGpuCopyBandwidth(bytes, repeats);
-#else
-    throw GpuUnavailable("this clothsim was built without the GPU backend");
-#endif
+double gpuCopyBandwidth(std::size_t bytes, int repeats) {
+    return requireGpu().copyBandwidth(bytes, repeats);
 }
 
 std::string gpuRenderer() {
-#ifdef CLOTH_GPU_BUILT
-    return GlContext::instance().info().renderer;
-#else
-    throw GpuUnavailable("this clothsim was built without the GPU backend");
-#endif
+    return requireGpu().renderer();
 }
 
 Precision effectivePrecision(const BackendChoice& choice) {
     return choice.backend == Backend::Gpu ? Precision::Float : choice.precision;
 }
 
-std::string gpuVariant([[maybe_unused]] const Scene& scene,
-                       [[maybe_unused]] const GpuOptions& options) {
-#ifdef CLOTH_GPU_BUILT
-    return describeGpuVariant(scene, options);
-#else
-    return "none (built without the GPU backend)";
-#endif
+std::string gpuVariant(const Scene& scene, const GpuOptions& options) {
+    if (gpuEntry() == nullptr) return "none (built without the GPU backend)";
+    return gpuEntry()->variant(scene, options);
 }
 
 std::string gpuDescription() {
-#ifdef CLOTH_GPU_BUILT
+    if (gpuEntry() == nullptr) return std::string("unavailable: ") + kNoGpuBuilt;
     try {
-        return describeGpu();
+        return gpuEntry()->describe();
     } catch (const GpuUnavailable& e) {
         return std::string("unavailable: ") + e.what();
     }
-#else
-    return "unavailable: built without the GPU backend";
-#endif
 }
 
 }  // namespace cloth
-

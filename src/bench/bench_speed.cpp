@@ -64,7 +64,7 @@ SpeedRow timeTarget(const Scene& scene, int side, const BenchTarget& t, const Ba
     Timing st;
     try {
         st = timeSteps([&](long n) { return !solver->step(n).unstable; },
-                       [&] { return deviceSecondsPerStep(*solver); }, w.o.quick);
+                       [&] { return solver->deviceReport().secondsPerStep; }, w.o.quick);
     } catch (const BecameUnstable&) {  // a row without a time, said on stderr; the sweep goes on
         std::fprintf(stderr,
                      "clothsim bench speed: %s %s at %dx%d became unstable after %ld steps at "
@@ -84,14 +84,15 @@ SpeedRow timeTarget(const Scene& scene, int side, const BenchTarget& t, const Ba
                          onGpu ? w.meta.copyGBps : w.meta.triadGBps);
     r.features = features;
     r.dt = scene.integrator.dt;
-    r.timingSource = deviceTimingSource(*solver);
+    const DeviceReport device = solver->deviceReport();
+    r.timingSource = device.timing;
     // The GPU's own allocation (every buffer it made, bufferBytes()); the CPU's by its model.
-    r.bytesPerVertex = onGpu ? double(gpuBufferBytes(*solver)) / double(r.vertices)
+    r.bytesPerVertex = onGpu ? double(device.bytes) / double(r.vertices)
                              : double(cpuBytesPerVertex(t.precision, m));
     if (!onGpu) return r;
     // The variant as asked (one curve per variant in the plot), the dispatch as run.
-    r.variant = gpuVariantWord(*solver) + "/" + stepDispatchName(choice.gpu.dispatch);
-    r.dispatch = gpuDispatchWord(*solver);
+    r.variant = device.variant + "/" + stepDispatchName(choice.gpu.dispatch);
+    r.dispatch = device.dispatch;
     if (w.o.gpuSweep.passTimes) {
         const GpuPassTimes p = gpuPassTimes(*solver, w.o.quick ? 3 : 5);
         r.forcesPassMs = 1e3 * p.forces;

@@ -1,4 +1,4 @@
-// `clothsim bench speed`'s GPU sweep (issue 6 item 4): which work-group shapes, forces kernels
+// `clothsim bench speed`'s GPU sweep (docs/performance.md): which work-group shapes, forces kernels
 // and dispatch modes the GPU rows are timed with, and their flags.
 #pragma once
 

@@ -3,6 +3,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/gpu_solver.h"
 #include "gpu/gpu_variant.h"
+#include "model/errors.h"
 
 namespace cloth {
 
@@ -23,6 +24,23 @@ std::string describeGpuVariant(const Scene& scene, const GpuOptions& options) {
         if (!value.empty()) line += "=" + (quote ? "\"" + value + "\"" : value);
     }
     return line;
+}
+
+std::optional<std::string> gpuGridRefusal(const Scene& scene, const GpuOptions& options) {
+    const GpuInfo& info = GlContext::instance().info();
+    try {
+        checkGridFits(scene,
+                      chooseWorkGroup({options.workGroupX, options.workGroupY}, &info,
+                                      options.workGroupKey),
+                      info);
+    } catch (const InputError& e) {
+        return e.reason();
+    }
+    return std::nullopt;
+}
+
+std::string gpuRendererName() {
+    return GlContext::instance().info().renderer;
 }
 
 }  // namespace cloth

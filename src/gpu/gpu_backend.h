@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "model/scene.h"
@@ -18,6 +19,14 @@ std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& opti
 
 // Multi-line: EGL vendor, platform, GL renderer/version, compute limits. Throws GpuUnavailable.
 std::string describeGpu();
+
+// Why the device cannot hold this scene's grid with these options (a limit of the device, named),
+// or nothing. Throws GpuUnavailable.
+std::optional<std::string> gpuGridRefusal(const Scene& scene, const GpuOptions& options);
+
+// GL_RENDERER of the headless context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)". Throws
+// GpuUnavailable.
+std::string gpuRendererName();
 
 // The #defines this scene compiles to, one line; no GL needed.
 std::string describeGpuVariant(const Scene& scene, const GpuOptions& options = {});

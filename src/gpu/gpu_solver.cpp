@@ -242,6 +242,17 @@ void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
     }
 }
 
+DeviceReport GpuSolver::deviceReport() const {
+    DeviceReport r;
+    r.secondsPerStep = secondsPerStep_;
+    r.timing = timingSource();
+    r.bytes = bufferBytes();
+    r.variant = std::to_string(workGroup_.x) + "x" + std::to_string(workGroup_.y) + "/" +
+                forcesKernelName(forces_);
+    r.dispatch = stepDispatchName(manySteps() ? StepDispatch::ManySteps : StepDispatch::PerStep);
+    return r;
+}
+
 std::size_t GpuSolver::bufferBytes() const {
     context_.makeCurrent();
     std::size_t bytes = 0;

@@ -44,10 +44,13 @@ public:
     // keeping the state; later drags and every other collider's are data.
     void setColliderDrag(int index, const glm::dvec3& offset, const glm::dvec3& velocity) override;
 
-    // GL buffer names (vec4 per vertex, k = j·nu + i): the renderer binds them as vertex
-    // buffers. Valid in the context the solver was made in.
-    unsigned positionBuffer() const { return buffers_[gpu::kPositions]; }
-    unsigned normalBuffer() const { return buffers_[gpu::kNormals]; }
+    std::optional<DrawBuffers> drawBuffers() const override {
+        return DrawBuffers{buffers_[gpu::kPositions], buffers_[gpu::kNormals]};
+    }
+    DeviceReport deviceReport() const override;
+    PassTimes timePasses(int repeats) override {
+        return {timePass(Kernel::Forces, repeats), timePass(Kernel::Integrate, repeats)};
+    }
 
     // Seconds per step of the last step(n) call: GL timer queries where they count, else
     // glFinish and a steady clock (llvmpipe's timer reads 0 for compute).

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "gpu/gpu_solver.h"
 #include "render/collider_draw.h"
 #include "render/geometry.h"
 #include "render/gl_program.h"
@@ -142,9 +141,9 @@ bool Renderer::updateCloth(const Solver& solver) {
     Impl& m = *impl_;
     m.time = solver.time();  // the colliders are drawn where the solver has them now
     m.colliders.setPose(m.time, m.drags);
-    if (const auto* gpu = dynamic_cast<const GpuSolver*>(&solver)) {
-        m.positions = gpu->positionBuffer();
-        m.normals = gpu->normalBuffer();
+    if (const std::optional<DrawBuffers> own = solver.drawBuffers()) {
+        m.positions = own->positions;
+        m.normals = own->normals;
         haveCloth_ = true;
         return true;
     }

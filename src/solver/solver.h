@@ -1,6 +1,7 @@
 // The one interface both backends implement (DESIGN.md §1): step(n), read(), features().
 #pragma once
 
+#include <cstddef>
 #include <glm/glm.hpp>
 #include <memory>
 #include <optional>
@@ -66,6 +67,28 @@ struct SolveStats {
     double worstResidual = 0;  // largest final |r|/|b| of a miss
 };
 
+// GL buffer names of a backend that keeps its state in GL buffers (vec4 per vertex, k = j·nu + i):
+// the renderer binds them as vertex buffers and copies nothing. Valid in the context the solver
+// was made in.
+struct DrawBuffers {
+    unsigned positions = 0, normals = 0;
+};
+
+// What a backend tells of how it runs, beside the physics: for the benches, `run` and the viewer.
+struct DeviceReport {
+    double secondsPerStep = 0;  // device time per step of the last step(n) [s]; 0: not measured
+    std::string timing;         // how: "GL timer query", "wall clock"; "" when not measured
+    std::size_t bytes = 0;      // device memory the solver holds [bytes]; 0: none beyond the host's
+    std::string variant;        // the kernel variant, e.g. "16x16/global"; "" for one-variant backends
+    std::string dispatch;       // "per-step" or "many-steps"; "" where it does not apply
+};
+
+// Seconds of one dispatch of a pass over the whole grid, alone, best of some repeats: what a step's
+// time is made of. NaN for a pass the backend does not time or the scene does not compile.
+struct PassTimes {
+    double forces = 0, integrate = 0;
+};
+
 class Solver {
 public:
     virtual ~Solver() = default;
@@ -94,6 +117,13 @@ public:
     // velocity 0 leaves it where it is.
     virtual void setColliderDrag(int index, const glm::dvec3& offset,
                                  const glm::dvec3& velocity) = 0;
+    // Where the renderer draws the cloth from without a copy, or nullopt: it then read()s.
+    virtual std::optional<DrawBuffers> drawBuffers() const { return std::nullopt; }
+    virtual DeviceReport deviceReport() const { return {}; }
+    // Times the forces and integrate passes alone (bench speed --pass-times); may change the state
+    // as steps would. Backends without device passes report NaN.
+    virtual PassTimes timePasses(int repeats);
+
     long stepsDone() const { return steps_; }
     // Steps done and the time back to 0.
     void resetStepCount() { steps_ = originStep_ = 0, timeOrigin_ = 0; }

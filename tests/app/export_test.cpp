@@ -1,4 +1,4 @@
-// Export a 3D artist can use (issue 7 item 6): `run --frames DIR --every K` writes OBJ frames
+// Export a 3D artist can use: `run --frames DIR --every K` writes OBJ frames
 // whose names sort in step order; each frame, read back by tinyobjloader (an independent
 // parser), has one v, vt and vn per vertex equal to the solver's state, the UVs of the grid,
 // the normals of DESIGN.md §2 and 2(nu−1)(nv−1) faces; `--out-colliders` writes the scene's

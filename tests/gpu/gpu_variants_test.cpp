@@ -1,4 +1,4 @@
-// The GPU backend's speed variants (issue 6 item 4) change how the work is dispatched, never the
+// The GPU backend's speed variants (docs/performance.md) change how the work is dispatched, never the
 // physics: the shared-memory tile, every work-group shape and many steps per dispatch give the
 // plain per-step pass's state bit for bit, the instability flag stops a many-steps run at the
 // same step, and the buffers hold a 4096² cloth within 100 bytes per vertex.
@@ -138,7 +138,7 @@ GpuInfo deviceWith(long long maxStorageBlockSize, int maxSharedMemory) {
     return info;
 }
 
-// Issue 6 item 7: the GPU holds 4096² within 100 bytes per vertex (state + forces + normals;
+// Memory per vertex: the GPU holds 4096² within 100 bytes per vertex (state + forces + normals;
 // the grid needs no index buffer). What it allocates is 4 vec4 per vertex plus a few tables
 // that do not grow with the grid, measured on two grids and extrapolated; a device whose SSBOs
 // are too small for 4096² refuses it naming that limit, before allocating.

@@ -1,4 +1,4 @@
-// `clothsim render --frames DIR --every K` (issue 7 item 6): a PNG every K steps and the initial
+// `clothsim render --frames DIR --every K`: a PNG every K steps and the initial
 // one, names sorting in step order, each a picture of the requested size; an MP4 when ffmpeg is
 // on PATH, and when it is not a clear message and exit 0 with the PNGs written.
 #include <gtest/gtest.h>
