@@ -87,31 +87,6 @@ vec3 springJacobianTimes(vec3 pk, vec3 pq, float stiffness, float restLength, ve
 }
 #endif
 
-#ifdef HAS_PLANES
-// Seed Q12: s = ⟨p − c, n̂⟩; below the plane, p ← p − s n̂ and v ← v − ⟨v, n̂⟩ n̂.
-void collidePlane(inout vec3 p, inout vec3 v, vec3 point, vec3 normal) {
-    float s = dot(p - point, normal);
-    if (s < 0.0) {
-        p -= s * normal;
-        v -= dot(v, normal) * normal;
-    }
-}
-#endif
-
-#ifdef HAS_SPHERES
-// Seed Q13: inside the sphere, p ← c + R n̂, v ← v − ⟨v, n̂⟩ n̂, n̂ = (p − c)/|p − c|
-// ((0, 1, 0) at the very centre): the cloth slides on the surface.
-void collideSphere(inout vec3 p, inout vec3 v, vec4 sphere) {
-    vec3 r = p - sphere.xyz;
-    float len = length(r);
-    if (len < sphere.w) {
-        vec3 n = len > 0.0 ? r / len : vec3(0.0, 1.0, 0.0);
-        p = sphere.xyz + sphere.w * n;
-        v -= dot(v, n) * n;
-    }
-}
-#endif
-
 // Infinity or NaN, tested on the bits: a compiler may assume finite floats in isnan/isinf.
 bool nonFinite(vec3 x) {
     uvec3 exponent = floatBitsToUint(x) & 0x7f800000u;

@@ -2,7 +2,26 @@
 // §9), read from the Colliders block (layout.glsl) as src/gpu/gpu_collider_table.h lays it out:
 // one record per collider, the meshes' SDF samples, and the moving colliders' poses for a batch
 // of steps. The host generates COLLIDERS_IN_SCENE_ORDER from the scene, so a scene compiles the
-// shapes it declares and nothing else; a plain plane or sphere is DESIGN.md §2's code.
+// shapes it declares and nothing else.
+
+// A plain plane or sphere (no thickness, friction or motion) takes the one contact response with
+// h = 0, c_f = 0, v_c = 0, which is DESIGN.md §2's rule to the bit (tests/model/
+// collider_contact_test.cpp; the compiler folds the zeros away).
+#ifdef HAS_PLANES
+#ifndef HAS_CONTACT_PLANES
+#define HAS_CONTACT_PLANES
+#endif
+#endif
+#ifdef HAS_SPHERES
+#ifndef HAS_CONTACT_SPHERES
+#define HAS_CONTACT_SPHERES
+#endif
+#endif
+#if defined(HAS_PLANES) || defined(HAS_SPHERES)
+#ifndef HAS_CONTACT
+#define HAS_CONTACT
+#endif
+#endif
 
 #ifdef HAS_CONTACT
 #ifdef HAS_MESHES
@@ -15,6 +34,13 @@ float sdfValue(int index) { return colliders[index >> 2][index & 3]; }
 #include "../colliders/collider_grid.glsl"
 #endif
 #include "../colliders/collider_contact.glsl"
+
+#ifdef HAS_PLANES
+// A plain plane record: (point, 0), (unit normal, 0); no thickness, friction or motion.
+void respondPlane(vec3 point, vec3 normal, inout vec3 p, inout vec3 v) {
+    respondContact(planeContact(p, point, normal), 0.0, 0.0, vec3(0.0), p, v);
+}
+#endif
 
 // Record r of a collider with a thickness, friction or motion: colliders[r] = (h, c_f, 0, 0),
 // the shape from r + 1 (gpu::ContactRecord, then the shape's record of src/gpu/gpu_layout.h).
@@ -106,10 +132,10 @@ void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
     int pose = poseSlot(step);
 #endif
 #ifdef HAS_PLANES
-#define PLANE(r) collidePlane(p, vel, colliders[r].xyz, colliders[(r) + 1].xyz);
+#define PLANE(r) respondPlane(colliders[r].xyz, colliders[(r) + 1].xyz, p, vel);
 #endif
 #ifdef HAS_SPHERES
-#define SPHERE(r) collideSphere(p, vel, colliders[r]);
+#define SPHERE(r) respondSphere(colliders[r].xyz, colliders[r].w, 0.0, 0.0, vec3(0.0), p, vel);
 #endif
 #ifdef HAS_CONTACT
 #define STILL(fn, r) fn(r, vec3(0.0), p, vel);

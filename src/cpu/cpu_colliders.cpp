@@ -103,7 +103,6 @@ void CpuColliders<T>::take(const Scene& scene) {
         if (c.motion) r.motion = c.motion->motion();
         CpuCollider<T> p;
         p.params = {T(c.thickness), T(c.friction)};
-        p.plain = c.plain();
         p.moving = c.motion.has_value();
         anyMoving_ = anyMoving_ || p.moving;
         std::visit([&](const auto& s) { setPosed(p, s, c.thickness); }, r.shape);
@@ -119,7 +118,6 @@ void CpuColliders<T>::take(const Scene& scene) {
 template <typename T>
 void CpuColliders<T>::setMoving(std::size_t k) {
     posed_[k].moving = true;
-    posed_[k].plain = false;  // a dragged plane or sphere: the general response, with v_c
     anyMoving_ = true;
 }
 

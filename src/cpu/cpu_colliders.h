@@ -1,7 +1,6 @@
 // The CPU backend's colliders (docs/colliders.md): every shape with the shared response of
 // model/collider_contact.h, posed at the end of each step by model/collider_motion.h. A plane or
-// sphere without thickness, friction or motion keeps DESIGN.md §2's rule (model/colliders.h) bit
-// for bit. applyRow() runs one loop per collider over a row of vertices, and first asks, in a
+// sphere without thickness, friction or motion gets DESIGN.md §2's rule bit for bit from it. applyRow() runs one loop per collider over a row of vertices, and first asks, in a
 // branch-free loop the compiler vectorises, whether any vertex of the row can touch it: a
 // collider far from the row costs that one pass (docs/performance.md).
 #pragma once
@@ -23,7 +22,6 @@ struct CpuCollider {
     using Shape = std::variant<PlaneT<T>, SphereT<T>, BoxT<T>, CapsuleT<T>, SdfColliderT<T>>;
     Shape shape;  // posed at the end of the step being taken
     ContactParamsT<T> params;
-    bool plain = true;  // h = 0, c_f = 0, still: DESIGN.md §2's rule
     // v_c(p) = linear + angular × (p − origin), at the end of the step (moving colliders only).
     bool moving = false;
     Vec3<T> linear{0}, angular{0}, origin{0};
@@ -46,7 +44,7 @@ public:
     // nothing: it runs in a barrier's completion.
     void pose(double t) noexcept;
     // Solver::setColliderDrag: collider `index` is displaced by drag.at(t) from the next pose on,
-    // and moves (v_c gains drag.velocity; a plain plane or sphere takes the general response).
+    // and moves (v_c gains drag.velocity).
     // Drags outlive take() while the number of colliders stays. std::invalid_argument for an
     // index out of range.
     void drag(int index, const ColliderDrag& drag);
@@ -70,11 +68,10 @@ private:
     };
     void setMoving(std::size_t k);
 
+    // With h = 0, c_f = 0 and a still collider, the response is DESIGN.md §2's rule bit for bit
+    // (tests/model/collider_contact_test.cpp): there is no second copy of it for plain colliders.
     template <typename S>
     static void applyOne(const CpuCollider<T>& c, const S& s, Vec3<T>& p, Vec3<T>& v) {
-        if constexpr (std::is_same_v<S, PlaneT<T>> || std::is_same_v<S, SphereT<T>>) {
-            if (c.plain) return collide(s, p, v);  // DESIGN.md §2 exactly
-        }
         collide(s, c.params, c.velocityAt(p), p, v);
     }
 

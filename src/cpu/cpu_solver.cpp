@@ -193,12 +193,11 @@ bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
     computeForcesScalar(band.begin, band.end);
     team.sync();
     const T h = dt_t_;
+    const auto update = symplectic ? eulerComponent<T, true> : eulerComponent<T, false>;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         Vec3<T> p = x_.get(k), v = v_.get(k);
-        const Vec3<T> a = acceleration(k, v);
-        if (!symplectic) p += h * v;
-        v += h * a;
-        if (symplectic) p += h * v;
+        const Vec3<T> f = f_.get(k);  // the row kernels' update, one vertex at a time
+        for (int c = 0; c < 3; ++c) update(p[c], v[c], f[c], h, damping_, inverseMass_, gravity_[c]);
         if (!finishVertex(band, k, p, v)) return false;
     }
     return true;
@@ -228,9 +227,8 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
         Vec3<T> v = (v_.get(k) + half * (f_.get(k) * w + gravity_)) / (T(1) + half * damping_ * w);
         if (pinned_[k]) v = pinVelocity(k);
         v_.set(k, v);
-        const T speed2 = glm::dot(v, v);
         const Vec3<T> p = x_.get(k);
-        if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2) || speed2 > maxSpeed2_)
+        if (badVertex(p.x, p.y, p.z, v.x, v.y, v.z, maxSpeed2_))
             ok = finishVertex(band, k, p, v);  // reports it (pins and colliders are no-ops now)
     }
     return ok;

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <variant>
 
+#include "model/spring_math.h"
+
 #include "cpu/cpu_solver.h"
 
 namespace cloth {
@@ -36,10 +38,8 @@ inline void CpuSolver<T>::collideVertex(Vec3<T>& p, Vec3<T>& v) const {
 template <typename T>
 inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
     constrainVertex(k, p, v);
-    const T speed2 = glm::dot(v, v);
-    if (std::isfinite(p.x + p.y + p.z) && std::isfinite(speed2) && !(speed2 > maxSpeed2_))
-        return true;
-    reportBad(band, k, p, speed2);
+    if (!badVertex(p.x, p.y, p.z, v.x, v.y, v.z, maxSpeed2_)) return true;
+    reportBad(band, k, p, glm::dot(v, v));
     return false;  // the rest of the band is not advanced: the run stops at this step
 }
 

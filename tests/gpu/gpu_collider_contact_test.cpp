@@ -140,7 +140,7 @@ std::string integrateKernel(const Json& colliders, const fs::path& dir) {
 }
 
 // DESIGN.md §3: a scene compiles the collider code it declares and nothing else; a plain plane
-// or sphere is DESIGN.md §2's code alone.
+// takes the one contact response (with zero thickness, friction and speed) and nothing else.
 TEST(GpuColliderVariant, EachSceneCompilesOnlyItsColliders) {
     const fs::path dir = freshTempDir("GpuColliderVariant", "kernels");
     writeSlabObj(dir);
@@ -157,12 +157,12 @@ TEST(GpuColliderVariant, EachSceneCompilesOnlyItsColliders) {
     };
     const std::vector<Expect> expects = {
         {plain,
-         {"collidePlane(p, vel"},
-         {"respondContact", "boxContact", "capsuleContact", "gridContact", "colliderVelocity",
+         {"respondPlane(", "planeContact("},
+         {"sphereContact", "respondSphere", "boxContact", "capsuleContact", "gridContact", "colliderVelocity",
           "POSE_BATCH"}},
         {named("box"),
          {"boxContact(", "STILL(collideBoxRecord, 0)"},
-         {"collidePlane(p, vel", "capsuleContact(", "gridContact(", "colliderVelocity("}},
+         {"respondPlane(", "capsuleContact(", "gridContact(", "colliderVelocity("}},
         {named("mesh"), {"gridContact(", "sdfValue("}, {"boxContact(", "colliderVelocity("}},
         {named("capsule_turning"),
          {"capsuleContact(", "colliderVelocity(", "POSE_BATCH 64",
