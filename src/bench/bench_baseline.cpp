@@ -9,16 +9,14 @@
 namespace cloth::app {
 
 BaselineCloth::BaselineCloth(const Scene& scene)
-    : nu_(scene.cloth.nu),
-      nv_(scene.cloth.nv),
-      du_(nu_ > 1 ? scene.cloth.size.x / (nu_ - 1) : 0),
-      dv_(nv_ > 1 ? scene.cloth.size.y / (nv_ - 1) : 0),
+    : grid_(scene.grid()),
+      nu_(grid_.nu),
+      nv_(grid_.nv),
       dt_(scene.integrator.dt),
       mass_(scene.cloth.mass),
       damping_(scene.damping),
       k_{scene.springs.structural, scene.springs.shear, scene.springs.bend},
       gravity_{scene.gravity.x, scene.gravity.y, scene.gravity.z} {
-    const auto& c = scene.cloth;
     const std::size_t n = std::size_t(nu_) * nv_;
     x_.resize(n);
     v_.assign(n, V3{0, 0, 0});
@@ -27,7 +25,7 @@ BaselineCloth::BaselineCloth(const Scene& scene)
     pinned_.assign(n, 0);
     for (int j = 0; j < nv_; ++j)
         for (int i = 0; i < nu_; ++i) {
-            const glm::dvec3 p = c.origin + i * du_ * c.uAxis + j * dv_ * c.vAxis;
+            const glm::dvec3 p = grid_.restPosition(i, j);
             x_[std::size_t(j) * nu_ + i] = V3{p.x, p.y, p.z};
         }
     for (const Pin& p : scene.pins) pinned_[std::size_t(p.j) * nu_ + p.i] = 1;
@@ -38,8 +36,8 @@ void BaselineCloth::step(long n) {
 }
 
 // The seed's loop as it was written: for every vertex, for every neighbour offset, a bounds
-// check, the spring force F = K(|d| − L) d/|d| (seed eq. (2)), then v += Δt((F − μv)/m + g),
-// x += Δt·v_old (seed eq. (6)) into the next arrays.
+// check, the spring force F = K(|d| − L) d/|d| (seed eq. (2)) with L = |di·du·û + dj·dv·v̂|
+// (DESIGN.md §2), then v += Δt((F − μv)/m + g), x += Δt·v_old (seed eq. (6)) into the next arrays.
 void BaselineCloth::stepOnce() {
     static const int di[12] = {1, -1, 0, 0, 1, 1, -1, -1, 2, -2, 0, 0};
     static const int dj[12] = {0, 0, 1, -1, 1, -1, 1, -1, 0, 0, 2, -2};
@@ -53,8 +51,9 @@ void BaselineCloth::stepOnce() {
                 if (ii < 0 || ii >= nu_ || jj < 0 || jj >= nv_) continue;
                 const double stiffness = k_[family[s]];
                 if (stiffness == 0) continue;
-                const double rest =
-                    std::sqrt(di[s] * du_ * di[s] * du_ + dj[s] * dv_ * dj[s] * dv_);
+                // û and v̂ need not be orthogonal (a skewed cloth): L is the length of the rest
+                // offset di·du·û + dj·dv·v̂, not √((di·du)² + (dj·dv)²).
+                const double rest = grid_.restLength(di[s], dj[s]);
                 const int q = jj * nu_ + ii;
                 const double dx = x_[q].x - x_[k].x, dy = x_[q].y - x_[k].y, dz = x_[q].z - x_[k].z;
                 const double len = std::sqrt(dx * dx + dy * dy + dz * dz);

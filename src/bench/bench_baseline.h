@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <vector>
 
 #include "model/scene.h"
@@ -17,6 +18,8 @@ public:
     explicit BaselineCloth(const Scene& scene);
     void step(long n);  // n explicit Euler steps (DESIGN.md §2, seed eq. (6))
     double x(std::size_t k) const { return x_[k].x; }
+    // Position of vertex k = j·nu + i [m].
+    glm::dvec3 position(std::size_t k) const { return {x_[k].x, x_[k].y, x_[k].z}; }
 
 private:
     struct V3 {
@@ -24,8 +27,9 @@ private:
     };
     void stepOnce();
 
+    Grid grid_;  // rest positions and rest lengths (model/grid.h)
     int nu_, nv_;
-    double du_, dv_, dt_, mass_, damping_;
+    double dt_, mass_, damping_;
     double k_[3];  // structural, shear, bend [N/m]
     V3 gravity_;
     std::vector<V3> x_, v_, xNext_, vNext_;
