@@ -7,19 +7,25 @@
 #include "backends/solver_factory.h"
 #include "model/collider_limits.h"
 #include "model/collider_speed.h"
-#include "scene/collider_validate.h"
 #include "model/errors.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/collider_validate.h"
+#include "scene/params.h"
+#include "scene/scene_loader.h"
 
 namespace cloth::app {
 namespace {
 
 constexpr const char* kHelp = R"(usage: clothsim validate SCENE [--set KEY.PATH=JSON]...
+       clothsim validate --params-markdown
 
 Checks SCENE (every key: type, range, unknown keys) and prints what it models: spring families,
-forces, pins, colliders, integrator, the predicted stable time step, and the GPU kernel variant.
+forces, pins, colliders, integrator, every scalar parameter with its unit, the predicted stable
+time step, and the GPU kernel variant.
 Exit 0 if the scene is valid, 2 (with the file, key path and reason) if not.
+
+--params-markdown prints the table of scalar parameters (key, unit, range, default, viewer
+slider, meaning) as docs/parameters.md holds it, and needs no scene.
 )";
 
 std::string vec(const glm::dvec3& v) {
@@ -131,6 +137,18 @@ void printModel(const Scene& s) {
     std::printf("max speed    %g m/s\n", s.maxSpeed);
 }
 
+// Every scalar of scene/params.cpp's table with the value in force, defaults included, so a key
+// the file leaves out shows what the run will use.
+void printParameters(const Scene& s) {
+    const char* label = "parameters";
+    for (const ParamSpec& p : paramTable()) {
+        const std::optional<double> v = p.get ? p.get(s) : std::nullopt;
+        if (!v) continue;
+        std::printf("%-12s %s = %g%s%s\n", label, p.path, *v, p.unit[0] ? " " : "", p.unit);
+        label = "";
+    }
+}
+
 // Power iterations for validate's tight estimate of λ_max: each is one stencil pass.
 constexpr int kPowerIterations = 40;
 
@@ -173,6 +191,10 @@ int validateCommand(Args& args) {
             std::fputs(kHelp, stdout);
             return kOk;
         }
+        if (f == "--params-markdown") {
+            std::fputs(paramsMarkdown().c_str(), stdout);
+            return kOk;
+        }
         if (f == "--set")
             sets.push_back(args.value(f));
         else
@@ -181,6 +203,7 @@ int validateCommand(Args& args) {
     if (path.empty()) throw InputError("command line", "SCENE", "validate needs a scene file");
     const Scene scene = loadScene(path, sets);
     printModel(scene);
+    printParameters(scene);
     std::printf("features     %s\n", Features::of(scene).describe().c_str());
     printStability(scene);
     std::printf("gpu variant  %s\n", gpuVariant(scene, backendChoiceFromEnvironment().gpu).c_str());

@@ -3,33 +3,102 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 
 namespace cloth {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr SliderSpec kHidden{};
 
 // DESIGN.md §4. Ranges are physical (mass > 0, Δt > 0), or guard against sizes no machine has.
+// Defaults are Scene{}'s (model/scene.h); tests/scene/params_test.cpp holds the two together.
+// Slider ranges are what the panel offers, a working span inside the valid range.
+// One row a parameter, kept in columns to read as a table.
+// clang-format off
 constexpr ParamSpec kParams[] = {
-    {"cloth.mass", "kg", 0, kInf, true, false, "mass of each vertex"},
-    {"springs.structural", "N/m", 0, kInf, false, false,
-     "stiffness of the (±1,0), (0,±1) springs; 0 = not modelled"},
-    {"springs.shear", "N/m", 0, kInf, false, false,
-     "stiffness of the (±1,±1) springs; 0 = not modelled"},
-    {"springs.bend", "N/m", 0, kInf, false, false,
-     "stiffness of the (±2,0), (0,±2) springs; 0 = not modelled"},
-    {"damping", "N·s/m", 0, kInf, false, false, "viscous damping μ, F = −μv"},
-    {"integrator.dt", "s", 0, 10, true, false, "time step Δt"},
-    {"integrator.substeps", "", 1, 100000, false, true, "steps per displayed frame (viewer)"},
-    {"integrator.tolerance", "", 0, 1, true, false,
-     "implicit_euler: CG stops at |residual| <= tolerance·|right-hand side|"},
-    {"integrator.max_iterations", "", 1, 100000, false, true,
-     "implicit_euler: CG iteration cap per step (a miss is reported)"},
-    {"wind.strength", "N", -kInf, kInf, false, false, "K_w in F = K_w ⟨n, û_w⟩ n"},
-    {"max_speed", "m/s", 0, kInf, true, false, "a faster vertex means the run is unstable"},
-    {"duration", "s", 0, 1e9, true, false, "simulated time `run` covers without --steps"},
-    {"colliders[].radius", "m", 0, kInf, true, false, "sphere radius"},
+    {"cloth.mass", "kg", 0, kInf, true, false, 1, false, "mass of each vertex",
+     {PanelSection::Forces, SliderScale::Log, 1e-5, 100, "mass [kg]"},
+     [](const Scene& s) -> std::optional<double> { return s.cloth.mass; },
+     [](Scene& s, double v) { s.cloth.mass = v; }},
+    {"springs.structural", "N/m", 0, kInf, false, false, 0, false,
+     "stiffness of the (±1,0), (0,±1) springs; 0 = not modelled",
+     {PanelSection::Forces, SliderScale::Log, 0, 1e5, "structural [N/m]"},
+     [](const Scene& s) -> std::optional<double> { return s.springs.structural; },
+     [](Scene& s, double v) { s.springs.structural = v; }},
+    {"springs.shear", "N/m", 0, kInf, false, false, 0, false,
+     "stiffness of the (±1,±1) springs; 0 = not modelled",
+     {PanelSection::Forces, SliderScale::Log, 0, 1e5, "shear [N/m]"},
+     [](const Scene& s) -> std::optional<double> { return s.springs.shear; },
+     [](Scene& s, double v) { s.springs.shear = v; }},
+    {"springs.bend", "N/m", 0, kInf, false, false, 0, false,
+     "stiffness of the (±2,0), (0,±2) springs; 0 = not modelled",
+     {PanelSection::Forces, SliderScale::Log, 0, 1e5, "bend [N/m]"},
+     [](const Scene& s) -> std::optional<double> { return s.springs.bend; },
+     [](Scene& s, double v) { s.springs.bend = v; }},
+    {"damping", "N·s/m", 0, kInf, false, false, 0, false, "viscous damping μ, F = −μv",
+     {PanelSection::Forces, SliderScale::Log, 0, 100, "damping [N s/m]"},
+     [](const Scene& s) -> std::optional<double> { return s.damping; },
+     [](Scene& s, double v) { s.damping = v; }},
+    {"integrator.dt", "s", 0, 10, true, false, 1e-3, true, "time step Δt",
+     {PanelSection::TimeStep, SliderScale::Log, 1e-6, 1e-1, "dt [s]", "%.3e"},
+     [](const Scene& s) -> std::optional<double> { return s.integrator.dt; },
+     [](Scene& s, double v) { s.integrator.dt = v; }},
+    {"integrator.substeps", "", 1, 100000, false, true, 1, false,
+     "steps per displayed frame (viewer)",
+     {PanelSection::TimeStep, SliderScale::Log, 1, 2000, "substeps", "%d"},
+     [](const Scene& s) -> std::optional<double> { return s.integrator.substeps; },
+     [](Scene& s, double v) { s.integrator.substeps = int(std::lround(v)); }},
+    {"integrator.tolerance", "", 0, 1, true, false, 1e-5, false,
+     "implicit_euler: CG stops at |residual| <= tolerance·|right-hand side|", kHidden,
+     [](const Scene& s) -> std::optional<double> { return s.integrator.tolerance; },
+     [](Scene& s, double v) { s.integrator.tolerance = v; }},
+    {"integrator.max_iterations", "", 1, 100000, false, true, 200, false,
+     "implicit_euler: CG iteration cap per step (a miss is reported)", kHidden,
+     [](const Scene& s) -> std::optional<double> { return s.integrator.maxIterations; },
+     [](Scene& s, double v) { s.integrator.maxIterations = int(std::lround(v)); }},
+    {"wind.strength", "N", -kInf, kInf, false, false, 0, true, "K_w in F = K_w ⟨n, û_w⟩ n",
+     {PanelSection::Wind, SliderScale::Log, 0, 100, "strength [N]"},
+     [](const Scene& s) { return s.wind ? std::optional(s.wind->strength) : std::nullopt; },
+     [](Scene& s, double v) { if (s.wind) s.wind->strength = v; }},
+    {"max_speed", "m/s", 0, kInf, true, false, 1e4, false,
+     "a faster vertex means the run is unstable", kHidden,
+     [](const Scene& s) -> std::optional<double> { return s.maxSpeed; },
+     [](Scene& s, double v) { s.maxSpeed = v; }},
+    {"duration", "s", 0, 1e9, true, false, 1, false,
+     "simulated time `run` covers without --steps", kHidden,
+     [](const Scene& s) -> std::optional<double> { return s.duration; },
+     [](Scene& s, double v) { s.duration = v; }},
+    // The viewer's colliders panel edits each collider's radius with the collider.
+    {"colliders[].radius", "m", 0, kInf, true, false, 1, true, "sphere radius"},
 };
+// clang-format on
+
+std::string number(double x) {
+    if (std::isinf(x)) return x > 0 ? "∞" : "−∞";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return buf;
+}
+
+std::string rangeText(const ParamSpec& p) {
+    std::string r = (p.minExclusive || std::isinf(p.min) ? "(" : "[") + number(p.min) + ", " +
+                    number(p.max) + (std::isinf(p.max) ? ")" : "]");
+    return p.integer ? r + ", integer" : r;
+}
+
+// A "|" in a meaning would end its table cell.
+std::string cell(const char* text) {
+    std::string out;
+    for (const char* c = text; *c; ++c) out += *c == '|' ? std::string("\\|") : std::string(1, *c);
+    return out;
+}
+
+std::string sliderText(const SliderSpec& s) {
+    if (s.section == PanelSection::Hidden) return "—";
+    return (s.scale == SliderScale::Log ? "log " : "linear ") + number(s.min) + " … " +
+           number(s.max);
+}
 
 }  // namespace
 
@@ -41,6 +110,11 @@ const ParamSpec* findParam(const std::string& path) {
     for (const ParamSpec& p : kParams)
         if (path == p.path) return &p;
     return nullptr;
+}
+
+const ParamSpec& paramSpec(const std::string& path) {
+    if (const ParamSpec* p = findParam(path)) return *p;
+    throw std::logic_error("scene/params.cpp has no row for " + path);
 }
 
 std::string checkRange(const ParamSpec& spec, double value) {
@@ -63,6 +137,22 @@ std::string checkRange(const ParamSpec& spec, double value) {
         return buf;
     }
     return "";
+}
+
+std::string paramsMarkdown() {
+    std::string md =
+        "# Scene parameters\n\n"
+        "The scalar parameters of a scene file, generated from `src/scene/params.cpp` (the one\n"
+        "table behind the loader's checks, `clothsim validate` and the viewer's sliders).\n"
+        "Regenerate with `clothsim validate --params-markdown > docs/parameters.md`.\n\n"
+        "| key | unit | valid range | default | viewer slider | meaning |\n"
+        "|---|---|---|---|---|---|\n";
+    for (const ParamSpec& p : kParams) {
+        md += std::string("| `") + p.path + "` | " + p.unit + " | " + rangeText(p) + " | " +
+              (p.required ? "required" : number(p.defaultValue)) + " | " + sliderText(p.slider) +
+              " | " + cell(p.description) + " |\n";
+    }
+    return md;
 }
 
 }  // namespace cloth

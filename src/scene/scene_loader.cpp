@@ -13,9 +13,9 @@
 
 #include "model/collider_limits.h"
 #include "model/errors.h"
+#include "model/pin_follow.h"
 #include "scene/key_path.h"
 #include "scene/params.h"
-#include "model/pin_follow.h"
 #include "scene/scene_overrides.h"
 #include "scene/scene_reader.h"
 #include "scene/scene_text.h"
@@ -70,11 +70,16 @@ double SceneReader::number(const Json& j, const std::string& path) const {
     return x;
 }
 
+// The row of scene/params.cpp gives the range, the default and whether the key is required.
 double SceneReader::param(const Json& obj, const std::string& key, const std::string& path,
-                          const char* spec, double fallback) const {
-    if (!obj.contains(key)) return fallback;
+                          const char* specPath) const {
+    const ParamSpec& spec = paramSpec(specPath);
+    if (!obj.contains(key)) {
+        if (spec.required) fail(path, "required key is missing");
+        return spec.defaultValue;
+    }
     const double x = number(obj.at(key), path);
-    const std::string why = checkRange(*findParam(spec), x);
+    const std::string why = checkRange(spec, x);
     if (!why.empty()) fail(path, why);
     return x;
 }
@@ -152,14 +157,14 @@ void SceneReader::readCloth(const Json& j, ClothSpec& cloth) const {
     if (j.contains("v_axis")) cloth.vAxis = direction(j["v_axis"], "cloth.v_axis");
     if (glm::length(glm::cross(cloth.uAxis, cloth.vAxis)) < 1e-6)
         fail("cloth.v_axis", "is parallel to cloth.u_axis; the axes must span a plane");
-    cloth.mass = param(j, "mass", "cloth.mass", "cloth.mass", cloth.mass);
+    cloth.mass = param(j, "mass", "cloth.mass", "cloth.mass");
 }
 
 void SceneReader::readSprings(const Json& j, SpringStiffness& springs) const {
     expectObject(j, "springs", {"structural", "shear", "bend"});
-    springs.structural = param(j, "structural", "springs.structural", "springs.structural", 0);
-    springs.shear = param(j, "shear", "springs.shear", "springs.shear", 0);
-    springs.bend = param(j, "bend", "springs.bend", "springs.bend", 0);
+    springs.structural = param(j, "structural", "springs.structural", "springs.structural");
+    springs.shear = param(j, "shear", "springs.shear", "springs.shear");
+    springs.bend = param(j, "bend", "springs.bend", "springs.bend");
 }
 
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
@@ -173,14 +178,11 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
                  "unknown method \"" + m.get<std::string>() + "\"; known: " + methodList());
         integrator.method = *method;
     }
-    integrator.tolerance =
-        param(j, "tolerance", "integrator.tolerance", "integrator.tolerance", integrator.tolerance);
-    integrator.maxIterations = int(param(j, "max_iterations", "integrator.max_iterations",
-                                         "integrator.max_iterations", integrator.maxIterations));
-    required(j, "dt", "integrator");
-    integrator.dt = param(j, "dt", "integrator.dt", "integrator.dt", 0);
-    integrator.substeps =
-        int(param(j, "substeps", "integrator.substeps", "integrator.substeps", 1));
+    integrator.tolerance = param(j, "tolerance", "integrator.tolerance", "integrator.tolerance");
+    integrator.maxIterations =
+        int(param(j, "max_iterations", "integrator.max_iterations", "integrator.max_iterations"));
+    integrator.dt = param(j, "dt", "integrator.dt", "integrator.dt");
+    integrator.substeps = int(param(j, "substeps", "integrator.substeps", "integrator.substeps"));
 }
 
 // A pin is [i, j], or {"at": [i, j], "follow": n} to follow colliders[n] (checked once the
@@ -225,8 +227,7 @@ Wind SceneReader::readWind(const Json& j) const {
     expectObject(j, "wind", {"direction", "strength"});
     Wind wind;
     wind.direction = direction(required(j, "direction", "wind"), "wind.direction");
-    required(j, "strength", "wind");
-    wind.strength = param(j, "strength", "wind.strength", "wind.strength", 0);
+    wind.strength = param(j, "strength", "wind.strength", "wind.strength");
     return wind;
 }
 
@@ -244,7 +245,7 @@ Scene SceneReader::read(const Json& doc) {
     }
     readCloth(required(doc, "cloth", ""), scene.cloth);
     if (doc.contains("springs")) readSprings(doc["springs"], scene.springs);
-    scene.damping = param(doc, "damping", "damping", "damping", 0);
+    scene.damping = param(doc, "damping", "damping", "damping");
     if (doc.contains("gravity")) scene.gravity = vec3(doc["gravity"], "gravity");
     if (doc.contains("pins")) scene.pins = readPins(doc["pins"], scene.cloth);
     readIntegrator(required(doc, "integrator", ""), scene.integrator);
@@ -257,8 +258,8 @@ Scene SceneReader::read(const Json& doc) {
     checkFollowPins(scene);
     checkColliderMotionStep(scene);  // docs/colliders.md §7: no collider outruns the limit
     if (doc.contains("wind")) scene.wind = readWind(doc["wind"]);
-    scene.maxSpeed = param(doc, "max_speed", "max_speed", "max_speed", scene.maxSpeed);
-    scene.duration = param(doc, "duration", "duration", "duration", scene.duration);
+    scene.maxSpeed = param(doc, "max_speed", "max_speed", "max_speed");
+    scene.duration = param(doc, "duration", "duration", "duration");
     if (scene.duration / scene.integrator.dt > 1e12)
         fail("duration", "needs more than 1e12 steps of integrator.dt");
     return scene;

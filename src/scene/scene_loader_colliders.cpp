@@ -81,8 +81,7 @@ ColliderShape SceneReader::readShape(const Json& j, const std::string& path, con
         expectCollider(j, path, {"center", "radius"});
         Sphere sphere;
         sphere.center = v3("center");
-        required(j, "radius", path);
-        sphere.radius = param(j, "radius", child(path, "radius"), "colliders[].radius", 0);
+        sphere.radius = param(j, "radius", child(path, "radius"), "colliders[].radius");
         return sphere;
     }
     if (t == "box") {

@@ -39,8 +39,9 @@ private:
     void expectKeys(const Json& j, const std::string& path,
                     const std::vector<const char*>& allowed) const;
     double number(const Json& j, const std::string& path) const;
-    double param(const Json& obj, const std::string& key, const std::string& path, const char* spec,
-                 double fallback) const;
+    // A scalar of scene/params.cpp's table: its row `spec` checks it and gives its default.
+    double param(const Json& obj, const std::string& key, const std::string& path,
+                 const char* spec) const;
     glm::dvec3 vec3(const Json& j, const std::string& path) const;
     glm::dvec3 direction(const Json& j, const std::string& path) const;
     int integer(const Json& j, const std::string& path) const;

@@ -6,10 +6,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "model/stability.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
 #include "viewer/viewer_widgets.h"
-#include "model/stability.h"
 
 namespace cloth::app {
 namespace {
@@ -59,7 +59,7 @@ void runControls(ViewerSession& session, ViewerUi& ui) {
 
 // The integrator (docs/integrators.md), Δt and substeps, with the stability bound of
 // DESIGN.md §2 and a warning before it is crossed.
-bool timeSection(ViewerParams& p) {
+bool timeSection(ViewerParams& p, std::vector<std::string>& drawn) {
     IntegratorSpec& in = p.scene.integrator;
     bool changed = false;
     if (ImGui::BeginCombo("integrator", methodName(in.method))) {
@@ -70,9 +70,7 @@ bool timeSection(ViewerParams& p) {
             }
         ImGui::EndCombo();
     }
-    changed |= logSlider("dt [s]", in.dt, 1e-6, 1e-1, "%.3e");
-    changed |= ImGui::SliderInt("substeps", &in.substeps, 1, 2000, "%d",
-                                ImGuiSliderFlags_Logarithmic | ImGuiSliderFlags_AlwaysClamp);
+    changed |= drawParamSliders(p.scene, PanelSection::TimeStep, drawn);
     const double bound = stableDt(p.effective());
     if (std::isinf(bound)) {
         ImGui::Text("stable at any dt (linearised); CG tolerance %.0e", in.tolerance);
@@ -89,13 +87,11 @@ bool timeSection(ViewerParams& p) {
     return changed;
 }
 
-bool forcesSection(ViewerParams& p) {
+// The table's force sliders, then gravity and the wind's switch and direction (not scalars),
+// then the table's wind sliders.
+bool forcesSection(ViewerParams& p, std::vector<std::string>& drawn) {
     Scene& s = p.scene;
-    bool changed = logSlider("structural [N/m]", s.springs.structural, 0, 1e5);
-    changed |= logSlider("shear [N/m]", s.springs.shear, 0, 1e5);
-    changed |= logSlider("bend [N/m]", s.springs.bend, 0, 1e5);
-    changed |= logSlider("damping [N s/m]", s.damping, 0, 100);
-    changed |= logSlider("mass [kg]", s.cloth.mass, 1e-5, 100);
+    bool changed = drawParamSliders(s, PanelSection::Forces, drawn);
     changed |= dragVec3("gravity [m/s2]", s.gravity, 0.05f);
     bool wind = s.wind.has_value();
     if (ImGui::Checkbox("wind", &wind)) {
@@ -108,8 +104,8 @@ bool forcesSection(ViewerParams& p) {
             s.wind->direction = unitOr(d, s.wind->direction);
             changed = true;
         }
-        changed |= logSlider("strength [N]", s.wind->strength, 0, 100);
     }
+    changed |= drawParamSliders(s, PanelSection::Wind, drawn);
     return changed;
 }
 
@@ -147,10 +143,11 @@ void drawPanel(ViewerSession& session, ViewerUi& ui) {
     runControls(session, ui);
     ViewerParams p = session.params();
     bool changed = false;
+    ui.drawnParams.clear();
     if (ImGui::CollapsingHeader("Time step", ImGuiTreeNodeFlags_DefaultOpen))
-        changed |= timeSection(p);
+        changed |= timeSection(p, ui.drawnParams);
     if (ImGui::CollapsingHeader("Forces", ImGuiTreeNodeFlags_DefaultOpen))
-        changed |= forcesSection(p);
+        changed |= forcesSection(p, ui.drawnParams);
     if (ImGui::CollapsingHeader("Colliders", ImGuiTreeNodeFlags_DefaultOpen))
         changed |= drawCollidersSection(p, session);
     if (ImGui::CollapsingHeader("Cloth and pins")) changed |= clothSection(p, session, ui);

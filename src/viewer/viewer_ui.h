@@ -10,6 +10,7 @@
 
 #include "render/camera.h"
 #include "render/renderer.h"
+#include "scene/params.h"
 
 struct GLFWwindow;
 
@@ -35,6 +36,9 @@ struct ViewerUi {
     int width = 1, height = 1;   // the 3-D view right of the panel, framebuffer [px]
     int viewX = 0;               // its left edge, framebuffer [px]
     float pixelScale = 1;        // framebuffer pixels per window unit (HiDPI)
+    // The key paths of the parameter sliders the panel drew in its last frame: all of them come
+    // from scene/params.cpp's table (tests check this against the table).
+    std::vector<std::string> drawnParams;
 
     // Timing of the last frame.
     double frameSeconds = 0;  // wall time between frames
@@ -58,6 +62,9 @@ inline constexpr float kPanelWidth = 360;  // [window units]
 // Its colliders (viewer_panel_colliders.cpp): the switches, placement, thickness, friction,
 // motion and drag state of each; edits `p`, returns whether anything changed.
 bool drawCollidersSection(ViewerParams& p, const ViewerSession& session);
+// Its scalar parameters (viewer_panel_params.cpp): a slider for each row of scene/params.cpp's
+// table in `section` that the scene models; appends the rows' key paths to `drawn`.
+bool drawParamSliders(Scene& scene, PanelSection section, std::vector<std::string>& drawn);
 // Its lower sections (viewer_panel_info.cpp): display modes, diagnostics and plots, output.
 void drawDisplaySection(ViewerUi& ui);
 void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui);
