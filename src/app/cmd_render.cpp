@@ -18,7 +18,6 @@
 #include "model/stability.h"
 
 #ifdef CLOTH_HAVE_RENDER
-#include "gpu/egl_context.h"
 #include "render/image.h"
 #include "render/renderer.h"
 #endif
@@ -289,7 +288,7 @@ int renderCommand(Args& args) {
     }
     const Scene scene = loadScene(o.scenePath, o.sets);
 #ifdef CLOTH_HAVE_RENDER
-    GlContext::instance();  // EGL, before either solver: the GPU one computes in it
+    gpuRenderer();  // makes the EGL context before either solver: the GPU one computes in it
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
     const long total = o.steps >= 0 ? o.steps : scene.defaultSteps();
     Painter painter(o, scene);

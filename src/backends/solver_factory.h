@@ -37,8 +37,9 @@ GpuPassTimes gpuPassTimes(Solver& solver, int repeats);
 // The GPU copy kernel's read+write bandwidth over `bytes` [bytes/s] (gpu/gpu_bandwidth.h).
 // Throws GpuUnavailable.
 double gpuCopyBandwidth(std::size_t bytes, int repeats);
-// GL_RENDERER of the headless context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)". Throws
-// GpuUnavailable.
+// GL_RENDERER of the process's GL context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)": made
+// headless through EGL on first use, or the one current on this thread (a window's) adopted,
+// with GL's functions loaded. Throws GpuUnavailable.
 std::string gpuRenderer();
 
 // The precision a backend's numbers carry (for the CSV's digits).

@@ -18,7 +18,6 @@
 #include "viewer/viewer_ui.h"
 #include "model/errors.h"
 #include "scene/scene_loader.h"
-#include "gpu/egl_context.h"
 
 namespace cloth::app {
 namespace {
@@ -120,7 +119,8 @@ int runViewer(const ViewerOptions& o) {
     const std::optional<Scene> edited =
         o.sets.empty() ? std::nullopt : std::optional<Scene>(loadScene(o.scenePath, o.sets));
     GLFWwindow* window = openWindow(o);
-    GlContext::instance();  // adopts the window's context and loads GL functions
+    // The GPU library adopts the window's context and loads GL functions; its renderer is named.
+    const std::string device = gpuRenderer();
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;
@@ -130,7 +130,7 @@ int runViewer(const ViewerOptions& o) {
 
     ViewerUi ui;
     ui.vsync = o.vsync;
-    ui.device = GlContext::instance().info().renderer;
+    ui.device = device;
     ui.sceneDirectory = sceneDirectoryOf(o.scenePath);
     ui.sceneFiles = listScenes(ui.sceneDirectory);
     std::unique_ptr<ViewerSession> session = openScene(file, edited, o.backend);
