@@ -21,8 +21,8 @@ void main() {
         vec3 p = cgDirection[k].xyz;
         vec3 ap = vec3(0.0);
         if (inverseMass != 0.0) {
-            float h = params.integration.x, h2 = h * h;
-            ap = (1.0 / inverseMass + h * params.gravity.w) * p + h2 * stiffnessProduct(ij, k);
+            float h = params.dt, h2 = h * h;
+            ap = (1.0 / inverseMass + h * params.damping) * p + h2 * stiffnessProduct(ij, k);
             if (grabbed(k)) ap += h2 * uGrab.w * p;
         }
         cgProduct[k] = vec4(ap, 0.0);

@@ -20,7 +20,7 @@ uint partialCount() {
 
 // Stop when |r| ≤ tolerance·|b| (b = 0 included); a non-finite r·r stops the solve too.
 uint judge(float rr) {
-    float tolerance = params.integration.z;
+    float tolerance = params.cgTolerance;
     float goal = tolerance * tolerance * cg.bb;
     if (rr <= goal) return kConverged;
     return rr > goal ? kRunning : kStopped;

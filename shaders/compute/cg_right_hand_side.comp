@@ -21,10 +21,10 @@ void main() {
         vec3 v = velocities[k].xyz;
         vec3 hv = stiffnessProduct(ij, k);
         if (grabbed(k)) hv += uGrab.w * v;
-        float h = params.integration.x;
-        vec3 b = x.w == 0.0 ? vec3(0.0)
-                            : h * (forces[k].xyz - params.gravity.w * v + params.gravity.xyz / x.w -
-                                   h * hv);
+        float h = params.dt;
+        vec3 b = x.w == 0.0
+                     ? vec3(0.0)
+                     : h * (forces[k].xyz - params.damping * v + params.gravity / x.w - h * hv);
         cgVelocityChange[k] = vec4(0.0);
         cgResidual[k] = vec4(b, 0.0);
         cgDirection[k] = vec4(b, 0.0);

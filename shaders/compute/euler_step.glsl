@@ -4,7 +4,6 @@
 void integrateVertex(uint step, uint k) {
     vec4 x = positions[k], v = velocities[k];
     vec3 p = x.xyz, vel = v.xyz;
-    integrate(p, vel, forces[k].xyz, x.w, params.integration.x, params.gravity.w,
-              params.gravity.xyz);
+    integrate(p, vel, forces[k].xyz, x.w, params.dt, params.damping, params.gravity);
     finishStep(step, k, x, v, p, vel);
 }

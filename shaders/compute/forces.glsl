@@ -23,7 +23,7 @@ void vertexForce(ivec2 ij, uint k, out vec3 f, out vec3 n) {
                      positionAt(ivec2(i, min(j + 1, gridV() - 1))),
                      positionAt(ivec2(i, max(j - 1, 0))));
 #ifdef HAS_WIND
-    f += windForce(n, params.wind.xyz, params.wind.w);
+    f += windForce(n, params.windDirection, params.windStrength);
 #endif
     if (grabbed(k)) f += grabForce(p, uGrab.xyz, uGrab.w);
 }

@@ -12,5 +12,5 @@ void main() {
     uint k = vertexIndex(ij);
     vec4 x = positions[k], v = velocities[k];
     vec3 vel = v.xyz + cgVelocityChange[k].xyz;
-    finishStep(uStep, k, x, v, x.xyz + params.integration.x * vel, vel);
+    finishStep(uStep, k, x, v, x.xyz + params.dt * vel, vel);
 }

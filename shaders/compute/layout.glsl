@@ -1,5 +1,6 @@
-// Storage blocks shared by the compute passes (DESIGN.md §3). Mirrored in src/gpu/gpu_layout.h,
-// whose static_asserts pin the offsets: change both together.
+// The blocks shared by the compute passes (DESIGN.md §3): the scene's parameters as a uniform
+// block, the state and tables as storage blocks. Mirrored in src/gpu/gpu_layout.h, whose
+// static_asserts pin the offsets: change both together.
 // One vec4 per vertex, index k = j·nu + i (DESIGN.md §2).
 
 // many_steps.comp defines STATE_COHERENT as `coherent`: its invocations read what others of
@@ -20,13 +21,22 @@ layout(std430, binding = 2) STATE_COHERENT buffer Forces {
 layout(std430, binding = 3) STATE_COHERENT buffer Normals {
     vec4 normals[];  // unit vertex normal, 0 where undefined; the renderer draws with it
 };
-layout(std430, binding = 4) readonly buffer Params {
-    ivec4 grid;           // nu, nv
-    vec4 stiffness;       // K structural, shear, bend [N/m]
-    vec4 restLength[3];   // L of spring-table slot o at [o / 4][o % 4] [m]
-    vec4 gravity;         // xyz g [m/s²], w damping μ [N·s/m]
-    vec4 wind;            // xyz unit direction, w strength K_w [N]
-    vec4 integration;     // x Δt [s], y max_speed² [m²/s²], z CG tolerance (implicit_euler)
+// The scene's parameters (gpu::Params), the same for every invocation: a uniform block, read
+// through the uniform path rather than as storage. std140: each vec3 starts a 16-byte slot and the
+// float after it fills the slot's last 4 bytes.
+layout(std140, binding = 0) uniform Params {
+    ivec2 grid;             // nu, nv [vertices]
+    float dt;               // Δt [s]
+    float damping;          // μ [N·s/m]
+    vec3 gravity;           // g [m/s²]
+    float maxSpeedSquared;  // max_speed² [m²/s²]: a faster vertex makes the step unstable
+    vec3 windDirection;     // unit; 0 without wind
+    float windStrength;     // K_w [N]; 0 without wind
+    vec3 stiffness;         // K of the structural, shear, bend families [N/m], by family index
+    float cgTolerance;      // implicit_euler's relative CG tolerance on |r| / |b|
+    // L of spring-table slot o at [o / 4][o % 4] [m] (springRestLength): std140 would pad a
+    // float[12] to 16 bytes per element; vec4s pack the twelve as the C++ float[12].
+    vec4 restLength[3];
 } params;
 
 #ifdef HAS_COLLIDERS

@@ -15,9 +15,9 @@ void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (ij.x >= gridU() || ij.y >= gridV() || frozen(uStep)) return;
     uint k = vertexIndex(ij);
-    float h = params.integration.x;
+    float h = params.dt;
     vec4 x = positions[k], v = velocities[k];
-    vec3 a = acceleration(forces[k].xyz, v.xyz, x.w, params.gravity.w, params.gravity.xyz);
+    vec3 a = acceleration(forces[k].xyz, v.xyz, x.w, params.damping, params.gravity);
     vec3 x0, v0;
     if (uStage == 0) {
         x0 = x.xyz;

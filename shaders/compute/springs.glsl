@@ -7,5 +7,5 @@
 const ivec4 kSpringOffsets[NUM_SPRING_OFFSETS] = ivec4[](SPRING_OFFSETS);
 #endif
 
-float springStiffness(ivec4 s) { return params.stiffness[s.z]; }          // K [N/m]
+float springStiffness(ivec4 s) { return params.stiffness[s.z]; }                 // K [N/m]
 float springRestLength(ivec4 s) { return params.restLength[s.w / 4][s.w % 4]; }  // L [m]

@@ -24,7 +24,7 @@ void checkStability(uint step, uint k, vec3 p, vec3 v) {
     // that overflow float count as non-finite, so both backends stop at the same step.
     float speed2 = dot(v, v);
     bool bad = nonFinite(vec3(p.x + p.y + p.z, speed2, 0.0));
-    if (!bad && !(speed2 > params.integration.y)) return;
+    if (!bad && !(speed2 > params.maxSpeedSquared)) return;
     if (atomicMin(status.firstBadStep, step) > step) {
         status.badVertex = k;
         status.badKind = bad ? 1u : 2u;

@@ -257,6 +257,8 @@ void GlContext::queryInfo() {
     GLint64 block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
     g.maxStorageBlockSize = block;
+    glGetInteger64v(GL_MAX_UNIFORM_BLOCK_SIZE, &block);
+    g.maxUniformBlockSize = block;
     GLint bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
     g.timerQueries = bits > 0;
@@ -281,13 +283,14 @@ std::string GpuInfo::describe() const {
                   "work-group size:   %d x %d x %d, at most %d invocations\n"
                   "shared memory:     %d bytes per work group\n"
                   "SSBO block size:   %lld bytes\n"
+                  "uniform block:     %lld bytes\n"
                   "timer queries:     %s\n",
                   platform.c_str(), eglVendor.empty() ? "-" : eglVendor.c_str(), eglVersion.c_str(),
                   renderer.c_str(), vendor.c_str(), software ? " [software]" : "", version.c_str(),
                   glslVersion.c_str(), maxWorkGroupCount[0], maxWorkGroupCount[1],
                   maxWorkGroupCount[2], maxWorkGroupSize[0], maxWorkGroupSize[1],
                   maxWorkGroupSize[2], maxInvocations, maxSharedMemory, maxStorageBlockSize,
-                  timerQueries ? "yes" : "no");
+                  maxUniformBlockSize, timerQueries ? "yes" : "no");
     return buf;
 }
 

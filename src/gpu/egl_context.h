@@ -25,6 +25,7 @@ struct GpuInfo {
     int maxInvocations = 0;                  // local size product
     int maxSharedMemory = 0;                 // [bytes]
     long long maxStorageBlockSize = 0;       // one SSBO binding [bytes]
+    long long maxUniformBlockSize = 0;       // one uniform block (gpu::Params) [bytes]
     bool timerQueries = false;               // GL_TIME_ELAPSED has bits
     bool software = false;                   // a CPU rasteriser (llvmpipe, softpipe, swrast)
 

@@ -1,5 +1,6 @@
-// C++ mirrors of the std430 blocks in shaders/compute/layout.glsl (DESIGN.md §3). Every member
-// is a 16-byte vec4/ivec4 so std430 and C++ agree; the static_asserts keep them agreeing.
+// C++ mirrors of the blocks in shaders/compute/layout.glsl (DESIGN.md §3): the std140 uniform
+// block Params and the std430 storage blocks. The static_asserts keep each member at the offset
+// the GLSL layout rules give it.
 #pragma once
 
 #include <cstddef>
@@ -14,10 +15,10 @@ enum Binding : unsigned {
     kVelocities = 1,  // vec4 per vertex: xyz [m/s], w the pinned vertex's slot in kPins
     kForces = 2,      // vec4 per vertex: spring + wind force [N]
     kNormals = 3,     // vec4 per vertex: unit normal (0 where undefined)
-    kParams = 4,      // one Params
-    kColliders = 5,   // collider records, SDF samples, pose batch (gpu_collider_table.h)
-    kPins = 6,        // vec4 per pin: pinned position [m]
-    kStatus = 7,      // one Status
+    // 4 is free: the parameters are a uniform block (kParamsBlock), not a storage block.
+    kColliders = 5,  // collider records, SDF samples, pose batch (gpu_collider_table.h)
+    kPins = 6,       // vec4 per pin: pinned position [m]
+    kStatus = 7,     // one Status
     // The integrator's own buffers from 8 on: only its scene compiles and allocates them.
     // rk4: the step's start and the sums k1 + 2 k2 + 2 k3 (vec4 per vertex).
     kRk4StartPositions = 8,
@@ -45,21 +46,42 @@ inline constexpr int kGrabVertexLocation = 0, kGrabLocation = 1;
 inline constexpr int kReductionLocation = 0;
 enum CgReduction : int { kReduceStart = 0, kReduceAlpha = 1, kReduceBeta = 2 };
 
+// The uniform-block binding point of Params (its own namespace, apart from the storage blocks').
+inline constexpr unsigned kParamsBlock = 0;
+
+// The scene's parameters, read by every kernel: layout.glsl's std140 uniform block Params. std140
+// puts a vec3 at a multiple of 16 and lets a float fill the vec3's last 4 bytes; every member
+// here is one named quantity. Uploaded whole by GpuSolver::uploadParams.
 struct Params {
-    glm::ivec4 grid;          // nu, nv, 0, 0
-    glm::vec4 stiffness;      // K structural, shear, bend [N/m], 0
-    glm::vec4 restLength[3];  // L of kSpringOffsets[o] at [o / 4][o % 4] [m]
-    glm::vec4 gravity;        // xyz g [m/s²], w damping μ [N·s/m]
-    glm::vec4 wind;           // xyz unit direction, w strength K_w [N]
-    glm::vec4 integration;    // x Δt [s], y max_speed² [m²/s²], z CG tolerance, w 0
+    glm::ivec2 grid;          // nu, nv [vertices]
+    float dt;                 // Δt [s]
+    float damping;            // μ [N·s/m]
+    glm::vec3 gravity;        // g [m/s²]
+    float maxSpeedSquared;    // max_speed² [m²/s²]: a faster vertex makes the step unstable
+    glm::vec3 windDirection;  // unit; 0 without wind
+    float windStrength;       // K_w [N]; 0 without wind
+    glm::vec3 stiffness;      // K of the structural, shear, bend families [N/m], by family index
+    float cgTolerance;        // implicit_euler's relative CG tolerance on |r| / |b| [1]
+    // L of spring-table slot o (kSpringOffsets[o]) at [o] [m]. GLSL declares it vec4[3], read
+    // at [o / 4][o % 4]: std140 strides a float[12] at 16 bytes per element, four times the
+    // room, while a vec4 array packs tightly and is laid out exactly as this float[12].
+    float restLength[12];
 };
-static_assert(sizeof(Params) == 128);
+static_assert(sizeof(Params) == 112);
 static_assert(offsetof(Params, grid) == 0);
-static_assert(offsetof(Params, stiffness) == 16);
-static_assert(offsetof(Params, restLength) == 32);
-static_assert(offsetof(Params, gravity) == 80);
-static_assert(offsetof(Params, wind) == 96);
-static_assert(offsetof(Params, integration) == 112);
+static_assert(offsetof(Params, dt) == 8);
+static_assert(offsetof(Params, damping) == 12);
+static_assert(offsetof(Params, gravity) == 16);
+static_assert(offsetof(Params, maxSpeedSquared) == 28);
+static_assert(offsetof(Params, windDirection) == 32);
+static_assert(offsetof(Params, windStrength) == 44);
+static_assert(offsetof(Params, stiffness) == 48);
+static_assert(offsetof(Params, cgTolerance) == 60);
+static_assert(offsetof(Params, restLength) == 64);
+// GL guarantees every device at least this many bytes per uniform block
+// (GL_MAX_UNIFORM_BLOCK_SIZE); GpuSolver still checks the device's own value.
+inline constexpr std::size_t kMinUniformBlockSize = 16384;
+static_assert(sizeof(Params) <= kMinUniformBlockSize);
 
 // Written by integrate.comp when a vertex goes bad (DESIGN.md §2 "Instability").
 struct Status {
@@ -149,5 +171,6 @@ static_assert(sizeof(FollowRecord) == 112 && offsetof(FollowRecord, translation)
               offsetof(FollowRecord, velocity) == 64);
 
 static_assert(sizeof(glm::vec4) == 16 && sizeof(glm::ivec4) == 16);
+static_assert(sizeof(glm::vec3) == 12 && alignof(glm::vec3) == 4 && sizeof(glm::ivec2) == 8);
 
 }  // namespace cloth::gpu

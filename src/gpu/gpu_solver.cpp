@@ -5,20 +5,20 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <vector>
 
-#include "model/errors.h"
-#include "model/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/shader_loader.h"
+#include "model/errors.h"
+#include "model/pin_follow.h"
 
 namespace cloth {
 namespace {
 
 using gpu::bufferData;
 using gpu::kVec4;
-using gpu::subData;
 using gpu::vec4;
 
 using Clock = std::chrono::steady_clock;
@@ -91,8 +91,13 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     if (checkEvery_ < 1)
         throw InputError("", "checkEvery",
                          "must be at least 1, not " + std::to_string(checkEvery_));
-    workGroup_ = chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
+    workGroup_ =
+        chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
     checkGridFits(scene, workGroup_, info);
+    if (info.maxUniformBlockSize < static_cast<long long>(sizeof(gpu::Params)))
+        throw GpuUnavailable(info.renderer + " allows " + std::to_string(info.maxUniformBlockSize) +
+                             "-byte uniform blocks; the parameters need " +
+                             std::to_string(sizeof(gpu::Params)));
     gpu::ColliderTable(scene).checkFits(info.maxStorageBlockSize, scene.source);
     if (forces_ == ForcesKernel::Tiled) checkTileFits(workGroup_, info);
     const long long vertices = static_cast<long long>(nu_) * nv_;
@@ -102,7 +107,10 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
     setStepDt(scene.integrator.dt);
     compilePrograms();
-    glGenBuffers(gpu::kStatus + 1, buffers_.data());
+    for (gpu::Binding b : {gpu::kPositions, gpu::kVelocities, gpu::kForces, gpu::kNormals,
+                           gpu::kColliders, gpu::kPins, gpu::kStatus})
+        glGenBuffers(1, &buffers_[b]);
+    glGenBuffers(1, &paramsBuffer_);
     for (gpu::Binding b : integratorBindings(method_)) glGenBuffers(1, &buffers_[b]);
     upload(scene);
     setGrabUniforms(std::nullopt);
@@ -134,6 +142,7 @@ GpuSolver::~GpuSolver() {
         return;  // the context is gone; so are its objects
     }
     glDeleteBuffers(GLsizei(buffers_.size()), buffers_.data());  // 0 is silently ignored
+    glDeleteBuffers(1, &paramsBuffer_);
     for (unsigned p : programs_) glDeleteProgram(p);
     if (timer_ != 0) glDeleteQueries(1, &timer_);
 }
@@ -178,7 +187,8 @@ void GpuSolver::upload(const Scene& scene) {
     bufferData(buffers_[gpu::kPins], table);
     const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
     bufferData(buffers_[gpu::kStatus], &status, sizeof status);
-    bufferData(buffers_[gpu::kParams], nullptr, sizeof(gpu::Params));
+    glBindBuffer(GL_UNIFORM_BUFFER, paramsBuffer_);
+    glBufferData(GL_UNIFORM_BUFFER, sizeof(gpu::Params), nullptr, GL_DYNAMIC_DRAW);
     allocateIntegratorBuffers();
     uploadParams(scene);
     uploadColliders(scene);
@@ -204,17 +214,21 @@ void GpuSolver::allocateIntegratorBuffers() {
 void GpuSolver::uploadParams(const Scene& scene) {
     const Grid g = scene.grid();
     gpu::Params p{};
-    p.grid = glm::ivec4(nu_, nv_, 0, 0);
-    p.stiffness = glm::vec4(float(scene.springs.structural), float(scene.springs.shear),
-                            float(scene.springs.bend), 0);
+    static_assert(std::size(gpu::Params{}.restLength) == kSpringOffsets.size());
+    p.grid = glm::ivec2(nu_, nv_);
+    p.dt = float(scene.integrator.dt);
+    p.damping = float(scene.damping);
+    p.gravity = glm::vec3(scene.gravity);  // as the CPU float backend converts
+    p.maxSpeedSquared = float(scene.maxSpeed * scene.maxSpeed);
+    p.windDirection = scene.wind ? glm::vec3(scene.wind->direction) : glm::vec3(0);
+    p.windStrength = scene.wind ? float(scene.wind->strength) : 0.0f;
+    p.stiffness = glm::vec3(float(scene.springs.structural), float(scene.springs.shear),
+                            float(scene.springs.bend));
+    p.cgTolerance = float(scene.integrator.tolerance);
     for (std::size_t o = 0; o < kSpringOffsets.size(); ++o)
-        p.restLength[o / 4][int(o % 4)] =
-            float(g.restLength(kSpringOffsets[o].di, kSpringOffsets[o].dj));
-    p.gravity = vec4(scene.gravity, scene.damping);
-    if (scene.wind) p.wind = vec4(scene.wind->direction, scene.wind->strength);
-    p.integration = glm::vec4(float(scene.integrator.dt), float(scene.maxSpeed * scene.maxSpeed),
-                              float(scene.integrator.tolerance), 0);
-    subData(buffers_[gpu::kParams], 0, &p, sizeof p);
+        p.restLength[o] = float(g.restLength(kSpringOffsets[o].di, kSpringOffsets[o].dj));
+    glBindBuffer(GL_UNIFORM_BUFFER, paramsBuffer_);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof p, &p);
 }
 
 // Pass 1 alone: fresh normals for the renderer (its forces are recomputed by the next step).
@@ -226,6 +240,7 @@ void GpuSolver::computeNormals() const {
 void GpuSolver::bindBuffers() const {
     for (unsigned b = 0; b < buffers_.size(); ++b)
         if (buffers_[b] != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, gpu::kParamsBlock, paramsBuffer_);
 }
 
 // The grab's two uniforms in every kernel that includes grab.glsl: the forces pass, many steps
@@ -256,7 +271,9 @@ DeviceReport GpuSolver::deviceReport() const {
 std::size_t GpuSolver::bufferBytes() const {
     context_.makeCurrent();
     std::size_t bytes = 0;
-    for (unsigned b : buffers_) {
+    std::vector<unsigned> all(buffers_.begin(), buffers_.end());
+    all.push_back(paramsBuffer_);
+    for (unsigned b : all) {
         if (b == 0) continue;
         GLint64 size = 0;
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, b);

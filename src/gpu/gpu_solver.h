@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
-#include "solver/solver.h"
 #include "gpu/gpu_backend.h"
 #include "gpu/gpu_collider_table.h"
 #include "gpu/gpu_layout.h"
 #include "gpu/gpu_variant.h"
+#include "solver/solver.h"
 
 namespace cloth {
 
@@ -65,8 +65,9 @@ public:
     // changes as a step's would (Integrate) or not at all (Forces). NaN for a kernel the scene's
     // integrator does not compile.
     double timePass(Kernel k, int repeats);
-    // Bytes of GPU memory in the solver's buffers: the state, the tables and the integrator's
-    // own (RK4's stages, the CG's vectors), which only a scene with that integrator allocates.
+    // Bytes of GPU memory in the solver's buffers: the state, the parameters, the tables and
+    // the integrator's own (RK4's stages, the CG's vectors), which only a scene with that
+    // integrator allocates.
     std::size_t bufferBytes() const;
 
 private:
@@ -138,6 +139,7 @@ private:
     std::string name_;
     std::array<unsigned, gpu::kBindingCount> buffers_{};  // 0: not used by this integrator
     std::array<unsigned, kKernelCount> programs_{};       // 0: not compiled for this scene
+    unsigned paramsBuffer_ = 0;  // the uniform buffer of gpu::Params, at gpu::kParamsBlock
     unsigned timer_ = 0;
     double secondsPerStep_ = 0;
     bool timedByQuery_ = false;
