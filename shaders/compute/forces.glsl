@@ -5,7 +5,7 @@
 
 // The springs of the up to 12 neighbours, the wind and the grab on vertex ij (index k), and its
 // normal.
-void vertexForce(ivec2 ij, uint k, out vec3 f, out vec3 n) {
+void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
     vec3 p = positionAt(ij);
     f = vec3(0.0);
 #if NUM_SPRING_OFFSETS > 0
@@ -32,7 +32,7 @@ void vertexForce(ivec2 ij, uint k, out vec3 f, out vec3 n) {
 void storeForce(ivec2 ij) {
     uint k = vertexIndex(ij);
     vec3 f, n;
-    vertexForce(ij, k, f, n);
+    gatherForces(ij, k, f, n);
     forces[k] = vec4(f, 0.0);
     normals[k] = vec4(n, 0.0);
 }

@@ -6,7 +6,7 @@
 // spring's coefficient where its far end computed it, in this row or one of the two below (c is
 // the same for d and −d, so every vertex gets the bits the vertex-by-vertex path gives it).
 // Borders need no separate path: each spring's loop runs over the columns where that spring
-// exists. The scalar path (computeForcesScalar) is the first CPU backend's, kept as the oracle.
+// exists. The scalar path (gatherForcesScalar) is the first CPU backend's, kept as the oracle.
 #include <algorithm>
 #include <cmath>
 
@@ -118,8 +118,8 @@ void CpuSolver<T>::sweepRows(Band& band, const RowDone& rowDone) {
 }
 
 template <typename T>
-void CpuSolver<T>::computeForces(Band& band) {
-    if (!kernels_) return computeForcesScalar(band.begin, band.end);
+void CpuSolver<T>::gatherForces(Band& band) {
+    if (!kernels_) return gatherForcesScalar(band.begin, band.end);
     sweepRows(band, [&](int j) { forceRow(band, j, f_.row(std::int64_t(j) * grid_.nu)); });
 }
 
@@ -151,7 +151,7 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
     return ok;
 }
 
-// The first vertex of [begin, end) that fails the instability test (finishVertex's), reported.
+// The first vertex of [begin, end) that fails the instability test (finishStep's), reported.
 template <typename T>
 bool CpuSolver<T>::reportFirstBad(Band& band, std::int64_t begin, std::int64_t end) {
     const Soa3<T>& x = fused() ? xNext_ : x_;
@@ -167,7 +167,7 @@ bool CpuSolver<T>::reportFirstBad(Band& band, std::int64_t begin, std::int64_t e
 // The first CPU backend's force pass, vertex by vertex: the oracle of the row kernels. Vertices
 // two or more away from every border skip the bounds checks.
 template <typename T>
-void CpuSolver<T>::computeForcesScalar(std::int64_t begin, std::int64_t end) {
+void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
     const int nu = grid_.nu, nv = grid_.nv;
     auto at = [&](int i, int j) { return x_.get(std::int64_t(j) * nu + i); };
     int i = int(begin % nu), j = int(begin / nu);
@@ -201,8 +201,8 @@ void CpuSolver<T>::computeForcesScalar(std::int64_t begin, std::int64_t end) {
     template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                 \
     template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int) const; \
     template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                    \
-    template void CpuSolver<T>::computeForces(Band&);                                             \
-    template void CpuSolver<T>::computeForcesScalar(std::int64_t, std::int64_t);                  \
+    template void CpuSolver<T>::gatherForces(Band&);                                             \
+    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                  \
     template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                      \
     template bool CpuSolver<T>::reportFirstBad(Band&, std::int64_t, std::int64_t);
 CLOTH_INSTANTIATE(float)

@@ -48,7 +48,7 @@ void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p
 // h (F − μ v + m g − h H v), by conjugate gradient with pins as constraints (their rows held 0).
 template <typename T>
 bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
-    computeForces(band);
+    gatherForces(band);
     const T h = dt_t_;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
@@ -91,7 +91,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         recordSolve(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal);
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const Vec3<T> v = v_.get(k) + dv_[k];
-        if (!finishVertex(band, k, x_.get(k) + h * v, v)) return false;
+        if (!finishStep(band, k, x_.get(k) + h * v, v)) return false;
     }
     return true;
 }

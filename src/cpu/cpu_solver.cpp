@@ -190,7 +190,7 @@ bool CpuSolver<T>::advance(Band& band, const Team& team, long stepNumber, bool& 
 template <typename T>
 bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
     if (fused()) return stepEulerFused(band, symplectic);
-    computeForcesScalar(band.begin, band.end);
+    gatherForcesScalar(band.begin, band.end);
     team.sync();
     const T h = dt_t_;
     const auto update = symplectic ? eulerComponent<T, true> : eulerComponent<T, false>;
@@ -198,7 +198,7 @@ bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
         Vec3<T> p = x_.get(k), v = v_.get(k);
         const Vec3<T> f = f_.get(k);  // the row kernels' update, one vertex at a time
         for (int c = 0; c < 3; ++c) update(p[c], v[c], f[c], h, damping_, inverseMass_, gravity_[c]);
-        if (!finishVertex(band, k, p, v)) return false;
+        if (!finishStep(band, k, p, v)) return false;
     }
     return true;
 }
@@ -208,7 +208,7 @@ bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
 template <typename T>
 bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     if (!haveForces) {
-        computeForces(band);
+        gatherForces(band);
         team.sync();
     }
     const T h = dt_t_, half = T(0.5) * dt_t_;
@@ -216,10 +216,10 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
         const Vec3<T> v0 = v_.get(k);
         Vec3<T> v = v0 + half * acceleration(k, v0);
         Vec3<T> p = x_.get(k) + h * v;
-        constrainVertex(k, p, v);
+        constrain(k, p, v);
     }
     team.sync();
-    computeForces(band);  // F(x_{n+1}); the kick reads only its own vertex
+    gatherForces(band);  // F(x_{n+1}); the kick reads only its own vertex
     haveForces = true;
     bool ok = true;
     const T w = inverseMass_;
@@ -229,7 +229,7 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
         v_.set(k, v);
         const Vec3<T> p = x_.get(k);
         if (badVertex(p.x, p.y, p.z, v.x, v.y, v.z, maxSpeed2_))
-            ok = finishVertex(band, k, p, v);  // reports it (pins and colliders are no-ops now)
+            ok = finishStep(band, k, p, v);  // reports it (pins and colliders are no-ops now)
     }
     return ok;
 }
@@ -240,7 +240,7 @@ template <typename T>
 bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
     const T h = dt_t_, half = T(0.5) * dt_t_, sixth = dt_t_ / T(6);
     for (int stage = 0; stage < 4; ++stage) {
-        computeForces(band);
+        gatherForces(band);
         team.sync();
         for (std::int64_t k = band.begin; k < band.end; ++k) {
             const Vec3<T> v = v_.get(k);
@@ -255,7 +255,7 @@ bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
                 sumV_[k] += T(2) * a;
             }
             if (stage == 3) {
-                if (!finishVertex(band, k, x0_[k] + sixth * (sumX_[k] + v),
+                if (!finishStep(band, k, x0_[k] + sixth * (sumX_[k] + v),
                                   v0_[k] + sixth * (sumV_[k] + a)))
                     return false;
                 continue;

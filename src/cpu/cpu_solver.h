@@ -88,8 +88,8 @@ private:
     };
 
     void takeParameters(const Scene& scene);
-    void computeForces(Band& band);  // pass 1: F(x) into f_ for the band's rows
-    void computeForcesScalar(std::int64_t begin, std::int64_t end);  // the same, vertex by vertex
+    void gatherForces(Band& band);  // pass 1: F(x) into f_ for the band's rows
+    void gatherForcesScalar(std::int64_t begin, std::int64_t end);  // the same, vertex by vertex
     // The row pass: spring coefficients of rows rowBegin − 2 … rowEnd − 1 into the band's ring,
     // rowDone(j) after row j's are in; forceRow gathers row j's forces from the ring.
     template <typename RowDone>
@@ -108,9 +108,11 @@ private:
     bool stepRk4(Band& band, const Team& team);
     bool stepImplicit(Band& band, const Team& team, long stepNumber);
     // The end of every step: pins, colliders in scene order, then the instability check.
-    bool finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
-    void constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v);  // pins, then colliders
-    void collideVertex(Vec3<T>& p, Vec3<T>& v) const;              // colliders in scene order
+    bool finishStep(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
+    void applyPin(std::int64_t k, Vec3<T>& p, Vec3<T>& v) const;
+    void constrain(std::int64_t k, Vec3<T>& p, Vec3<T>& v);  // pins, then colliders
+    bool checkStability(Band& band, std::int64_t k, const Vec3<T>& p, const Vec3<T>& v) const;
+    void applyColliders(Vec3<T>& p, Vec3<T>& v) const;              // colliders in scene order
     [[gnu::cold, gnu::noinline]] void reportBad(Band& band, std::int64_t k, const Vec3<T>& p,
                                                 T speed2) const;
     Vec3<T> acceleration(std::int64_t k, const Vec3<T>& v) const;

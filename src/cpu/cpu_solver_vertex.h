@@ -17,30 +17,44 @@ inline Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) cons
     return (f_.get(k) - damping_ * v) * inverseMass_ + gravity_;
 }
 
-// Pins, then colliders in scene order (DESIGN.md §2); stores the vertex.
+// A pinned vertex goes back to its pin, at the pin's velocity (0, or a followed collider's).
 template <typename T>
-inline void CpuSolver<T>::constrainVertex(std::int64_t k, Vec3<T>& p, Vec3<T>& v) {
+inline void CpuSolver<T>::applyPin(std::int64_t k, Vec3<T>& p, Vec3<T>& v) const {
     if (pinned_[k]) {
         p = pinPosition_[k];
         v = pinVelocity(k);
     }
-    collideVertex(p, v);
+}
+
+// Pins, then colliders in scene order (DESIGN.md §2); stores the vertex.
+template <typename T>
+inline void CpuSolver<T>::constrain(std::int64_t k, Vec3<T>& p, Vec3<T>& v) {
+    applyPin(k, p, v);
+    applyColliders(p, v);
     x_.set(k, p);
     v_.set(k, v);
 }
 
 template <typename T>
-inline void CpuSolver<T>::collideVertex(Vec3<T>& p, Vec3<T>& v) const {
+inline void CpuSolver<T>::applyColliders(Vec3<T>& p, Vec3<T>& v) const {
     colliders_.apply(p, v);
 }
 
-// The end of a step: the constraints, then the instability check.
+// DESIGN.md §2's instability test on the stored vertex: true while stable; otherwise reported.
 template <typename T>
-inline bool CpuSolver<T>::finishVertex(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
-    constrainVertex(k, p, v);
+inline bool CpuSolver<T>::checkStability(Band& band, std::int64_t k, const Vec3<T>& p,
+                                         const Vec3<T>& v) const {
     if (!badVertex(p.x, p.y, p.z, v.x, v.y, v.z, maxSpeed2_)) return true;
     reportBad(band, k, p, glm::dot(v, v));
     return false;  // the rest of the band is not advanced: the run stops at this step
+}
+
+// The end of a step (shaders/compute/step_end.glsl's finishStep): the constraints, then the
+// instability check.
+template <typename T>
+inline bool CpuSolver<T>::finishStep(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v) {
+    constrain(k, p, v);
+    return checkStability(band, k, p, v);
 }
 
 }  // namespace cloth
