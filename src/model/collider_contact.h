@@ -8,6 +8,7 @@
 
 #include "model/collider_shapes.h"
 #include "model/colliders.h"
+#include "model/contact_math.h"
 
 namespace cloth {
 
@@ -22,20 +23,14 @@ struct ContactParamsT {
 // max(0, 1 − c_f |⟨w, n⟩| / |w_t|) of itself; v ← v_c + w_t'. Computed as v − w_n − (lost part
 // of w_t), which is the same number in exact arithmetic and the seed's v − ⟨v, n⟩ n in floating
 // point when v_c = 0 and c_f = 0. Static friction sets v = v_c exactly.
+//
+// The arithmetic is model/contact_math.h's respondVelocityLane, which the row kernels share.
 template <typename T>
 void respondVelocity(Vec3<T>& v, const Vec3<T>& n, const Vec3<T>& vc, T friction) {
-    const Vec3<T> w = v - vc;
-    const T wn = glm::dot(w, n);
-    v -= wn * n;
-    if (!(friction > T(0))) return;
-    const Vec3<T> wt = w - wn * n;
-    const T wtLen = glm::length(wt);
-    const T budget = friction * std::abs(wn);  // the most speed friction can take
-    if (wtLen <= budget) {
-        v = vc;  // static: sliding would reverse
-    } else {
-        v -= (budget / wtLen) * wt;
-    }
+    if (friction > T(0))
+        respondVelocityLane<T, true>(v.x, v.y, v.z, n.x, n.y, n.z, vc.x, vc.y, vc.z, friction);
+    else
+        respondVelocityLane<T, false>(v.x, v.y, v.z, n.x, n.y, n.z, vc.x, vc.y, vc.z, friction);
 }
 
 // The whole response for a vertex at (p, v) against a contact (φ, n) of a collider moving at v_c:

@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "cpu/cpu_rows.h"
+#include "model/contact_math.h"
 #include "model/spring_math.h"
 
 #ifndef CLOTH_ISA_NS
@@ -142,8 +143,9 @@ bool anyBad(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n) {
 }
 
 // model/collider_contact.h's collide() for a plane (kSphere false) or a sphere, every lane
-// computed and the result selected, in the same operations and order as the scalar code
-// (glm's dot is (x + y) + z, its cross a.y·b.z − b.y·a.z, ...): the same bits.
+// computed and the result selected: the shape's φ and normal in the same operations and order as
+// collider_shapes.h (glm's dot is (x + y) + z, its cross a.y·b.z − b.y·a.z, ...), then the
+// response's own lane function: the same bits.
 template <typename T, bool kSphere, bool kFriction, bool kMoving>
 void contactLoop(T* __restrict px, T* __restrict py, T* __restrict pz, T* __restrict vx,
                  T* __restrict vy, T* __restrict vz, const ContactRow<T>& r, int n) {
@@ -193,19 +195,8 @@ void contactLoop(T* __restrict px, T* __restrict py, T* __restrict pz, T* __rest
             qz = z + push * nz;
         }
         const T v0x = vx[i], v0y = vy[i], v0z = vz[i];
-        const T wx = v0x - ux, wy = v0y - uy, wz = v0z - uz;
-        const T wn = (wx * nx + wy * ny) + wz * nz;
-        T ox = v0x - wn * nx, oy = v0y - wn * ny, oz = v0z - wn * nz;
-        if constexpr (kFriction) {
-            const T tx = wx - wn * nx, ty = wy - wn * ny, tz = wz - wn * nz;
-            const T slide = std::sqrt((tx * tx + ty * ty) + tz * tz);
-            const T budget = cf * std::fabs(wn);
-            const bool stick = slide <= budget;
-            const T k = budget / slide;
-            ox = stick ? ux : ox - k * tx;
-            oy = stick ? uy : oy - k * ty;
-            oz = stick ? uz : oz - k * tz;
-        }
+        T ox = v0x, oy = v0y, oz = v0z;
+        respondVelocityLane<T, kFriction>(ox, oy, oz, nx, ny, nz, ux, uy, uz, cf);
         px[i] = touch ? qx : x;
         py[i] = touch ? qy : y;
         pz[i] = touch ? qz : z;
