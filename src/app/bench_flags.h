@@ -1,8 +1,10 @@
 // The flags every bench subcommand shares, read from the command line into bench/'s options.
 #pragma once
 
+#include <cstdio>
 #include <string>
 
+#include "app/backend_flags.h"
 #include "app/cli.h"
 #include "bench/bench.h"
 #include "bench/bench_speed_gpu.h"
@@ -22,5 +24,21 @@ bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o);
 // --pass-times: true when `flag` was one of them (its value taken from `args` into `o`).
 // InputError naming the flag for a bad value.
 bool parseGpuSweepFlag(const std::string& flag, Args& args, GpuSweepOptions& o);
+
+// A bench subcommand: its options start from the environment's backend tuning and script folder,
+// `parse` reads the command line into them (false: --help was asked for, then `help` is
+// printed), and `run` runs the bench.
+template <typename Options>
+int benchSubcommand(Args& args, const char* help, bool (*parse)(Args&, Options&),
+                    int (*run)(const Options&)) {
+    Options o;
+    o.tuning = backendChoiceFromEnvironment();
+    o.scriptDir = benchDirFromEnvironment();
+    if (!parse(args, o)) {
+        std::fputs(help, stdout);
+        return kOk;
+    }
+    return run(o);
+}
 
 }  // namespace cloth::app

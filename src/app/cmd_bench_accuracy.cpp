@@ -1,7 +1,6 @@
 // clothsim bench accuracy: its options from the command line, then bench/bench_accuracy.h runs it.
 #include <cstdio>
 
-#include "app/backend_flags.h"
 #include "app/bench_flags.h"
 #include "app/cli.h"
 #include "bench/bench_accuracy.h"
@@ -75,14 +74,7 @@ bool parse(Args& args, Options& o) {
 }  // namespace
 
 int benchAccuracyCommand(Args& args) {
-    Options o;
-    o.tuning = backendChoiceFromEnvironment();
-    o.scriptDir = benchDirFromEnvironment();
-    if (!parse(args, o)) {
-        std::fputs(kHelp, stdout);
-        return kOk;
-    }
-    return runBenchAccuracy(o);
+    return benchSubcommand<Options>(args, kHelp, parse, runBenchAccuracy);
 }
 
 }  // namespace cloth::app

@@ -2,7 +2,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app/backend_flags.h"
 #include "app/bench_flags.h"
 #include "app/cli.h"
 #include "bench/bench_peer.h"
@@ -108,14 +107,7 @@ bool parse(Args& args, Options& o) {
 }  // namespace
 
 int benchSpeedCommand(Args& args) {
-    Options o;
-    o.tuning = backendChoiceFromEnvironment();
-    o.scriptDir = benchDirFromEnvironment();
-    if (!parse(args, o)) {
-        std::fputs(kHelp, stdout);
-        return kOk;
-    }
-    return runBenchSpeed(o);
+    return benchSubcommand<Options>(args, kHelp, parse, runBenchSpeed);
 }
 
 }  // namespace cloth::app

@@ -1,7 +1,6 @@
 // clothsim bench stability: its options from the command line, then bench/bench_stability.h runs it.
 #include <cstdio>
 
-#include "app/backend_flags.h"
 #include "app/bench_flags.h"
 #include "app/cli.h"
 #include "bench/bench_stability.h"
@@ -108,14 +107,7 @@ bool parse(Args& args, Options& o) {
 }  // namespace
 
 int benchStabilityCommand(Args& args) {
-    Options o;
-    o.tuning = backendChoiceFromEnvironment();
-    o.scriptDir = benchDirFromEnvironment();
-    if (!parse(args, o)) {
-        std::fputs(kHelp, stdout);
-        return kOk;
-    }
-    return runBenchStability(o);
+    return benchSubcommand<Options>(args, kHelp, parse, runBenchStability);
 }
 
 }  // namespace cloth::app
