@@ -98,9 +98,9 @@ bool parse(Args& args, Options& o) {
         throw InputError("command line", "--peer-dt", "sets the peer's step: give --peer too");
     if (!o.peer.empty() && !o.sizesGiven) o.sizes = {64, 128, 256};
     if (o.scenePath.empty())
-        o.scenePath =
-            (std::filesystem::path(benchScriptDir(o.scriptDir)).parent_path() / "scenes/hanging.json")
-                .string();
+        o.scenePath = (std::filesystem::path(benchScriptDir(o.scriptDir)).parent_path() /
+                       "scenes/hanging.json")
+                          .string();
     return true;
 }
 

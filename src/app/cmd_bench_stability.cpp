@@ -1,4 +1,5 @@
-// clothsim bench stability: its options from the command line, then bench/bench_stability.h runs it.
+// clothsim bench stability: its options from the command line, then bench/bench_stability.h runs
+// it.
 #include <cstdio>
 
 #include "app/bench_flags.h"

@@ -5,16 +5,16 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/backend_flags.h"
 #include "app/cli.h"
 #include "app/progress.h"
-#include "app/backend_flags.h"
 #include "app/reports.h"
 #include "backends/solver_factory.h"
 #include "model/collider_mesh.h"
 #include "model/errors.h"
-#include "solver/output.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
+#include "solver/output.h"
 
 namespace cloth::app {
 namespace {
@@ -108,6 +108,41 @@ std::string framePath(const RunOptions& o, const Scene& scene, long step, long t
     return (std::filesystem::path(o.framesDir) / (scene.name + name)).string();
 }
 
+// Seconds a run spent [s]: in all, stepping alone (frames not written), and on the device.
+struct RunTimes {
+    double wall = 0, stepping = 0, device = 0;
+};
+
+// The run's final files: CSV, OBJ and the colliders' OBJ as asked.
+void writeFinalFiles(const RunOptions& o, const Scene& scene, const SimState& state) {
+    if (!o.csv.empty()) writeCsv(o.csv, state, effectivePrecision(o.backend));
+    if (!o.obj.empty()) writeObj(o.obj, state, scene.name);
+    if (!o.colliders.empty())  // at their pose at t = 0 (a moving collider where it starts)
+        writeMeshesObj(o.colliders,
+                       colliderMeshes(scene.colliders, std::max(10.0, 4 * scene.grid().extent())));
+}
+
+// The summary line (README, "The command line"), the GPU's time and the solves, files written.
+void printSummary(const RunOptions& o, const Scene& scene, const Solver& solver, long total,
+                  const RunTimes& t) {
+    const double vertexSteps = double(scene.cloth.nu) * double(scene.cloth.nv) * double(total);
+    std::printf("%s: %ld steps, %.4g s simulated, %.3f s wall, %.3g vertex-steps/s (%s)\n",
+                scene.name.c_str(), total, solver.time(), t.wall, vertexSteps / t.stepping,
+                solver.name().c_str());
+    if (t.device > 0)
+        std::printf("gpu time %.4g ms/step (%s), %.3g vertex-steps/s of GPU time\n",
+                    1e3 * t.device / double(total), solver.deviceReport().timing.c_str(),
+                    vertexSteps / t.device);
+    const SolveStats& cg = solver.solveStats();
+    if (cg.solves > 0)
+        std::printf("implicit solve: %ld CG solves, %.1f iterations on average, at most %d\n",
+                    cg.solves, double(cg.iterations) / double(cg.solves), cg.mostIterations);
+    for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
+        if (!f->empty()) std::printf("wrote %s\n", f->c_str());
+    if (!o.framesDir.empty())
+        std::printf("wrote %ld frames to %s\n", total / o.every + 1, o.framesDir.c_str());
+}
+
 }  // namespace
 
 int runCommand(Args& args) {
@@ -123,12 +158,10 @@ int runCommand(Args& args) {
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
     if (!o.framesDir.empty()) std::filesystem::create_directories(o.framesDir);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
-    const Precision precision = effectivePrecision(o.backend);
 
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
-    double stepSeconds = 0;    // stepping alone, without the writing of frames
-    double deviceSeconds = 0;  // GPU time of those steps (0 on the CPU)
+    RunTimes times;
     if (!o.framesDir.empty()) writeObj(framePath(o, scene, 0, total), solver->read(), scene.name);
     Progress progress(total, !o.quiet);
     const long chunk = std::max(1L, std::min(total / 100, 10000L));
@@ -137,8 +170,8 @@ int runCommand(Args& args) {
         if (o.every > 0) n = std::min(n, o.every - solver->stepsDone() % o.every);
         const auto t0 = Clock::now();
         const StepResult r = solver->step(n);
-        stepSeconds += std::chrono::duration<double>(Clock::now() - t0).count();
-        deviceSeconds += solver->deviceReport().secondsPerStep * double(r.stepsTaken);
+        times.stepping += std::chrono::duration<double>(Clock::now() - t0).count();
+        times.device += solver->deviceReport().secondsPerStep * double(r.stepsTaken);
         if (r.unstable) {
             progress.finish();
             reportUnstable(scene, *solver, r, "nothing was written for the unstable state");
@@ -148,34 +181,12 @@ int runCommand(Args& args) {
             writeObj(framePath(o, scene, solver->stepsDone(), total), solver->read(), scene.name);
         progress.update(solver->stepsDone());
     }
-    const double wall = std::chrono::duration<double>(Clock::now() - start).count();
+    times.wall = std::chrono::duration<double>(Clock::now() - start).count();
     progress.finish();
 
     reportSolveMisses(scene, *solver);
-    const SimState state = solver->read();
-    if (!o.csv.empty()) writeCsv(o.csv, state, precision);
-    if (!o.obj.empty()) writeObj(o.obj, state, scene.name);
-    if (!o.colliders.empty())  // at their pose at t = 0 (a moving collider where it starts)
-        writeMeshesObj(o.colliders,
-                       colliderMeshes(scene.colliders, std::max(10.0, 4 * scene.grid().extent())));
-    if (!o.quiet) {
-        const double vertexSteps = double(state.positions.size()) * double(total);
-        std::printf("%s: %ld steps, %.4g s simulated, %.3f s wall, %.3g vertex-steps/s (%s)\n",
-                    scene.name.c_str(), total, solver->time(), wall, vertexSteps / stepSeconds,
-                    solver->name().c_str());
-        if (deviceSeconds > 0)
-            std::printf("gpu time %.4g ms/step (%s), %.3g vertex-steps/s of GPU time\n",
-                        1e3 * deviceSeconds / double(total), solver->deviceReport().timing.c_str(),
-                        vertexSteps / deviceSeconds);
-        const SolveStats& cg = solver->solveStats();
-        if (cg.solves > 0)
-            std::printf("implicit solve: %ld CG solves, %.1f iterations on average, at most %d\n",
-                        cg.solves, double(cg.iterations) / double(cg.solves), cg.mostIterations);
-        for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
-            if (!f->empty()) std::printf("wrote %s\n", f->c_str());
-        if (!o.framesDir.empty())
-            std::printf("wrote %ld frames to %s\n", total / o.every + 1, o.framesDir.c_str());
-    }
+    writeFinalFiles(o, scene, solver->read());
+    if (!o.quiet) printSummary(o, scene, *solver, total, times);
     return kOk;
 }
 

@@ -13,11 +13,11 @@
 #include <optional>
 #include <utility>
 
+#include "model/errors.h"
+#include "scene/scene_loader.h"
 #include "viewer/viewer.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
-#include "model/errors.h"
-#include "scene/scene_loader.h"
 
 namespace cloth::app {
 namespace {
@@ -109,6 +109,48 @@ void drawScene(ViewerSession& session, render::Renderer& renderer, ViewerUi& ui)
     renderer.draw(ui.camera, ui.render, ui.width, ui.height, ui.viewX);
 }
 
+void initImGui(GLFWwindow* window) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 430");
+}
+
+void shutdownImGui() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+// A scene picked in the panel replaces the session (on the same backend); a bad one is said in
+// the panel and the old one stays.
+void loadRequestedScene(ViewerUi& ui, std::unique_ptr<ViewerSession>& session,
+                        render::Renderer& renderer) {
+    if (!ui.loadRequest) return;
+    const std::string path = (std::filesystem::path(ui.sceneDirectory) / *ui.loadRequest).string();
+    ui.loadRequest.reset();
+    try {
+        session = openScene(loadScene(path), std::nullopt, session->backend());
+        showScene(*session, renderer, ui);
+    } catch (const std::exception& e) {
+        ui.message = e.what();
+    }
+}
+
+// The scripted screenshot after the last frame (--screenshot), and the panel's when asked.
+void takeScreenshots(ViewerUi& ui, const ViewerOptions& o, bool last) {
+    if (last && !o.screenshot.empty()) saveScreenshot(ui, o.screenshot);
+    if (std::exchange(ui.screenshotRequested, false)) {
+        try {
+            ui.message = "wrote " + saveScreenshot(ui);
+        } catch (const std::exception& e) {
+            ui.message = e.what();
+        }
+    }
+}
+
 }  // namespace
 
 int runViewer(const ViewerOptions& o) {
@@ -121,12 +163,7 @@ int runViewer(const ViewerOptions& o) {
     GLFWwindow* window = openWindow(o);
     // The GPU library adopts the window's context and loads GL functions; its renderer is named.
     const std::string device = gpuRenderer();
-    IMGUI_CHECKVERSION();
-    ImGui::CreateContext();
-    ImGui::GetIO().IniFilename = nullptr;
-    ImGui::StyleColorsDark();
-    ImGui_ImplGlfw_InitForOpenGL(window, true);
-    ImGui_ImplOpenGL3_Init("#version 430");
+    initImGui(window);
 
     ViewerUi ui;
     ui.vsync = o.vsync;
@@ -151,17 +188,7 @@ int runViewer(const ViewerOptions& o) {
         drawPanel(*session, ui);
         drawInstabilityNotice(*session);
         handleInput(window, *session, ui);
-        if (ui.loadRequest) {
-            const std::string path =
-                (std::filesystem::path(ui.sceneDirectory) / *ui.loadRequest).string();
-            ui.loadRequest.reset();
-            try {
-                session = openScene(loadScene(path), std::nullopt, session->backend());
-                showScene(*session, *renderer, ui);
-            } catch (const std::exception& e) {
-                ui.message = e.what();
-            }
-        }
+        loadRequestedScene(ui, session, *renderer);
 
         session->advance(std::exchange(ui.stepOnce, false));
         if ((sampleClock += ui.frameSeconds) >= ViewerHistory::kSampleSeconds) {
@@ -177,14 +204,7 @@ int runViewer(const ViewerOptions& o) {
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         const bool last = o.frames > 0 && frame >= o.frames;
-        if (last && !o.screenshot.empty()) saveScreenshot(ui, o.screenshot);
-        if (std::exchange(ui.screenshotRequested, false)) {
-            try {
-                ui.message = "wrote " + saveScreenshot(ui);
-            } catch (const std::exception& e) {
-                ui.message = e.what();
-            }
-        }
+        takeScreenshots(ui, o, last);
         glfwSwapInterval(ui.vsync ? 1 : 0);
         glfwSwapBuffers(window);
         if (last) break;
@@ -193,9 +213,7 @@ int runViewer(const ViewerOptions& o) {
     // Shutdown: GL objects before the context goes.
     renderer.reset();
     session.reset();
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui_ImplGlfw_Shutdown();
-    ImGui::DestroyContext();
+    shutdownImGui();
     glfwDestroyWindow(window);
     glfwTerminate();
     return 0;
