@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     const std::string command = argv[1];
     Args args(command, std::vector<std::string>(argv + 2, argv + argc));
     try {
-        cloth::configureGpu(gpuSetupFromEnvironment());
+        cloth::configureBackends(gpuSetupFromEnvironment());
         return dispatch(command, args);
     } catch (const cloth::InputError& e) {
         std::fprintf(stderr, "clothsim: invalid input: %s\n", e.what());

@@ -21,13 +21,14 @@ struct GpuEntry {
     std::optional<std::string> (*sizeRefusal)(const Scene&, const GpuOptions&);
     double (*copyBandwidth)(std::size_t, int);
     std::string (*renderer)();
+    void (*configure)(const GpuSetup&);
 };
 
 const GpuEntry* gpuEntry() {
 #ifdef CLOTH_GPU_BUILT
-    static constexpr GpuEntry gpu{makeGpuSolver,   describeGpu,
-                                  describeGpuVariant, gpuGridRefusal,
-                                  measureGpuCopyBandwidth, gpuRendererName};
+    static constexpr GpuEntry gpu{
+        makeGpuSolver,           describeGpu,     describeGpuVariant, gpuGridRefusal,
+        measureGpuCopyBandwidth, gpuRendererName, configureGpu};
     return &gpu;
 #else
     return nullptr;
@@ -42,6 +43,10 @@ const GpuEntry& requireGpu() {
 }
 
 }  // namespace
+
+void configureBackends(const GpuSetup& gpu) {
+    if (gpuEntry() != nullptr) gpuEntry()->configure(gpu);
+}
 
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice) {
     if (choice.backend == Backend::Cpu)

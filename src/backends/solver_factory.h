@@ -21,6 +21,10 @@ struct BackendChoice {
     CpuIsa isa = CpuIsa::Auto;                // CPU only: the row kernels (cpu/cpu_rows.h)
 };
 
+// Hands the process's GPU settings (the app's environment) to the GPU backend when this build has
+// one; before any solver or context is made.
+void configureBackends(const GpuSetup& gpu);
+
 // Throws GpuUnavailable when the GPU backend is asked for and cannot run.
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice);
 

@@ -7,6 +7,13 @@
 #include <thread>
 
 namespace cloth::app {
+namespace {
+
+// The 12 neighbour offsets in the order the seed's loop visits them.
+constexpr int kDi[12] = {1, -1, 0, 0, 1, 1, -1, -1, 2, -2, 0, 0};
+constexpr int kDj[12] = {0, 0, 1, -1, 1, -1, 1, -1, 0, 0, 2, -2};
+
+}  // namespace
 
 BaselineCloth::BaselineCloth(const Scene& scene)
     : grid_(scene.grid()),
@@ -29,6 +36,9 @@ BaselineCloth::BaselineCloth(const Scene& scene)
             x_[std::size_t(j) * nu_ + i] = V3{p.x, p.y, p.z};
         }
     for (const Pin& p : scene.pins) pinned_[std::size_t(p.j) * nu_ + p.i] = 1;
+    // û and v̂ need not be orthogonal (a skewed cloth): L is the length of the rest offset
+    // di·du·û + dj·dv·v̂, not √((di·du)² + (dj·dv)²); uniform per offset on the regular grid.
+    for (int s = 0; s < 12; ++s) rest_[s] = grid_.restLength(kDi[s], kDj[s]);
 }
 
 void BaselineCloth::step(long n) {
@@ -39,8 +49,8 @@ void BaselineCloth::step(long n) {
 // check, the spring force F = K(|d| − L) d/|d| (seed eq. (2)) with L = |di·du·û + dj·dv·v̂|
 // (DESIGN.md §2), then v += Δt((F − μv)/m + g), x += Δt·v_old (seed eq. (6)) into the next arrays.
 void BaselineCloth::stepOnce() {
-    static const int di[12] = {1, -1, 0, 0, 1, 1, -1, -1, 2, -2, 0, 0};
-    static const int dj[12] = {0, 0, 1, -1, 1, -1, 1, -1, 0, 0, 2, -2};
+    const int* di = kDi;
+    const int* dj = kDj;
     static const int family[12] = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2};
     for (int j = 0; j < nv_; ++j) {
         for (int i = 0; i < nu_; ++i) {
@@ -51,9 +61,7 @@ void BaselineCloth::stepOnce() {
                 if (ii < 0 || ii >= nu_ || jj < 0 || jj >= nv_) continue;
                 const double stiffness = k_[family[s]];
                 if (stiffness == 0) continue;
-                // û and v̂ need not be orthogonal (a skewed cloth): L is the length of the rest
-                // offset di·du·û + dj·dv·v̂, not √((di·du)² + (dj·dv)²).
-                const double rest = grid_.restLength(di[s], dj[s]);
+                const double rest = rest_[s];
                 const int q = jj * nu_ + ii;
                 const double dx = x_[q].x - x_[k].x, dy = x_[q].y - x_[k].y, dz = x_[q].z - x_[k].z;
                 const double len = std::sqrt(dx * dx + dy * dy + dz * dz);

@@ -27,7 +27,8 @@ private:
     };
     void stepOnce();
 
-    Grid grid_;  // rest positions and rest lengths (model/grid.h)
+    Grid grid_;        // rest positions and rest lengths (model/grid.h)
+    double rest_[12];  // rest length of each neighbour offset [m]
     int nu_, nv_;
     double dt_, mass_, damping_;
     double k_[3];  // structural, shear, bend [N/m]
