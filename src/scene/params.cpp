@@ -82,9 +82,14 @@ std::string number(double x) {
 }
 
 std::string rangeText(const ParamSpec& p) {
-    std::string r = (p.minExclusive || std::isinf(p.min) ? "(" : "[") + number(p.min) + ", " +
-                    number(p.max) + (std::isinf(p.max) ? ")" : "]");
-    return p.integer ? r + ", integer" : r;
+    // Appended piece by piece: GCC 12 warns wrongly (-Wrestrict) on "literal" + string&&.
+    std::string r = p.minExclusive || std::isinf(p.min) ? "(" : "[";
+    r += number(p.min);
+    r += ", ";
+    r += number(p.max);
+    r += std::isinf(p.max) ? ")" : "]";
+    if (p.integer) r += ", integer";
+    return r;
 }
 
 // A "|" in a meaning would end its table cell.
