@@ -84,7 +84,9 @@ TEST(ParamTable, AnOmittedKeyLoadsAsTheRowsDefault) {
 TEST(ParamTable, DefaultsAreTheSceneStructs) {
     const Scene plain;
     for (const ParamSpec& p : paramTable()) {
-        if (p.get && p.get(plain)) EXPECT_EQ(*p.get(plain), p.defaultValue) << p.path;
+        if (p.get && p.get(plain)) {
+            EXPECT_EQ(*p.get(plain), p.defaultValue) << p.path;
+        }
     }
 }
 
