@@ -19,6 +19,13 @@ bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice
     return true;
 }
 
+void refuseGpuDouble(const BackendChoice& choice, bool precisionGiven) {
+    if (choice.backend == Backend::Gpu && precisionGiven && choice.precision == Precision::Double)
+        throw InputError("command line", "--precision",
+                         "the GPU backend computes in float; --precision double needs --backend "
+                         "cpu (or leave --precision out)");
+}
+
 Backend parseBackend(const std::string& flag, const std::string& value) {
     if (value == "cpu") return Backend::Cpu;
     if (value == "gpu") return Backend::Gpu;

@@ -13,6 +13,11 @@ namespace cloth::app {
 // (its value then taken from `args` into `choice`).
 bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice);
 
+// The GPU backend computes in float: a command that runs one backend refuses --precision double
+// with --backend gpu (InputError naming --precision) rather than compute in float silently.
+// `precisionGiven`: --precision was on the command line (the default double is no request).
+void refuseGpuDouble(const BackendChoice& choice, bool precisionGiven);
+
 Backend parseBackend(const std::string& flag, const std::string& value);
 Precision parsePrecision(const std::string& flag, const std::string& value);
 

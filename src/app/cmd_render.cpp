@@ -90,10 +90,12 @@ double parseFps(const std::string& flag, const std::string& v) {
 }
 
 bool parse(Args& args, RenderArgs& o) {
+    bool precisionGiven = false;
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help") return false;
+        precisionGiven |= f == "--precision";
         if (parseBackendFlag(f, args, o.backend)) continue;
         if (f == "--png")
             o.png = args.value(f);
@@ -122,6 +124,7 @@ bool parse(Args& args, RenderArgs& o) {
             args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "render needs a scene file");
+    refuseGpuDouble(o.backend, precisionGiven);
     if (o.png.empty() && o.framesDir.empty())
         throw InputError("command line", "--png", "render needs --png FILE or --frames DIR");
     if (!o.framesDir.empty() && o.every == 0)

@@ -54,10 +54,12 @@ struct RunOptions {
 
 // Returns false when --help was asked for.
 bool parse(Args& args, RunOptions& o) {
+    bool precisionGiven = false;
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help") return false;
+        precisionGiven |= f == "--precision";
         if (parseBackendFlag(f, args, o.backend)) continue;
         if (f == "--steps")
             o.steps = args.positiveInt(f);
@@ -79,6 +81,7 @@ bool parse(Args& args, RunOptions& o) {
             args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "run needs a scene file");
+    refuseGpuDouble(o.backend, precisionGiven);
     if (!o.framesDir.empty() && o.every == 0)
         throw InputError("command line", "--every", "--frames DIR needs --every K");
     if (o.framesDir.empty() && o.every > 0)

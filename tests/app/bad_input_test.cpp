@@ -234,6 +234,27 @@ TEST(BadArguments, ExitTwo) {
     }
 }
 
+// The GPU computes in float: asking it for double is refused naming --precision (in either
+// order of the flags, for run and render), never computed in float silently; float is accepted.
+TEST(BadArguments, GpuInDoubleIsRefused) {
+    const std::string scene = kGoodScene.string();
+    const std::string png = (fs::temp_directory_path() / "clothsim_gpu_double.png").string();
+    const std::vector<std::vector<std::string>> cases = {
+        {kExe, "run", scene, "--backend", "gpu", "--precision", "double", "--steps", "2"},
+        {kExe, "run", scene, "--precision", "double", "--backend", "gpu", "--steps", "2"},
+        {kExe, "render", scene, "--backend", "gpu", "--precision", "double", "--png", png},
+    };
+    for (const auto& argv : cases) {
+        const ProcessResult r = runProcess(argv, kTimeout);
+        EXPECT_EQ(r.exitCode, 2) << argv[1] << ": " << test::describe(r);
+        EXPECT_NE(r.err.find("--precision"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("float"), std::string::npos) << r.err;
+    }
+    const ProcessResult ok = runProcess(
+        {kExe, "run", scene, "--backend", "gpu", "--precision", "float", "--steps", "2"}, kTimeout);
+    EXPECT_NE(ok.exitCode, 2) << test::describe(ok);  // 0, or 4 where no GPU context exists
+}
+
 // ---- huge resolutions are refused before anything is allocated ---------------------------
 
 TEST(HugeResolution, RefusedBeforeAllocation) {
