@@ -293,6 +293,7 @@ int renderCommand(Args& args) {
 #ifdef CLOTH_HAVE_RENDER
     gpuRenderer();  // makes the EGL context before either solver: the GPU one computes in it
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
+    warnUnstableDt(scene);
     const long total = o.steps >= 0 ? o.steps : scene.defaultSteps();
     Painter painter(o, scene);
     if (!o.framesDir.empty() && !writeFrames(o, scene, *solver, painter, total)) return kUnstable;

@@ -161,6 +161,7 @@ int runCommand(Args& args) {
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
     if (!o.framesDir.empty()) std::filesystem::create_directories(o.framesDir);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
+    if (!o.quiet) warnUnstableDt(scene);
 
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();

@@ -32,4 +32,9 @@ void reportSolveMisses(const Scene& scene, const Solver& solver) {
                  scene.integrator.tolerance, s.firstMissStep, s.worstResidual);
 }
 
+void warnUnstableDt(const Scene& scene) {
+    if (const auto warning = dtWarning(scene))
+        std::fprintf(stderr, "clothsim: %s: warning: %s\n", scene.source.c_str(), warning->c_str());
+}
+
 }  // namespace cloth::app

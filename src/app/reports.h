@@ -14,6 +14,10 @@ namespace cloth::app {
 void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& r,
                     const std::string& consequence);
 
+// A warning on stderr, before any step, when the scene's Δt is beyond its integrator's predicted
+// stability bound (model/stability.h dtWarning).
+void warnUnstableDt(const Scene& scene);
+
 // A warning on stderr when implicit Euler's CG stopped at its cap in any step (never silent).
 void reportSolveMisses(const Scene& scene, const Solver& solver);
 

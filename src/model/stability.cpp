@@ -174,4 +174,21 @@ std::string stabilityAdvice(const Scene& scene) {
     return buf;
 }
 
+std::optional<std::string> dtWarning(const Scene& scene) {
+    const double bound = stableDt(scene), dt = scene.integrator.dt;
+    if (std::isinf(bound) || (bound > 0 && dt < bound)) return std::nullopt;
+    char buf[200];
+    if (bound > 0)
+        std::snprintf(buf, sizeof buf,
+                      "integrator.dt = %.3g s is beyond %s's predicted stability bound %.3g s: the "
+                      "run may leave physics; lower integrator.dt",
+                      dt, methodName(scene.integrator.method), bound);
+    else
+        std::snprintf(buf, sizeof buf,
+                      "explicit_euler has no stable integrator.dt at damping %g: the run may leave "
+                      "physics; raise damping or change integrator.method",
+                      scene.damping);
+    return std::string(buf);
+}
+
 }  // namespace cloth

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,5 +56,10 @@ double stableDt(const Scene& scene);
 
 // One line a user can act on: a Δt inside the bound, or the damping that makes the Δt stable.
 std::string stabilityAdvice(const Scene& scene);
+
+// When the scene's Δt is beyond its integrator's predicted (safe) bound, or explicit Euler has no
+// stable Δt at its damping: one line naming Δt, the bound and the key to change, which `run`,
+// `render` and the viewer show before stepping. Nothing inside the bound.
+std::optional<std::string> dtWarning(const Scene& scene);
 
 }  // namespace cloth
