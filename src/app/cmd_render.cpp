@@ -9,13 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "app/cli.h"
 #include "app/backend_flags.h"
+#include "app/cli.h"
 #include "app/reports.h"
 #include "backends/solver_factory.h"
 #include "model/errors.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
 
 #ifdef CLOTH_HAVE_RENDER
 #include "render/image.h"
@@ -141,7 +141,10 @@ bool parse(Args& args, RenderArgs& o) {
 // Steps to `total`; false (after saying why) if the run became unstable.
 bool simulate(const Scene& scene, Solver& solver, long total) {
     while (solver.stepsDone() < total) {
-        const StepResult r = solver.step(std::min(total - solver.stepsDone(), 10000L));
+        const long before = solver.stepsDone();
+        StepResult r = solver.step(std::min(total - before, kStrainCheckSteps));
+        if (!r.unstable)
+            if (auto strained = strainInstability(scene, solver, before)) r = *strained;
         if (!r.unstable) continue;
         reportUnstable(scene, solver, r, "no image was written");
         return false;

@@ -168,14 +168,19 @@ int runCommand(Args& args) {
     RunTimes times;
     if (!o.framesDir.empty()) writeObj(framePath(o, scene, 0, total), solver->read(), scene.name);
     Progress progress(total, !o.quiet);
-    const long chunk = std::max(1L, std::min(total / 100, 10000L));
+    const long chunk = std::max(1L, std::min(total / 100, kStrainCheckSteps));
+    long checked = 0;  // steps done at the last strain check
     while (solver->stepsDone() < total) {
         long n = std::min(chunk, total - solver->stepsDone());
         if (o.every > 0) n = std::min(n, o.every - solver->stepsDone() % o.every);
         const auto t0 = Clock::now();
-        const StepResult r = solver->step(n);
+        StepResult r = solver->step(n);
         times.stepping += std::chrono::duration<double>(Clock::now() - t0).count();
         times.device += solver->deviceReport().secondsPerStep * double(r.stepsTaken);
+        if (!r.unstable && strainCheckDue(checked, solver->stepsDone(), total)) {
+            if (auto strained = strainInstability(scene, *solver, checked)) r = *strained;
+            checked = solver->stepsDone();
+        }
         if (r.unstable) {
             progress.finish();
             reportUnstable(scene, *solver, r, "nothing was written for the unstable state");

@@ -151,6 +151,9 @@ struct Scene {
     std::vector<Collider> colliders;
     std::optional<Wind> wind;
     double maxSpeed = 1e4;  // [m/s]; faster is reported as unstable
+    // A modelled spring stretched or squeezed by more than this fraction of its rest length is
+    // reported as unstable: the run has left the physics a mass-spring cloth stands for.
+    double maxStrain = 1;
     double duration = 1;    // simulated time `run` covers without --steps [s]
 
     Grid grid() const;

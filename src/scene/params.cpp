@@ -65,6 +65,11 @@ constexpr ParamSpec kParams[] = {
      "a faster vertex means the run is unstable", kHidden,
      [](const Scene& s) -> std::optional<double> { return s.maxSpeed; },
      [](Scene& s, double v) { s.maxSpeed = v; }},
+    {"max_strain", "", 0, kInf, true, false, 1, false,
+     "a spring stretched or squeezed by more than this fraction of its rest length means the run "
+     "is unstable", kHidden,
+     [](const Scene& s) -> std::optional<double> { return s.maxStrain; },
+     [](Scene& s, double v) { s.maxStrain = v; }},
     {"duration", "s", 0, 1e9, true, false, 1, false,
      "simulated time `run` covers without --steps", kHidden,
      [](const Scene& s) -> std::optional<double> { return s.duration; },

@@ -101,6 +101,7 @@ std::string sceneToJson(const Scene& s) {
     j["colliders"] = colliders;
     if (s.wind) j["wind"] = {{"direction", vec(s.wind->direction)}, {"strength", s.wind->strength}};
     j["max_speed"] = s.maxSpeed;
+    j["max_strain"] = s.maxStrain;
     j["duration"] = s.duration;
     return j.dump(2) + "\n";
 }

@@ -234,7 +234,7 @@ Wind SceneReader::readWind(const Json& j) const {
 Scene SceneReader::read(const Json& doc) {
     expectObject(doc, "",
                  {"name", "cloth", "springs", "damping", "gravity", "pins", "integrator",
-                  "colliders", "wind", "max_speed", "duration"});
+                  "colliders", "wind", "max_speed", "max_strain", "duration"});
     Scene scene;
     scene.source = source_;
     scene.name = std::filesystem::path(source_).stem().string();
@@ -259,6 +259,7 @@ Scene SceneReader::read(const Json& doc) {
     checkColliderMotionStep(scene);  // docs/colliders.md §7: no collider outruns the limit
     if (doc.contains("wind")) scene.wind = readWind(doc["wind"]);
     scene.maxSpeed = param(doc, "max_speed", "max_speed", "max_speed");
+    scene.maxStrain = param(doc, "max_strain", "max_strain", "max_strain");
     scene.duration = param(doc, "duration", "duration", "duration");
     if (scene.duration / scene.integrator.dt > 1e12)
         fail("duration", "needs more than 1e12 steps of integrator.dt");

@@ -1,6 +1,7 @@
 #include "solver/diagnostics.h"
 
 #include <cmath>
+#include <cstdio>
 
 namespace cloth {
 
@@ -44,6 +45,36 @@ double maxStrain(const Scene& scene, const SimState& state) {
         }
     }
     return scene.springs.structural > 0 ? strain : 0;
+}
+
+SpringStrain largestStrain(const Scene& scene, const SimState& state) {
+    const Grid g = scene.grid();
+    SpringStrain worst;
+    for (const SpringOffset& o : kSpringOffsets) {
+        if (o.di < 0 || (o.di == 0 && o.dj < 0)) continue;  // each spring once
+        if (!(scene.springs.of(o.family) > 0)) continue;
+        const double rest = g.restLength(o.di, o.dj);
+        for (int j = 0; j < g.nv; ++j)
+            for (int i = 0; i < g.nu; ++i) {
+                if (!g.contains(i + o.di, j + o.dj)) continue;
+                const std::int64_t a = g.index(i, j), b = g.index(i + o.di, j + o.dj);
+                const double len = glm::length(state.positions[b] - state.positions[a]);
+                const double strain = std::abs(len - rest) / rest;
+                if (!(strain <= worst.strain)) worst = {strain, a, b};  // a NaN counts as worst
+            }
+    }
+    return worst;
+}
+
+std::optional<std::string> strainBreach(const Scene& scene, const SimState& state) {
+    const SpringStrain s = largestStrain(scene, state);
+    if (s.strain <= scene.maxStrain) return std::nullopt;
+    const int nu = scene.cloth.nu;
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "strain %.3g > max_strain %g on the spring (%d, %d)-(%d, %d)",
+                  s.strain, scene.maxStrain, int(s.a % nu), int(s.a / nu), int(s.b % nu),
+                  int(s.b / nu));
+    return std::string(buf);
 }
 
 bool allFinite(const SimState& state) {

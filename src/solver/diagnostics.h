@@ -1,6 +1,10 @@
 // Quantities measured on a state: energy (DESIGN.md §6 invariants), strain, extent.
 #pragma once
 
+#include <cstdint>
+#include <optional>
+#include <string>
+
 #include "model/scene.h"
 #include "solver/solver.h"
 
@@ -17,6 +21,18 @@ Energy energy(const Scene& scene, const SimState& state);
 
 // Largest relative stretch (|d| − L)/L over the structural springs (0 if there are none).
 double maxStrain(const Scene& scene, const SimState& state);
+
+// The modelled spring of largest |strain| = ||d| − L|/L over every family the scene declares, with
+// its two ends (k = j·nu + i); strain 0 when the scene models no springs.
+struct SpringStrain {
+    double strain = 0;
+    std::int64_t a = 0, b = 0;
+};
+SpringStrain largestStrain(const Scene& scene, const SimState& state);
+
+// DESIGN.md §2's instability by strain: why the state has a spring beyond the scene's max_strain
+// ("strain 1.8 > max_strain 1 on the spring (3, 4)-(4, 4)"), or nothing.
+std::optional<std::string> strainBreach(const Scene& scene, const SimState& state);
 
 // True when every position and velocity is finite.
 bool allFinite(const SimState& state);

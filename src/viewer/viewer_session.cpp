@@ -7,9 +7,9 @@
 
 #include "model/collider_limits.h"
 #include "model/collider_speed.h"
-#include "solver/diagnostics.h"
 #include "model/pin_follow.h"
 #include "model/stability.h"
+#include "solver/diagnostics.h"
 
 namespace cloth::app {
 namespace {
@@ -268,6 +268,13 @@ void ViewerSession::sampleDiagnostics() {
     const SimState state = solver_->read();
     if (!allFinite(state)) return;  // never plot a non-finite number
     const Scene s = params_.effective();
+    // DESIGN.md §2's strain check, on the state the plots sample anyway (every kSampleSeconds).
+    if (const auto why = strainBreach(s, state)) {
+        instability_ = "unstable by step " + std::to_string(totalSteps_) + ": " + *why + ". " +
+                       stabilityAdvice(s);
+        grab_.reset();
+        return;
+    }
     const double msPerStep = lastSteps_ > 0 ? 1e3 * lastStepSeconds_ / double(lastSteps_) : 0;
     history_.push(float(energy(s, state).total()), float(maxStrain(s, state)), float(msPerStep));
 }

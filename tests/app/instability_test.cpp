@@ -272,6 +272,46 @@ TEST(Instability, DtBeyondTheBoundIsWarnedBeforeStepping) {
     fs::remove(png);
 }
 
+// DESIGN.md §2: a spring strained past max_strain (default 1 = 100%) is an instability, exit 3
+// with the diagnosis, on both backends. The 1×2 spring softened to K = 2 N/m hangs at a static
+// stretch mg/K = 4.9 m on its 1 m rest length (strain 4.9, deterministic, bounded: no step-size
+// blow-up), inside explicit Euler's bound (μ/K = 0.25 s ≫ 1 ms): the advice names the springs and
+// max_strain, not Δt. With max_strain = 20 (above the 2× static overshoot of a release from
+// rest) the same run passes.
+TEST(Instability, SpringPastMaxStrainExitsThreeOnBothBackends) {
+    const std::string spring = std::string(CLOTH_SOURCE_DIR) + "/scenes/spring.json";
+    for (const char* backend : {"cpu", "gpu"}) {
+        const ProcessResult r = runProcess(
+            {kExe, "run", spring, "--quiet", "--backend", backend, "--set", "springs.structural=2"},
+            kTimeout);
+        EXPECT_EQ(r.exitCode, 3) << backend << ": " << test::describe(r);
+        for (const char* word : {"strain", "> max_strain 1", "too soft", "springs.*"})
+            EXPECT_NE(r.err.find(word), std::string::npos) << backend << ": " << r.err;
+        const ProcessResult loose =
+            runProcess({kExe, "run", spring, "--quiet", "--backend", backend, "--set",
+                        "springs.structural=2", "--set", "max_strain=20"},
+                       kTimeout);
+        EXPECT_EQ(loose.exitCode, 0) << backend << ": " << test::describe(loose);
+    }
+}
+
+// A run that has left physics without a non-finite number or a speed past max_speed: hanging at
+// 4× its explicit Euler bound (1.2e-4 s against 2.94e-5 s) swings at ~12 m/s with springs near
+// 100% strain (measured: strain 0.91 and 12.7 m/s in the final state). It used to exit 0; the
+// strain check stops it (the CPU in double, whose trajectory is the same on every machine).
+TEST(Instability, HangingFarPastItsBoundStopsByStrain) {
+    const std::string hanging = std::string(CLOTH_SOURCE_DIR) + "/scenes/hanging.json";
+    const ProcessResult r =
+        runProcess({kExe, "run", hanging, "--quiet", "--set", "integrator.dt=1.2e-4"}, kTimeout);
+    EXPECT_EQ(r.exitCode, 3) << test::describe(r);
+    EXPECT_NE(r.err.find("> max_strain 1"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("try --set integrator.dt="), std::string::npos) << r.err;  // Δt's fault
+    const ProcessResult loose = runProcess({kExe, "run", hanging, "--quiet", "--set",
+                                            "integrator.dt=1.2e-4", "--set", "max_strain=1000"},
+                                           kTimeout);
+    EXPECT_EQ(loose.exitCode, 0) << test::describe(loose);  // what the run did before the check
+}
+
 // ---- a stable run: exit 0 and a CSV that round-trips ------------------------------------
 
 TEST(StableRun, CsvHasHeaderOneRowPerVertexAndRoundTrips) {

@@ -38,6 +38,23 @@ SimState afterFrames(ViewerSession& s, int frames) {
     return s.solver().read();
 }
 
+// DESIGN.md §2's strain check in the viewer: the soft spring (K = 2 N/m, static strain 4.9) is
+// stopped as unstable at the first diagnostics sample past max_strain and the panel says why;
+// the stiff one of the shipped scene is not.
+TEST(ViewerSession, ASpringPastMaxStrainStopsTheSession) {
+    ViewerSession soft(loadScene(kScenes + "spring.json", {"springs.structural=2"}), {});
+    ViewerSession stiff(loadScene(kScenes + "spring.json"), {});
+    for (int frame = 0; frame < 100 && !soft.unstable(); ++frame) {
+        soft.advance();
+        soft.sampleDiagnostics();
+        stiff.advance();
+        stiff.sampleDiagnostics();
+    }
+    EXPECT_TRUE(soft.unstable());
+    EXPECT_NE(soft.instability().find("> max_strain 1"), std::string::npos) << soft.instability();
+    EXPECT_FALSE(stiff.unstable()) << stiff.instability();
+}
+
 TEST(ViewerSession, AParameterSetThroughThePanelPathChangesTheSimulation) {
     ViewerSession plain(smallScene("hanging"), {});
     ViewerSession edited(smallScene("hanging"), {});
