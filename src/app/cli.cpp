@@ -1,9 +1,14 @@
 #include "app/cli.h"
 
+#include <unistd.h>
+
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 
 #include "model/errors.h"
+#include "model/output_file.h"
 
 namespace cloth::app {
 
@@ -57,6 +62,27 @@ bool Args::takeScene(std::string& scenePath) {
 void Args::unknown(const std::string& f) const {
     throw InputError("command line", f,
                      "unknown option for '" + command_ + "'; see clothsim " + command_ + " --help");
+}
+
+void checkOutputFile(const std::string& flag, const std::string& file) {
+    if (file.empty()) return;
+    const OutputTarget target = resolveOutput(file);
+    if (target.kind == OutputTarget::Kind::Unusable)
+        throw InputError("command line", flag, "cannot write '" + file + "': " + target.reason);
+}
+
+void prepareFramesDir(const std::string& flag, const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec)
+        throw InputError("command line", flag,
+                         "cannot make directory '" + dir + "': " + ec.message());
+    if (!fs::is_directory(dir, ec))
+        throw InputError("command line", flag, "'" + dir + "' is not a directory");
+    if (::access(dir.c_str(), W_OK) != 0)
+        throw InputError("command line", flag,
+                         "directory '" + dir + "' is not writable: " + std::strerror(errno));
 }
 
 }  // namespace cloth::app

@@ -33,6 +33,14 @@ private:
     bool sceneTaken_ = false;
 };
 
+// Outputs are checked before a run starts, so an unusable one is bad input (InputError naming the
+// flag, the path and the reason: exit 2) rather than a failure after the simulation.
+// A file: refused where model/output_file.h would refuse it (a directory, a socket, a folder that
+// does not exist). Nothing for an empty path (the flag was not given).
+void checkOutputFile(const std::string& flag, const std::string& file);
+// --frames DIR: made (with its parents) now, and refused if it is not a writable directory.
+void prepareFramesDir(const std::string& flag, const std::string& dir);
+
 int runCommand(Args& args);
 int validateCommand(Args& args);
 int infoCommand(Args& args);

@@ -49,7 +49,8 @@ options:
   --springs                 overlay the springs of a few vertices (structural, shear, bend)
   --help                    this text
 
-exit codes: 0 ok, 1 internal error, 2 invalid input, 3 unstable, 4 no OpenGL context
+exit codes: 0 ok, 1 internal error or a failed write, 2 invalid input (an output path
+            that cannot be written included), 3 unstable, 4 no OpenGL context
 )";
 
 struct RenderArgs {
@@ -131,10 +132,6 @@ bool parse(Args& args, RenderArgs& o) {
         throw InputError("command line", "--every", "--frames DIR needs --every K");
     if (o.framesDir.empty() && o.every > 0)
         throw InputError("command line", "--frames", "--every K needs --frames DIR");
-    const std::filesystem::path dir = std::filesystem::path(o.png).parent_path();
-    if (!dir.empty() && !std::filesystem::is_directory(dir))
-        throw InputError("command line", "--png",
-                         "directory '" + dir.string() + "' does not exist");
     return true;
 }
 
@@ -266,7 +263,6 @@ private:
 // why) if the run became unstable.
 bool writeFrames(const RenderArgs& o, const Scene& scene, Solver& solver, Painter& painter,
                  long total) {
-    std::filesystem::create_directories(o.framesDir);
     const render::Camera camera = painter.framed(solver);
     long frames = 1;
     painter.paint(solver, framePng(o, scene, solver.stepsDone(), total), camera);
@@ -294,6 +290,9 @@ int renderCommand(Args& args) {
     }
     const Scene scene = loadScene(o.scenePath, o.sets);
 #ifdef CLOTH_HAVE_RENDER
+    // Before the GL context and the solver: a bad output is refused before anything runs.
+    checkOutputFile("--png", o.png);
+    if (!o.framesDir.empty()) prepareFramesDir("--frames", o.framesDir);
     gpuRenderer();  // makes the EGL context before either solver: the GPU one computes in it
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
     warnUnstableDt(scene);

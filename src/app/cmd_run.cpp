@@ -1,6 +1,4 @@
 // clothsim run SCENE [options]: a headless simulation (DESIGN.md §5).
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -39,7 +37,8 @@ options:
   --quiet                   print nothing but errors
   --help                    this text
 
-exit codes: 0 ok, 1 internal error, 2 invalid input, 3 unstable, 4 GPU unavailable
+exit codes: 0 ok, 1 internal error or a failed write, 2 invalid input (an output path
+            that cannot be written included), 3 unstable, 4 GPU unavailable
 )";
 
 struct RunOptions {
@@ -87,21 +86,6 @@ bool parse(Args& args, RunOptions& o) {
     if (o.framesDir.empty() && o.every > 0)
         throw InputError("command line", "--frames", "--every K needs --frames DIR");
     return true;
-}
-
-// An output that cannot be written is bad input, found before the simulation runs, not after.
-void checkWritable(const std::string& flag, const std::string& file) {
-    if (file.empty()) return;
-    namespace fs = std::filesystem;
-    const fs::path dir =
-        fs::path(file).parent_path().empty() ? fs::path(".") : fs::path(file).parent_path();
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec))
-        throw InputError("command line", flag, "directory '" + dir.string() + "' does not exist");
-    if (fs::is_directory(file, ec))
-        throw InputError("command line", flag, "'" + file + "' is a directory");
-    if (access(dir.c_str(), W_OK) != 0)
-        throw InputError("command line", flag, "directory '" + dir.string() + "' is not writable");
 }
 
 std::string framePath(const RunOptions& o, const Scene& scene, long step, long total) {
@@ -155,11 +139,11 @@ int runCommand(Args& args) {
         return kOk;
     }
     const Scene scene = loadScene(o.scenePath, o.sets);
-    checkWritable("--out-csv", o.csv);
-    checkWritable("--out-obj", o.obj);
-    checkWritable("--out-colliders", o.colliders);
+    checkOutputFile("--out-csv", o.csv);
+    checkOutputFile("--out-obj", o.obj);
+    checkOutputFile("--out-colliders", o.colliders);
+    if (!o.framesDir.empty()) prepareFramesDir("--frames", o.framesDir);
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
-    if (!o.framesDir.empty()) std::filesystem::create_directories(o.framesDir);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
     if (!o.quiet) warnUnstableDt(scene);
 

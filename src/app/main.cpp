@@ -24,7 +24,8 @@ usage:
   clothsim info                                 GL/EGL device, limits, build
 
 'clothsim COMMAND --help' describes each command.
-exit codes: 0 ok, 1 internal error, 2 invalid input, 3 unstable simulation, 4 no GPU
+exit codes: 0 ok, 1 internal error or a failed write, 2 invalid input, 3 unstable simulation,
+            4 no GPU
 )";
 
 int dispatch(const std::string& command, cloth::app::Args& args) {

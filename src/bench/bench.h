@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "backends/solver_factory.h"
+#include "model/output_file.h"  // writeWholeFile: the CSV and JSON files
 #include "model/scene.h"
 
 namespace cloth::app {
@@ -72,9 +73,6 @@ private:
 
 // Creates `dir` (InputError naming --out when it cannot) and returns dir/name.
 std::string outputPath(const std::string& dir, const std::string& name);
-
-// Writes `text` to `path` atomically (through a temporary file).
-void writeTextFile(const std::string& path, const std::string& text);
 
 // A CSV cell: %.6g, or empty for a value that is not finite (nothing non-finite is written).
 std::string cell(double value);

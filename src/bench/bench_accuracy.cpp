@@ -255,7 +255,7 @@ int runBenchAccuracy(const AccuracyOptions& options) {
                        " s, extent " + cell(extent) + " m\n# " + referenceLine(ref) + "\n" +
                        kColumns;
     for (const Row& r : rows) text += csvRow(r);
-    writeTextFile(csv, text);
+    writeWholeFile(csv, text);
     std::printf("wrote %s\n", csv.c_str());
     plotRows(o, scene, csv, rows, time);
     return kOk;

@@ -130,17 +130,6 @@ std::string outputPath(const std::string& dir, const std::string& name) {
     return (fs::path(dir) / name).string();
 }
 
-void writeTextFile(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    }
-}
-
 std::string cell(double value) {
     if (!std::isfinite(value)) return "";
     char buf[32];

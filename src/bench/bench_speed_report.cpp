@@ -176,8 +176,8 @@ void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
 void reportSpeed(const std::string& outDir, const SpeedMeta& meta,
                  const std::vector<SpeedRow>& rows) {
     const std::string stem = outputPath(outDir, "speed_" + meta.label);
-    writeTextFile(stem + ".csv", csvText(meta, rows));
-    writeTextFile(stem + ".json", jsonText(meta, rows));
+    writeWholeFile(stem + ".csv", csvText(meta, rows));
+    writeWholeFile(stem + ".json", jsonText(meta, rows));
     printTable(meta, rows);
     std::vector<std::string> series;
     for (const SpeedRow& r : rows) {

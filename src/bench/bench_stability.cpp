@@ -189,7 +189,7 @@ int runBenchStability(const StabilityOptions& options) {
                std::tie(b.point->sweep, b.target.backend, b.method);
     });
     for (const Row& r : rows) text += csvRow(r);
-    writeTextFile(csv, text);
+    writeWholeFile(csv, text);
     std::printf("wrote %s\n", csv.c_str());
     plotSweeps(o, scene, csv, rows);
     return kOk;

@@ -1,14 +1,12 @@
 #include "model/collider_mesh.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <map>
 #include <numbers>
 #include <stdexcept>
 
 #include "model/mesh_sdf.h"
+#include "model/output_file.h"
 
 namespace cloth {
 namespace {
@@ -156,10 +154,8 @@ void writeMeshesObj(const std::string& path,
             if (!std::isfinite(v.x + v.y + v.z))
                 throw std::runtime_error("refusing to write " + path + ": " + name +
                                          " has non-finite vertices");
-    const std::string tmp = path + ".tmp";
-    FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    std::fputs("# clothsim colliders\n", f);
+    OutputFile out(path);
+    out.write("# clothsim colliders\n");
     size_t base = 1;  // OBJ indices are 1-based and global to the file
     for (const auto& [name, m] : meshes) {
         std::vector<glm::dvec3> normals(m.vertices.size(), glm::dvec3(0));
@@ -168,25 +164,20 @@ void writeMeshesObj(const std::string& path,
             const glm::dvec3 n = glm::cross(b - a, c - a);  // length = 2·area: area-weighted
             for (const std::uint32_t v : t) normals[v] += n;
         }
-        std::fprintf(f, "o %s\n", name.c_str());
-        for (const glm::dvec3& v : m.vertices) std::fprintf(f, "v %.9g %.9g %.9g\n", v.x, v.y, v.z);
+        out.print("o %s\n", name.c_str());
+        for (const glm::dvec3& v : m.vertices) out.print("v %.9g %.9g %.9g\n", v.x, v.y, v.z);
         for (const glm::dvec3& n : normals) {
             const double len = glm::length(n);
             const glm::dvec3 u = len > 0 ? n / len : glm::dvec3(0);
-            std::fprintf(f, "vn %.6f %.6f %.6f\n", u.x, u.y, u.z);
+            out.print("vn %.6f %.6f %.6f\n", u.x, u.y, u.z);
         }
         for (const auto& t : m.triangles) {
             const size_t a = base + t[0], b = base + t[1], c = base + t[2];
-            std::fprintf(f, "f %zu//%zu %zu//%zu %zu//%zu\n", a, a, b, b, c, c);
+            out.print("f %zu//%zu %zu//%zu %zu//%zu\n", a, a, b, b, c, c);
         }
         base += m.vertices.size();
     }
-    const bool ok = std::fflush(f) == 0 && !std::ferror(f);
-    std::fclose(f);
-    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-    }
+    out.commit();
 }
 
 }  // namespace cloth

@@ -28,7 +28,7 @@ std::vector<std::pair<std::string, TriMesh>> colliderMeshes(const std::vector<Co
                                                             double planeHalfSize);
 
 // Writes meshes as one Wavefront OBJ, an `o` group each, with per-vertex normals (area-weighted
-// face normals). Atomic and finite like solver/output.h's files.
+// face normals). Written through model/output_file.h, and finite, like solver/output.h's files.
 void writeMeshesObj(const std::string& path,
                     const std::vector<std::pair<std::string, TriMesh>>& meshes);
 

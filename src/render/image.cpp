@@ -5,8 +5,9 @@
 
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <stdexcept>
+
+#include "model/output_file.h"
 
 namespace cloth::render {
 namespace {
@@ -29,15 +30,15 @@ Image readPixels(int width, int height) {
 }
 
 void writePng(const std::string& path, const Image& image) {
-    const std::string temporary = path + ".tmp.png";
-    if (!stbi_write_png(temporary.c_str(), image.width, image.height, 4, image.rgba.data(),
-                        image.width * 4)) {
-        std::remove(temporary.c_str());
-        throw std::runtime_error("cannot write PNG '" + path + "'");
-    }
-    std::error_code ec;
-    std::filesystem::rename(temporary, path, ec);
-    if (ec) throw std::runtime_error("cannot write PNG '" + path + "': " + ec.message());
+    OutputFile out(path);
+    // stb encodes into memory and hands over the bytes in pieces; OutputFile checks each write.
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<OutputFile*>(context)->write(data, std::size_t(size));
+    };
+    if (!stbi_write_png_to_func(append, &out, image.width, image.height, 4, image.rgba.data(),
+                                image.width * 4))
+        throw OutputError(path, "the PNG could not be encoded");
+    out.commit();
 }
 
 OffscreenTarget::OffscreenTarget(int width, int height) : width_(width), height_(height) {

@@ -16,8 +16,8 @@ struct Image {
 // first (GL's rows start at the bottom).
 Image readPixels(int width, int height);
 
-// Writes `image` as PNG through a temporary name renamed into place. Throws std::runtime_error
-// naming the file when it cannot be written.
+// Writes `image` as PNG through model/output_file.h (a regular file replaced whole, a symlink's
+// target, a FIFO written through). Throws OutputError naming the file when it cannot be written.
 void writePng(const std::string& path, const Image& image);
 
 // An offscreen framebuffer with 4× multisampling, resolved when read.

@@ -4,13 +4,13 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
+#include "model/output_file.h"
+#include "render/image.h"
+#include "scene/scene_json.h"
+#include "solver/output.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
-#include "solver/output.h"
-#include "scene/scene_json.h"
-#include "render/image.h"
 
 namespace cloth::app {
 namespace {
@@ -46,9 +46,7 @@ std::string exportObj(const ViewerSession& session) {
 std::string saveSceneJson(const ViewerSession& session) {
     const Scene s = session.params().effective();
     const std::string file = freshPath(s.name + "_edited", ".json");
-    std::ofstream out(file);
-    out << sceneToJson(s) << "\n";
-    if (!out) throw std::runtime_error("cannot write '" + file + "'");
+    writeWholeFile(file, sceneToJson(s) + "\n");
     return file;
 }
 
