@@ -33,6 +33,10 @@ private:
     bool sceneTaken_ = false;
 };
 
+// Appends a --set assignment; one that replaces an earlier one gets a notice on stderr (the
+// later still wins).
+void addSet(std::vector<std::string>& sets, std::string assignment);
+
 int runCommand(Args& args);
 int validateCommand(Args& args);
 int infoCommand(Args& args);

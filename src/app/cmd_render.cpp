@@ -9,13 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "app/cli.h"
 #include "app/backend_flags.h"
+#include "app/cli.h"
 #include "app/reports.h"
 #include "backends/solver_factory.h"
 #include "model/errors.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
 
 #ifdef CLOTH_HAVE_RENDER
 #include "render/image.h"
@@ -102,7 +102,7 @@ bool parse(Args& args, RenderArgs& o) {
         else if (f == "--size")
             parseSize(f, args.value(f), o);
         else if (f == "--set")
-            o.sets.push_back(args.value(f));
+            addSet(o.sets, args.value(f));
         else if (f == "--colour") {
             const std::string c = args.value(f);
             if (c != "checker" && c != "strain")
