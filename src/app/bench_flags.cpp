@@ -81,7 +81,7 @@ bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o) {
     else if (f == "--methods")
         o.methods = parseMethods(f, args.value(f));
     else if (f == "--set")
-        o.sets.push_back(args.value(f));
+        addSet(o.sets, args.value(f));
     else if (f == "--out")
         o.out = args.value(f);
     else if (f == "--label")

@@ -3,14 +3,22 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
 #include "model/errors.h"
 #include "model/output_file.h"
+#include "scene/scene_overrides.h"
 
 namespace cloth::app {
+
+void addSet(std::vector<std::string>& sets, std::string assignment) {
+    for (const std::string& notice : replacedOverrides(sets, assignment))
+        std::fprintf(stderr, "clothsim: note: %s\n", notice.c_str());
+    sets.push_back(std::move(assignment));
+}
 
 Args::Args(std::string command, std::vector<std::string> args)
     : command_(std::move(command)), args_(std::move(args)) {}

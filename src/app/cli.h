@@ -41,6 +41,10 @@ void checkOutputFile(const std::string& flag, const std::string& file);
 // --frames DIR: made (with its parents) now, and refused if it is not a writable directory.
 void prepareFramesDir(const std::string& flag, const std::string& dir);
 
+// Appends a --set assignment; one that replaces an earlier one gets a notice on stderr (the
+// later still wins).
+void addSet(std::vector<std::string>& sets, std::string assignment);
+
 int runCommand(Args& args);
 int validateCommand(Args& args);
 int infoCommand(Args& args);

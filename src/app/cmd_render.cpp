@@ -105,7 +105,7 @@ bool parse(Args& args, RenderArgs& o) {
         else if (f == "--size")
             parseSize(f, args.value(f), o);
         else if (f == "--set")
-            o.sets.push_back(args.value(f));
+            addSet(o.sets, args.value(f));
         else if (f == "--colour") {
             const std::string c = args.value(f);
             if (c != "checker" && c != "strain")

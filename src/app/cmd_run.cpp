@@ -63,7 +63,7 @@ bool parse(Args& args, RunOptions& o) {
         if (f == "--steps")
             o.steps = args.positiveInt(f);
         else if (f == "--set")
-            o.sets.push_back(args.value(f));
+            addSet(o.sets, args.value(f));
         else if (f == "--out-csv")
             o.csv = args.value(f);
         else if (f == "--out-obj")

@@ -196,7 +196,7 @@ int validateCommand(Args& args) {
             return kOk;
         }
         if (f == "--set")
-            sets.push_back(args.value(f));
+            addSet(sets, args.value(f));
         else
             args.unknown(f);
     }

@@ -1,8 +1,8 @@
 // clothsim view [SCENE]: the interactive viewer (docs/viewer.md).
 #include <cstdio>
 
-#include "app/cli.h"
 #include "app/backend_flags.h"
+#include "app/cli.h"
 #include "app/reports.h"
 #include "backends/solver_factory.h"
 #include "model/errors.h"
@@ -47,7 +47,7 @@ int viewCommand(Args& args) {
         }
         if (parseBackendFlag(f, args, o.backend)) continue;
         if (f == "--set")
-            o.sets.push_back(args.value(f));
+            addSet(o.sets, args.value(f));
         else if (f == "--no-vsync")
             o.vsync = false;
         else if (f == "--frames")

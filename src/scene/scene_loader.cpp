@@ -263,6 +263,7 @@ Scene SceneReader::read(const Json& doc) {
     scene.duration = param(doc, "duration", "duration", "duration");
     if (scene.duration / scene.integrator.dt > 1e12)
         fail("duration", "needs more than 1e12 steps of integrator.dt");
+    checkDerivedFinite(scene);
     return scene;
 }
 

@@ -1,10 +1,13 @@
 #include "scene/scene_overrides.h"
 
+#include <algorithm>
 #include <cctype>
 #include <nlohmann/json.hpp>
 #include <vector>
 
 #include "model/errors.h"
+#include "scene/key_path.h"
+#include "scene/scene_text.h"
 
 namespace cloth {
 namespace {
@@ -72,8 +75,32 @@ std::string applyOverride(nlohmann::json& doc, const std::string& assignment,
             node = &(*node)[part];
         }
     }
+    // The same duplicate-key check as a file's (a value like {"bend": 1, "bend": 0}).
+    try {
+        parseSceneText(text, source);
+    } catch (const InputError& e) {
+        throw InputError(source, e.key().rfind('[', 0) == 0 ? path + e.key() : child(path, e.key()),
+                         e.reason());
+    }
     *node = std::move(value);
     return path;
+}
+
+std::vector<std::string> replacedOverrides(const std::vector<std::string>& earlier,
+                                           const std::string& later) {
+    std::vector<std::string> notices;
+    const size_t eq = later.find('=');
+    if (eq == std::string::npos || eq == 0) return notices;  // refused by applyOverride
+    const std::vector<std::string> outer = splitKey(later.substr(0, eq));
+    for (const std::string& e : earlier) {
+        const size_t at = e.find('=');
+        if (at == std::string::npos || at == 0) continue;
+        const std::vector<std::string> inner = splitKey(e.substr(0, at));
+        if (inner.size() >= outer.size() && std::equal(outer.begin(), outer.end(), inner.begin()))
+            notices.push_back("--set " + later + " replaces the earlier --set " + e +
+                              " (the later wins)");
+    }
+    return notices;
 }
 
 }  // namespace cloth

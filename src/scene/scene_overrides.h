@@ -4,6 +4,7 @@
 
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <vector>
 
 namespace cloth {
 
@@ -12,5 +13,11 @@ namespace cloth {
 // messages use (`colliders[1].radius`). Throws InputError naming `source` and the key.
 std::string applyOverride(nlohmann::json& doc, const std::string& assignment,
                           const std::string& source);
+
+// The earlier assignments that `later` replaces (the same key in either spelling, or a key
+// inside the value `later` sets), one notice line each for the app to print: the later wins,
+// as a later argument does, but a value the user typed is not dropped without a word.
+std::vector<std::string> replacedOverrides(const std::vector<std::string>& earlier,
+                                           const std::string& later);
 
 }  // namespace cloth

@@ -59,6 +59,7 @@ private:
     AxisAngle readRotation(const Json& j, const std::string& path) const;
     ColliderMotion readMotion(const Json& j, const std::string& path) const;
     Wind readWind(const Json& j) const;
+    void checkDerivedFinite(const Scene& scene) const;  // scene_loader_finite.cpp
 
     std::string source_;
 };

@@ -186,6 +186,36 @@ INSTANTIATE_TEST_SUITE_P(
         return "case" + std::to_string(p.index);
     });
 
+// A key set twice: the later wins, and stderr says so in one line naming the key.
+TEST(RepeatedOverride, LaterWinsWithOneNoticeNamingTheKey) {
+    for (const std::string cmd : {"validate", "run"}) {
+        SCOPED_TRACE(cmd);
+        std::vector<std::string> argv = {
+            kExe, cmd, kGoodScene.string(), "--set", "springs.bend=100", "--set", "springs.bend=0"};
+        if (cmd == "run") argv.insert(argv.end(), {"--steps", "1"});
+        const ProcessResult r = runProcess(argv, kTimeout);
+        EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+        EXPECT_TRUE(contains(r.err, "springs.bend")) << test::describe(r);
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << test::describe(r);
+        if (cmd == "validate") {
+            EXPECT_TRUE(contains(r.out, "bend       not modelled")) << test::describe(r);
+        }
+    }
+    // Both spellings of a list entry are one key.
+    const ProcessResult same =
+        runProcess({kExe, "validate", kGoodScene.string(), "--set", "colliders.1.radius=0.4",
+                    "--set", "colliders[1].radius=0.5"},
+                   kTimeout);
+    EXPECT_EQ(same.exitCode, 0) << test::describe(same);
+    EXPECT_TRUE(contains(same.err, "colliders")) << test::describe(same);
+    // Different keys: nothing to say.
+    const ProcessResult distinct = runProcess(
+        {kExe, "validate", kGoodScene.string(), "--set", "springs.bend=1", "--set", "damping=1"},
+        kTimeout);
+    EXPECT_EQ(distinct.exitCode, 0) << test::describe(distinct);
+    EXPECT_EQ(distinct.err, "") << test::describe(distinct);
+}
+
 // ---- files that are not scene files, and bad arguments -----------------------------------
 
 TEST(BadPath, NonexistentFile) {

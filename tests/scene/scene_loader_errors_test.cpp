@@ -109,6 +109,75 @@ TEST(ParseScene, BadOverridesThrowInputErrorWithKeyPath) {
     parseError(goodText(), {"nokey"});
 }
 
+// ---- duplicate keys: the parser would keep the last silently ----------------------------
+
+TEST(ParseScene, DuplicateKeyNamesKeyPathAndBothLines) {
+    std::string text = goodText();
+    const std::string bend = "    \"bend\": 10.0\n";
+    ASSERT_NE(text.find(bend), std::string::npos);
+    text.replace(text.find(bend), bend.size(), "    \"bend\": 10.0,\n    \"bend\": 0\n");
+    const InputError e = parseError(text);
+    EXPECT_EQ(e.key(), "springs.bend") << e.what();
+    EXPECT_NE(e.reason().find("32"), std::string::npos) << e.what();  // the first "bend"
+    EXPECT_NE(e.reason().find("33"), std::string::npos) << e.what();  // the second
+}
+
+TEST(ParseScene, DuplicateKeyInsideListsAndOverridesNamesItsPath) {
+    EXPECT_EQ(parseError(R"({"cloth": {"resolution": [2, 2], "size": [1, 1]},
+        "integrator": {"dt": 0.001},
+        "colliders": [{"type": "plane"}, {"type": "sphere", "radius": 1, "radius": 2}]})")
+                  .key(),
+              "colliders[1].radius");
+    EXPECT_EQ(parseError(goodText(), {R"(springs={"bend": 1, "bend": 0})"}).key(), "springs.bend");
+    // The same key in different objects is no duplicate.
+    EXPECT_NO_THROW(parseScene(R"({"cloth": {"resolution": [2, 2], "size": [1, 1]},
+        "integrator": {"dt": 0.001},
+        "colliders": [{"type": "sphere", "center": [0, 0, 0], "radius": 1},
+                      {"type": "sphere", "center": [0, 0, 0], "radius": 2}]})",
+                               "mem.json"));
+}
+
+// ---- derived quantities that overflow although every key is in range --------------------
+
+TEST(ParseScene, OverflowingDerivedQuantityNamesTheKeyThatCausesIt) {
+    struct Case {
+        std::string pointer;
+        nlohmann::json value;
+        std::string key;
+    };
+    const std::vector<Case> cases = {
+        {"/springs/structural", 1e308, "springs.structural"},
+        {"/springs/shear", 1e200, "springs.shear"},
+        {"/cloth/size", {1e308, 1e308}, "cloth.size"},
+        {"/cloth/size", {1e200, 0.5}, "cloth.size"},
+        {"/cloth/size", {5e-324, 0.5}, "cloth.size"},
+        {"/cloth/origin", {1e200, 0, 0}, "cloth.origin"},
+        {"/cloth/mass", 1e-320, "cloth.mass"},
+        {"/cloth/mass", 1e308, "cloth.mass"},
+        {"/gravity", {0, -1e308, 0}, "gravity"},
+        {"/damping", 1e308, "damping"},
+        {"/max_speed", 1e308, "max_speed"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.pointer + " = " + c.value.dump());
+        const InputError e = parseError(with(c.pointer, c.value));
+        EXPECT_EQ(e.key(), c.key) << e.what();
+        EXPECT_NE(e.reason().find("flow"), std::string::npos) << e.what();  // over- or underflow
+    }
+    // Origin and size each fine alone, their sum is not.
+    auto both = nlohmann::json::parse(with("/cloth/origin", {1e154, 0, 0}));
+    both["cloth"]["size"] = {1e154, 0.5};
+    EXPECT_EQ(parseError(both.dump()).key(), "cloth.origin");
+    // The wind's acceleration K_w/m, with a light cloth.
+    auto wind = nlohmann::json::parse(with("/wind/strength", -1e308));
+    wind["cloth"]["mass"] = 1e-3;
+    EXPECT_EQ(parseError(wind.dump()).key(), "wind.strength");
+    // Large but representable values still load.
+    EXPECT_NO_THROW(parseScene(with("/springs/structural", 1e12), "mem.json"));
+    EXPECT_NO_THROW(parseScene(with("/cloth/size", {1e6, 1e6}), "mem.json"));
+    EXPECT_NO_THROW(parseScene(with("/cloth/mass", 1e-12), "mem.json"));
+}
+
 TEST(LoadScene, MissingFileAndDirectoryThrowInputError) {
     for (const fs::path& p : {kBadDir / "no_such_scene.json", kBadDir}) {
         SCOPED_TRACE(p.string());

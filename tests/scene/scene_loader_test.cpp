@@ -6,6 +6,7 @@
 
 #include "model/errors.h"
 #include "scene/params.h"
+#include "scene/scene_overrides.h"
 
 namespace cloth {
 namespace {
@@ -120,6 +121,22 @@ TEST(Params, TableRangesAreEnforcedWithUnits) {
     EXPECT_NE(checkRange(*substeps, 1.5).find("integer"), std::string::npos);
     for (const ParamSpec& p : paramTable())
         EXPECT_GT(std::string(p.description).size(), 5u) << p.path;
+}
+
+// A --set replaced by a later one (same key in either spelling, or a key inside the later
+// one's value) gets one notice naming both; other keys get none. The later still wins.
+TEST(SceneLoader, RepeatedOverrideIsNoticedAndTheLaterWins) {
+    const std::vector<std::string> earlier = {"springs.bend=100", "colliders.1.radius=0.4",
+                                              "damping=1"};
+    const std::vector<std::string> same = replacedOverrides(earlier, "springs.bend=0");
+    ASSERT_EQ(same.size(), 1u);
+    EXPECT_NE(same[0].find("springs.bend=100"), std::string::npos) << same[0];
+    EXPECT_NE(same[0].find("springs.bend=0"), std::string::npos) << same[0];
+    EXPECT_EQ(replacedOverrides(earlier, "colliders[1].radius=0.5").size(), 1u);
+    EXPECT_EQ(replacedOverrides(earlier, "springs={}").size(), 1u);
+    EXPECT_TRUE(replacedOverrides(earlier, "springs.shear=1").empty());
+    EXPECT_TRUE(replacedOverrides(earlier, "nokey").empty());
+    EXPECT_EQ(parseScene(kMinimal, "o", {"springs.bend=100", "springs.bend=0"}).springs.bend, 0);
 }
 
 }  // namespace
