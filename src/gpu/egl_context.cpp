@@ -259,6 +259,7 @@ void GlContext::queryInfo() {
     g.maxStorageBlockSize = block;
     glGetInteger64v(GL_MAX_UNIFORM_BLOCK_SIZE, &block);
     g.maxUniformBlockSize = block;
+    glGetIntegerv(GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS, &g.maxComputeStorageBlocks);
     GLint bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
     g.timerQueries = bits > 0;
@@ -284,13 +285,14 @@ std::string GpuInfo::describe() const {
                   "shared memory:     %d bytes per work group\n"
                   "SSBO block size:   %lld bytes\n"
                   "uniform block:     %lld bytes\n"
+                  "storage blocks:    %d per compute shader\n"
                   "timer queries:     %s\n",
                   platform.c_str(), eglVendor.empty() ? "-" : eglVendor.c_str(), eglVersion.c_str(),
                   renderer.c_str(), vendor.c_str(), software ? " [software]" : "", version.c_str(),
                   glslVersion.c_str(), maxWorkGroupCount[0], maxWorkGroupCount[1],
                   maxWorkGroupCount[2], maxWorkGroupSize[0], maxWorkGroupSize[1],
                   maxWorkGroupSize[2], maxInvocations, maxSharedMemory, maxStorageBlockSize,
-                  maxUniformBlockSize, timerQueries ? "yes" : "no");
+                  maxUniformBlockSize, maxComputeStorageBlocks, timerQueries ? "yes" : "no");
     return buf;
 }
 

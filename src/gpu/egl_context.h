@@ -26,6 +26,7 @@ struct GpuInfo {
     int maxSharedMemory = 0;                 // [bytes]
     long long maxStorageBlockSize = 0;       // one SSBO binding [bytes]
     long long maxUniformBlockSize = 0;       // one uniform block (gpu::Params) [bytes]
+    int maxComputeStorageBlocks = 0;         // storage blocks one compute shader may use (≥ 8)
     bool timerQueries = false;               // GL_TIME_ELAPSED has bits
     bool software = false;                   // a CPU rasteriser (llvmpipe, softpipe, swrast)
 

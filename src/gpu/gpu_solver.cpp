@@ -30,7 +30,8 @@ constexpr std::size_t kMinPinCapacity = 16;
 // with the variant's defines; none leaks if a later one fails to build.
 std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup wg,
                                                  ForcesKernel forces, int manyStepsGroup,
-                                                 const std::vector<bool>& dragged) {
+                                                 const std::vector<bool>& dragged,
+                                                 int storageBlockLimit) {
     const ShaderDirectory dir = findShaderDirectory();
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -47,9 +48,12 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
         extra.push_back({"MANY_STEPS_GROUP", std::to_string(manyStepsGroup)});
     }
     try {
-        for (Kernel k : kernels)
-            programs[int(k)] = compileComputeProgram(
-                assembleKernel(dir.path, kernelFile(k), scene, wg, extra, dragged));
+        for (Kernel k : kernels) {
+            const ShaderSource source =
+                assembleKernel(dir.path, kernelFile(k), scene, wg, extra, dragged);
+            checkStorageBlocks(source, storageBlockLimit);
+            programs[int(k)] = compileComputeProgram(source);
+        }
     } catch (...) {
         for (unsigned p : programs) glDeleteProgram(p);  // 0 is silently ignored
         throw;
@@ -129,7 +133,8 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
 
 void GpuSolver::compilePrograms() {
     const std::array<unsigned, kKernelCount> programs =
-        buildPrograms(scene_, workGroup_, forces_, manyStepsGroup_, dragged_);
+        buildPrograms(scene_, workGroup_, forces_, manyStepsGroup_, dragged_,
+                      context_.info().maxComputeStorageBlocks);
     for (unsigned p : programs_) glDeleteProgram(p);
     programs_ = programs;
     defines_ = gpuDefines(scene_, workGroup_, dragged_);

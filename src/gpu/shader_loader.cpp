@@ -1,16 +1,18 @@
 #include "gpu/shader_loader.h"
 
-#include "gpu/gpu_options.h"
-
 #include <GL/glew.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "gpu/gpu_options.h"
+#include "model/errors.h"
 
 namespace cloth {
 namespace fs = std::filesystem;
@@ -163,7 +165,8 @@ const GpuSetup& gpuSetup() {
 }
 
 ShaderDirectory findShaderDirectory() {
-    if (!gpuSetup().shaderDir.empty()) return {gpuSetup().shaderDir, "as configured (CLOTH_SHADER_DIR)"};
+    if (!gpuSetup().shaderDir.empty())
+        return {gpuSetup().shaderDir, "as configured (CLOTH_SHADER_DIR)"};
     std::error_code ec;
     const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
     if (!ec && fs::exists(exe.parent_path() / "shaders" / "compute", ec))
@@ -173,6 +176,22 @@ ShaderDirectory findShaderDirectory() {
 #else
     return {"shaders", "the working directory's"};
 #endif
+}
+
+int storageBlockCount(const ShaderSource& source) {
+    static const std::regex block(
+        R"(\blayout\s*\([^)]*\bstd430\b[^)]*\)[^;{}]*\bbuffer\s+\w+\s*\{)");
+    const auto begin = std::sregex_iterator(source.text.begin(), source.text.end(), block);
+    return int(std::distance(begin, std::sregex_iterator()));
+}
+
+void checkStorageBlocks(const ShaderSource& source, int limit) {
+    const int needed = storageBlockCount(source);
+    if (limit <= 0 || needed <= limit) return;
+    throw GpuUnavailable(source.name + " needs " + std::to_string(needed) +
+                         " shader storage blocks; this device allows " + std::to_string(limit) +
+                         " per compute shader (GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS): choose "
+                         "another integrator.method or --backend cpu");
 }
 
 ShaderSource assembleShader(const std::string& dir, const std::string& file, const Defines& defines,

@@ -41,6 +41,16 @@ ShaderSource assembleShader(const std::string& dir, const std::string& file, con
 // a compiler log into "file:LINE..." using `files`.
 std::string mapShaderLog(const std::string& log, const std::vector<std::string>& files);
 
+// The shader storage blocks the assembled source declares (`layout(std430, ...) buffer Name {`):
+// what the kernel needs of GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS. The loader has already removed
+// the blocks of features the scene lacks, so this is what the driver counts as active.
+int storageBlockCount(const ShaderSource& source);
+
+// Throws GpuUnavailable (exit 4) before compiling when the kernel declares more storage blocks
+// than the device allows one compute shader (`limit`; GL guarantees 8): naming the kernel, both
+// numbers and what to do instead, rather than a link error.
+void checkStorageBlocks(const ShaderSource& source, int limit);
+
 // Compiles and links one compute program; needs a current GL context. Throws std::runtime_error
 // with the mapped log.
 unsigned compileComputeProgram(const ShaderSource& source);
