@@ -64,7 +64,7 @@ TEST(BenchSpeed, QuickRunWritesCsvAndJsonWithBaselinePerSize) {
           "timing_source", "steps_per_s", "vertex_steps_per_s", "min_bytes_per_step",
           "achieved_GB_per_s", "bandwidth_fraction", "speedup", "bytes_per_vertex"})
         EXPECT_NE(std::find(columns.begin(), columns.end(), c), columns.end()) << c;
-    std::map<std::string, int> baselines;
+    std::map<std::string, int> baselines, gpuRows;
     bool cpuDouble = false;
     for (const auto& row : rows) {
         if (row.at("target") == "baseline") {
@@ -83,6 +83,7 @@ TEST(BenchSpeed, QuickRunWritesCsvAndJsonWithBaselinePerSize) {
                       96.0 * std::stod(row.at("vertices")));
         }
         if (row.at("target") == "gpu_float") {
+            ++gpuRows[row.at("size")];
             EXPECT_GE(std::stod(row.at("bytes_per_vertex")), 64.0);  // 4 vec4 at least
             // As asked (auto by default) and as run: many steps per dispatch at 16² (the
             // crossover is at 24² on llvmpipe, 64² assumed on hardware).
@@ -101,10 +102,18 @@ TEST(BenchSpeed, QuickRunWritesCsvAndJsonWithBaselinePerSize) {
     const auto j = nlohmann::json::parse(in);
     EXPECT_EQ(j["rows"].size(), rows.size());
     EXPECT_GT(j["cpu_triad_GB_per_s"].get<double>(), 0);
+    // Where a GPU is there (the bench measured its copy bandwidth) or required (CI), every size
+    // has its GPU row: the assertions on them above cannot pass by there being none.
     const char* require = std::getenv("CLOTH_REQUIRE_GPU");
-    if (!j["gpu_copy_GB_per_s"].is_null() || (require && std::string(require) == "1")) {
+    const bool gpuExpected =
+        !j["gpu_copy_GB_per_s"].is_null() || (require && std::string(require) == "1");
+    if (gpuExpected) {
         ASSERT_TRUE(j["gpu_copy_GB_per_s"].is_number());
         EXPECT_GT(j["gpu_copy_GB_per_s"].get<double>(), 0);
+        EXPECT_EQ(gpuRows["16"], 1);
+        EXPECT_EQ(gpuRows["32"], 1);
+    } else {
+        EXPECT_TRUE(gpuRows.empty());
     }
     EXPECT_EQ(j["build_type"], CLOTH_BUILD_TYPE);
 }
