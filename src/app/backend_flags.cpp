@@ -26,6 +26,14 @@ void refuseGpuDouble(const BackendChoice& choice, bool precisionGiven) {
                          "cpu (or leave --precision out)");
 }
 
+bool RunFlags::take(const std::string& flag, Args& args) {
+    precisionGiven |= flag == "--precision";
+    if (parseBackendFlag(flag, args, backend)) return true;
+    if (flag != "--set") return false;
+    addSet(sets, args.value(flag));
+    return true;
+}
+
 Backend parseBackend(const std::string& flag, const std::string& value) {
     if (value == "cpu") return Backend::Cpu;
     if (value == "gpu") return Backend::Gpu;
@@ -53,9 +61,9 @@ BackendChoice backendChoiceFromEnvironment() {
     if (const char* isa = environment("CLOTH_CPU_ISA")) {
         const auto named = cpuIsaFromName(isa);
         if (!named)
-            throw InputError("", "CLOTH_CPU_ISA",
-                             std::string("expected scalar, generic, avx2 or avx512, got '") + isa +
-                                 "'");
+            throw InputError(
+                "", "CLOTH_CPU_ISA",
+                std::string("expected scalar, generic, avx2 or avx512, got '") + isa + "'");
         choice.isa = *named;
     }
     if (const char* wg = environment("CLOTH_WORKGROUP")) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/cli.h"
 #include "backends/solver_factory.h"
@@ -17,6 +18,17 @@ bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice
 // with --backend gpu (InputError naming --precision) rather than compute in float silently.
 // `precisionGiven`: --precision was on the command line (the default double is no request).
 void refuseGpuDouble(const BackendChoice& choice, bool precisionGiven);
+
+// The flags of a command that runs one backend (run, render): the backend flags and --set.
+// take() is true when `flag` was one of them; finish() refuses their bad combinations.
+struct RunFlags {
+    BackendChoice& backend;
+    std::vector<std::string>& sets;
+    bool precisionGiven = false;
+
+    bool take(const std::string& flag, Args& args);
+    void finish() const { refuseGpuDouble(backend, precisionGiven); }
+};
 
 Backend parseBackend(const std::string& flag, const std::string& value);
 Precision parsePrecision(const std::string& flag, const std::string& value);

@@ -91,21 +91,18 @@ double parseFps(const std::string& flag, const std::string& v) {
 }
 
 bool parse(Args& args, RenderArgs& o) {
-    bool precisionGiven = false;
+    RunFlags common{o.backend, o.sets};
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help") return false;
-        precisionGiven |= f == "--precision";
-        if (parseBackendFlag(f, args, o.backend)) continue;
+        if (common.take(f, args)) continue;
         if (f == "--png")
             o.png = args.value(f);
         else if (f == "--steps")
             o.steps = parseSteps(f, args.value(f));
         else if (f == "--size")
             parseSize(f, args.value(f), o);
-        else if (f == "--set")
-            addSet(o.sets, args.value(f));
         else if (f == "--colour") {
             const std::string c = args.value(f);
             if (c != "checker" && c != "strain")
@@ -125,7 +122,7 @@ bool parse(Args& args, RenderArgs& o) {
             args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "render needs a scene file");
-    refuseGpuDouble(o.backend, precisionGiven);
+    common.finish();
     if (o.png.empty() && o.framesDir.empty())
         throw InputError("command line", "--png", "render needs --png FILE or --frames DIR");
     if (!o.framesDir.empty() && o.every == 0)

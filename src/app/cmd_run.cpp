@@ -53,17 +53,14 @@ struct RunOptions {
 
 // Returns false when --help was asked for.
 bool parse(Args& args, RunOptions& o) {
-    bool precisionGiven = false;
+    RunFlags common{o.backend, o.sets};
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
         if (f == "--help") return false;
-        precisionGiven |= f == "--precision";
-        if (parseBackendFlag(f, args, o.backend)) continue;
+        if (common.take(f, args)) continue;
         if (f == "--steps")
             o.steps = args.positiveInt(f);
-        else if (f == "--set")
-            addSet(o.sets, args.value(f));
         else if (f == "--out-csv")
             o.csv = args.value(f);
         else if (f == "--out-obj")
@@ -80,7 +77,7 @@ bool parse(Args& args, RunOptions& o) {
             args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "run needs a scene file");
-    refuseGpuDouble(o.backend, precisionGiven);
+    common.finish();
     if (!o.framesDir.empty() && o.every == 0)
         throw InputError("command line", "--every", "--frames DIR needs --every K");
     if (o.framesDir.empty() && o.every > 0)
