@@ -9,13 +9,13 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "app/cli.h"
 #include "app/backend_flags.h"
+#include "app/cli.h"
 #include "app/reports.h"
 #include "backends/solver_factory.h"
 #include "model/errors.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
 
 #ifdef CLOTH_HAVE_RENDER
 #include "render/image.h"
