@@ -6,7 +6,7 @@ FUZZ_SECONDS ?= 60
 # CI (CI=true) turns warnings into errors.
 WERROR      := $(if $(CI),ON,OFF)
 
-.PHONY: all deps configure build run test unit fuzz format clean
+.PHONY: all deps configure build run test unit fuzz shaders sanitize asan tsan format clean
 
 all: build
 
@@ -35,8 +35,9 @@ run: build
 	    echo "result: out/drape.png (picture), out/drape.obj (Wavefront OBJ, opens in Blender), out/drape.csv"; \
 	else exit $$status; fi
 
-# The whole suite: the scene-loader fuzzer, then every GoogleTest (CPU, GPU on EGL, CLI) via ctest.
-test: fuzz unit
+# The whole suite: the scene-loader fuzzer, every GoogleTest (CPU, GPU on EGL, CLI) via ctest,
+# and every assembled shader through a second GLSL compiler.
+test: fuzz unit shaders
 
 unit: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j$(JOBS)
@@ -44,8 +45,41 @@ unit: build
 fuzz: deps
 	scripts/fuzz.sh $(FUZZ_SECONDS)
 
+# Every shader variant the GPU backend and the renderer compile, checked by glslangValidator:
+# Mesa accepts what stricter drivers refuse.
+shaders: build
+	scripts/check-shaders.sh $(BUILD_DIR)/clothsim
+
+# The sanitizer builds, each in its own folder and without the GPU backend (Mesa's own code is
+# not ours to check): AddressSanitizer + UndefinedBehaviorSanitizer over the CPU, scene, model,
+# solver and CLI tests; ThreadSanitizer over the multithreaded CPU tests (the worker pool).
+SANITIZE_FLAGS := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLOTH_GPU=OFF -DCLOTH_BULLET=OFF \
+                  -DCLOTH_WERROR=$(WERROR)
+ASAN_LABELS := cpu|scene|model|solver|app
+# ThreadSanitizer slows a step tenfold: of the cpu tests, those that run two or more threads.
+TSAN_LABELS := cpu
+TSAN_TESTS  := Thread|RowBands|RowColliders|CpuMemory|IntegratorParity.DoubleMatches
+
+sanitize: asan tsan
+
+asan: deps
+	@cmake -S . -B build-asan $(SANITIZE_FLAGS) -DCLOTH_SANITIZE=ON \
+	    -DCLOTH_TEST_DIRS="$(subst |,;,$(ASAN_LABELS))" >/dev/null
+	@cmake --build build-asan -j$(JOBS) --target cloth_tests
+	cd build-asan && env -u CLOTH_REQUIRE_GPU \
+	    ASAN_OPTIONS=detect_stack_use_after_return=1 \
+	    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	    ctest -L '^($(ASAN_LABELS))$$' --output-on-failure -j$(JOBS)
+
+tsan: deps
+	@cmake -S . -B build-tsan $(SANITIZE_FLAGS) -DCLOTH_TSAN=ON \
+	    -DCLOTH_TEST_DIRS="$(subst |,;,$(TSAN_LABELS))" >/dev/null
+	@cmake --build build-tsan -j$(JOBS) --target cloth_tests
+	cd build-tsan && env -u CLOTH_REQUIRE_GPU TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
+	    ctest -L '^($(TSAN_LABELS))$$' -R '$(TSAN_TESTS)' --output-on-failure -j$(JOBS)
+
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD_DIR) build-fuzz out
+	rm -rf $(BUILD_DIR) build-fuzz build-asan build-tsan out

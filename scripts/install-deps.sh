@@ -4,7 +4,7 @@
 set -euo pipefail
 
 PACKAGES=(
-    cmake make g++ pkg-config                 # build
+    cmake make g++ pkg-config                 # build (g++ brings libasan, libubsan, libtsan)
     nlohmann-json3-dev libglm-dev             # scene files, vector maths
     libtinyobjloader-dev                      # mesh colliders (OBJ)
     libgtest-dev libgmock-dev                 # tests
@@ -13,6 +13,7 @@ PACKAGES=(
     libglfw3-dev libimgui-dev libstb-dev      # viewer window, its panel, PNG output
     xvfb xauth                                # viewer tests without a display (xvfb-run)
     clang-14 libfuzzer-14-dev                 # the scene-loader fuzzer
+    glslang-tools                             # shaders checked by a second compiler
     gnuplot-nox                               # bench accuracy/stability plots (PNG, SVG)
     libbullet-dev                             # bench speed --peer bullet (btSoftBody)
 )

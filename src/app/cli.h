@@ -48,7 +48,8 @@ void addSet(std::vector<std::string>& sets, std::string assignment);
 int runCommand(Args& args);
 int validateCommand(Args& args);
 int infoCommand(Args& args);
-int renderCommand(Args& args);  // cmd_render.cpp
-int viewCommand(Args& args);    // cmd_view.cpp
+int renderCommand(Args& args);   // cmd_render.cpp
+int viewCommand(Args& args);     // cmd_view.cpp
+int shadersCommand(Args& args);  // cmd_shaders.cpp: the assembled shaders, for CI
 
 }  // namespace cloth::app

@@ -132,6 +132,7 @@ bool parse(Args& args, RenderArgs& o) {
     return true;
 }
 
+#ifdef CLOTH_HAVE_RENDER
 // Steps to `total`; false (after saying why) if the run became unstable.
 bool simulate(const Scene& scene, Solver& solver, long total) {
     while (solver.stepsDone() < total) {
@@ -220,7 +221,6 @@ void encodeMp4(const RenderArgs& o, const Scene& scene) {
                     o.framesDir.c_str());
 }
 
-#ifdef CLOTH_HAVE_RENDER
 // The renderer and its offscreen target for one command: draws the solver's current state and
 // writes it as a PNG.
 class Painter {

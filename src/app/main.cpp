@@ -37,6 +37,7 @@ int dispatch(const std::string& command, cloth::app::Args& args) {
     if (command == "view") return viewCommand(args);
     if (command == "render") return renderCommand(args);
     if (command == "bench") return benchCommand(args);
+    if (command == "shaders") return shadersCommand(args);  // CI's, so not in kUsage
     throw cloth::InputError("command line", command, "unknown command; see clothsim --help");
 }
 
