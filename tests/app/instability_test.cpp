@@ -240,6 +240,13 @@ TEST(Instability, EachExplicitIntegratorPastItsBoundExitsThree) {
     }
 }
 
+// Exit 4 (no GPU, or a build without it) where the GPU was not required: that part is skipped
+// then, unless CLOTH_REQUIRE_GPU=1 (DESIGN.md §6).
+bool gpuMissing(const ProcessResult& r) {
+    const char* required = std::getenv("CLOTH_REQUIRE_GPU");
+    return r.exitCode == 4 && !(required && std::string(required) == "1");
+}
+
 // Beyond the predicted bound (explicit Euler on the 1×2 spring: Δt < μ/K = 5e-3 s, exact for its
 // single mode) run and render warn before the first step, naming Δt, the bound and the key;
 // inside it, and on every shipped scene, they say nothing.
@@ -255,7 +262,8 @@ TEST(Instability, DtBeyondTheBoundIsWarnedBeforeStepping) {
         for (auto& argv : runs) {
             argv.insert(argv.end(), method.begin(), method.end());
             const ProcessResult r = runProcess(argv, kTimeout);
-            EXPECT_EQ(r.exitCode == 4 ? 0 : r.exitCode, 0) << argv[1] << " " << test::describe(r);
+            if (argv[1] == "render" && gpuMissing(r)) continue;  // render draws through EGL
+            EXPECT_EQ(r.exitCode, 0) << argv[1] << " " << test::describe(r);
             if (!beyond) {
                 EXPECT_EQ(r.err.find("warning"), std::string::npos) << argv[1] << ": " << r.err;
                 continue;
@@ -284,6 +292,7 @@ TEST(Instability, SpringPastMaxStrainExitsThreeOnBothBackends) {
         const ProcessResult r = runProcess(
             {kExe, "run", spring, "--quiet", "--backend", backend, "--set", "springs.structural=2"},
             kTimeout);
+        if (std::string(backend) == "gpu" && gpuMissing(r)) continue;
         EXPECT_EQ(r.exitCode, 3) << backend << ": " << test::describe(r);
         for (const char* word : {"strain", "> max_strain 1", "too soft", "springs.*"})
             EXPECT_NE(r.err.find(word), std::string::npos) << backend << ": " << r.err;
