@@ -38,7 +38,6 @@ struct BenchCommonOptions {
     }
 };
 
-
 // "all" or a comma-separated list of integrator names; InputError naming `flag` otherwise.
 std::vector<Method> parseMethods(const std::string& flag, const std::string& value);
 
@@ -60,16 +59,21 @@ BackendChoice choiceFor(const BenchTarget& target, const BackendChoice& base);
 
 // Whether `target` runs `method` on `scene`: the GPU backend refuses (InputError) an integrator it
 // has no kernel for; that is said on stderr and the runs are skipped. Other errors propagate.
-bool runsMethod(const BenchTarget& target, const Scene& scene, Method method, const BackendChoice& base);
+bool runsMethod(const BenchTarget& target, const Scene& scene, Method method,
+                const BackendChoice& base);
 
 // runsMethod asked once per target and integrator: the answer does not change along a sweep.
 class MethodSupport {
 public:
-    bool runs(const BenchTarget& target, const Scene& scene, Method method, const BackendChoice& base);
+    bool runs(const BenchTarget& target, const Scene& scene, Method method,
+              const BackendChoice& base);
 
 private:
     std::map<std::pair<std::string, Method>, bool> known_;
 };
+
+// The bench's scene with its --set overrides; the label defaults to the scene's name.
+Scene loadBenchScene(BenchCommonOptions& o);
 
 // Creates `dir` (InputError naming --out when it cannot) and returns dir/name.
 std::string outputPath(const std::string& dir, const std::string& name);
@@ -91,11 +95,12 @@ std::string methodNames(const std::vector<Method>& methods);     // "explicit_eu
 using PlotVars = std::vector<std::pair<std::string, std::string>>;
 PlotVars seriesVars(const std::vector<std::pair<Method, BenchTarget>>& curves);
 
-// Runs `script` of benchScriptDir(scriptDir) with gnuplot, once for PNG and once for SVG, into `outStem`.png/.svg, with
-// `vars` set as gnuplot string variables. Returns the files written, or prints why not (gnuplot
-// missing or failing) on stderr and returns none: the CSV stands on its own.
-std::vector<std::string> plot(const std::string& scriptDir, const std::string& script, const std::string& outStem,
-                              const PlotVars& vars);
+// Runs `script` of benchScriptDir(scriptDir) with gnuplot, once for PNG and once for SVG, into
+// `outStem`.png/.svg, with `vars` set as gnuplot string variables. Returns the files written, or
+// prints why not (gnuplot missing or failing) on stderr and returns none: the CSV stands on its
+// own.
+std::vector<std::string> plot(const std::string& scriptDir, const std::string& script,
+                              const std::string& outStem, const PlotVars& vars);
 
 // bench/ of the project: `configured` (the app's CLOTH_BENCH_DIR) when not empty, else bench/
 // next to the executable, else the source tree's.

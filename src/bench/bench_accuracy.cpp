@@ -1,26 +1,25 @@
 // clothsim bench accuracy SCENE: error against a converged RK4 reference, for each integrator,
 // time step and backend, against the wall time it cost; the CSV and a log-log plot of the
 // Pareto front (bench/accuracy.gp).
+#include "bench/bench_accuracy.h"
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
-#include "bench/bench_accuracy.h"
 #include "bench/bench.h"
-#include "solver/diagnostics.h"
 #include "model/errors.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
+#include "solver/diagnostics.h"
 
 namespace cloth::app {
 namespace {
 
 using Options = AccuracyOptions;
 
-
 constexpr double kConverged = 1e-9;         // reference: change on halving / extent
 constexpr long kReferenceSteps = 1L << 21;  // most steps the reference may take
-
 
 struct Run {
     SimState state;  // the final state (empty when unstable)
@@ -203,7 +202,8 @@ void plotRows(const Options& o, const Scene& scene, const std::string& csv,
                              {"unstable_y", cell(top)},
                              {"title", scene.name + ": position error at t = " + cell(time) +
                                            " s against cost"}});
-    for (const std::string& f : plot(o.scriptDir, "accuracy.gp", outputPath(o.out, "accuracy_" + o.label), vars))
+    for (const std::string& f :
+         plot(o.scriptDir, "accuracy.gp", outputPath(o.out, "accuracy_" + o.label), vars))
         std::printf("wrote %s\n", f.c_str());
 }
 
@@ -235,8 +235,7 @@ std::vector<Row> runAll(const Options& o, const Scene& scene,
 
 int runBenchAccuracy(const AccuracyOptions& options) {
     AccuracyOptions o = options;
-    const Scene scene = loadScene(o.scenePath, o.sets);
-    if (o.label.empty()) o.label = scene.name;
+    const Scene scene = loadBenchScene(o);
     const std::string csv = outputPath(o.out, "accuracy_" + o.label + ".csv");
     double time = o.time > 0 ? o.time : std::min(0.5, scene.duration);
     if (o.quick && o.time == 0) time = std::min(time, 0.1);

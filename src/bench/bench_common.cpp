@@ -14,6 +14,7 @@
 
 #include "bench/bench.h"
 #include "model/errors.h"
+#include "scene/scene_loader.h"
 
 extern char** environ;
 
@@ -82,7 +83,8 @@ BackendChoice choiceFor(const BenchTarget& target, const BackendChoice& base) {
     return c;
 }
 
-bool runsMethod(const BenchTarget& target, const Scene& scene, Method method, const BackendChoice& base) {
+bool runsMethod(const BenchTarget& target, const Scene& scene, Method method,
+                const BackendChoice& base) {
     if (target.backend != Backend::Gpu) return true;
     Scene s = scene;
     s.integrator.method = method;
@@ -120,6 +122,12 @@ std::vector<BenchTarget> availableTargets(std::vector<BenchTarget> targets, cons
         kept.push_back(t);
     }
     return kept;
+}
+
+Scene loadBenchScene(BenchCommonOptions& o) {
+    Scene scene = loadScene(o.scenePath, o.sets);
+    if (o.label.empty()) o.label = scene.name;
+    return scene;
 }
 
 std::string outputPath(const std::string& dir, const std::string& name) {
@@ -232,8 +240,8 @@ PlotVars seriesVars(const std::vector<std::pair<Method, BenchTarget>>& curves) {
         {"method_targets", join(uniqueTargets, ' ')}};
 }
 
-std::vector<std::string> plot(const std::string& scriptDir, const std::string& script, const std::string& outStem,
-                              const PlotVars& vars) {
+std::vector<std::string> plot(const std::string& scriptDir, const std::string& script,
+                              const std::string& outStem, const PlotVars& vars) {
     const std::string path = (fs::path(benchScriptDir(scriptDir)) / script).string();
     std::vector<std::string> written;
     for (const char* format : {"png", "svg"}) {
@@ -258,6 +266,5 @@ std::vector<std::string> plot(const std::string& scriptDir, const std::string& s
     }
     return written;
 }
-
 
 }  // namespace cloth::app

@@ -1,25 +1,24 @@
 // clothsim bench stability SCENE: the largest stable Δt of each integrator, measured by bisection
 // (solver/stability_probe.h), beside the predicted bounds (model/stability.h), over stiffness, and
 // over mass and damping for explicit Euler (the Δt < μ/λ_max law, docs/physics.md).
+#include "bench/bench_stability.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <tuple>
 
-#include "bench/bench_stability.h"
 #include "bench/bench.h"
 #include "model/errors.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
 #include "solver/stability_probe.h"
 
 namespace cloth::app {
 namespace {
 
 using Options = StabilityOptions;
-
-
 
 // One value of one sweep: the scene it runs and the integrators it measures.
 struct Point {
@@ -156,8 +155,7 @@ void plotSweeps(const Options& o, const Scene& scene, const std::string& csv,
 
 int runBenchStability(const StabilityOptions& options) {
     StabilityOptions o = options;
-    const Scene scene = loadScene(o.scenePath, o.sets);
-    if (o.label.empty()) o.label = scene.name;
+    const Scene scene = loadBenchScene(o);
     const std::string csv = outputPath(o.out, "stability_" + o.label + ".csv");
     const std::vector<Point> points = sweepPoints(scene, o);
     const auto targets = availableTargets(parseTargets("--backend", o.backend, {Precision::Double}),

@@ -7,9 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cpu/cpu_backend.h"
+#include "gpu/gpu_test_support.h"
 #include "model/stability.h"
 #include "solver/diagnostics.h"
-#include "gpu/gpu_test_support.h"
 
 namespace cloth::test {
 namespace {
