@@ -71,6 +71,57 @@ Grid Scene::grid() const {
     return g;
 }
 
+// docs/physics.md, "From a material to the grid": with K_d on both diagonals of a du × dv cell,
+// the lattice's constants are C₁₂ = C₆₆ = 2K_d du dv/ℓ² (ℓ² = du² + dv²), C₁₁ = K_u du/dv +
+// G du²/dv², C₂₂ = K_v dv/du + G dv²/du². C₆₆ = G fixes K_d; uniaxial tension along u or v
+// (sides free) has stiffness C − G²/C = Y when C₁₁ = C₂₂ = C = (Y + √(Y² + 4G²))/2.
+MembraneSprings membraneSprings(const Material& m, double du, double dv) {
+    const double l2 = du * du + dv * dv;
+    const double c = (m.stretch + std::sqrt(m.stretch * m.stretch + 4 * m.shear * m.shear)) / 2;
+    MembraneSprings k;
+    k.shear = m.shear * l2 / (2 * du * dv);
+    k.alongU = (c - m.shear * du * du / (dv * dv)) * dv / du;
+    k.alongV = (c - m.shear * dv * dv / (du * du)) * du / dv;
+    return k;
+}
+
+double Scene::vertexMass(int i, int j) const {
+    if (!material) return cloth.mass;
+    const Grid g = grid();
+    const double shareU = (i == 0 || i == g.nu - 1) ? 0.5 : 1.0;
+    const double shareV = (j == 0 || j == g.nv - 1) ? 0.5 : 1.0;
+    return material->density * (g.du * shareU) * (g.dv * shareV);
+}
+
+double Scene::totalMass() const {
+    if (!material) return cloth.mass * cloth.nu * cloth.nv;
+    return material->density * cloth.size.x * cloth.size.y;
+}
+
+double Scene::slotStiffness(int slot) const {
+    const SpringOffset& o = kSpringOffsets[std::size_t(slot)];
+    if (!material) return springs.of(o.family);
+    const Grid g = grid();
+    const MembraneSprings k = membraneSprings(*material, g.du, g.dv);
+    switch (o.family) {
+        case Family::Structural:
+            return o.di != 0 ? k.alongU : k.alongV;
+        case Family::Shear:
+            return k.shear;
+        case Family::Bend:
+            return 0;  // bending is the quadratic energy of bendingStiffness()
+    }
+    return 0;
+}
+
+double Scene::dampingRate() const {
+    return material ? material->airDamping : damping / cloth.mass;
+}
+
+double Scene::bendingStiffness() const {
+    return material ? material->bend : 0.0;
+}
+
 long Scene::defaultSteps() const {
     return std::max(1L, std::lround(duration / integrator.dt));
 }

@@ -40,6 +40,26 @@ struct SpringStiffness {
     double of(Family f) const;
 };
 
+// A fabric in SI units (docs/physics.md "Materials"), the alternative to the per-vertex form's
+// cloth.mass, springs and damping. Mapped onto the grid by Scene's vertexMass, slotStiffness,
+// dampingRate and bendingStiffness, so that a finer grid is the same cloth.
+struct Material {
+    std::string preset;        // the preset it started from, "" for none
+    double density = 0;        // areal density ρ [kg/m²]
+    double stretch = 0;        // membrane tensile stiffness Y: force per width per strain [N/m]
+    double shear = 0;          // membrane shear stiffness G [N/m]
+    double bend = 0;           // bending stiffness B: moment per width per curvature [N·m]
+    double airDamping = 0;     // drag per unit mass c [1/s]: F = −c m v
+    double springDamping = 0;  // damping along each spring, in units of its stiffness [s]
+};
+
+// The lattice's membrane constants for a material on cells du × dv (docs/physics.md): the
+// stiffness of the structural springs along u and v and of the shear springs [N/m].
+struct MembraneSprings {
+    double alongU = 0, alongV = 0, shear = 0;
+};
+MembraneSprings membraneSprings(const Material& m, double du, double dv);
+
 struct IntegratorSpec {
     Method method = Method::ExplicitEuler;
     double dt = 1e-3;  // [s]
@@ -143,8 +163,11 @@ struct Scene {
     std::string name;
     std::string source;  // the file it was loaded from, for messages
     ClothSpec cloth;
+    // The per-vertex form (the seed's): one mass per vertex, one stiffness per family, a drag
+    // coefficient. Unused when `material` is set.
     SpringStiffness springs;
     double damping = 0;  // μ [N·s/m]
+    std::optional<Material> material;
     glm::dvec3 gravity{0, -9.81, 0};
     std::vector<Pin> pins;
     IntegratorSpec integrator;
@@ -157,6 +180,18 @@ struct Scene {
     double duration = 1;    // simulated time `run` covers without --steps [s]
 
     Grid grid() const;
+    // What the solvers model, from either form. Vertex (i, j)'s mass [kg]: cloth.mass, or its
+    // share of the area times the density (corners ¼, edges ½ of a cell's du·dv).
+    double vertexMass(int i, int j) const;
+    double totalMass() const;  // [kg]
+    // K of the spring of kSpringOffsets[slot] [N/m]; 0: not modelled.
+    double slotStiffness(int slot) const;
+    // Drag per unit mass c [1/s]: the drag force on vertex k is −c·m_k·v_k (μ/m, or the
+    // material's air_damping).
+    double dampingRate() const;
+    // B of the quadratic bending energy [N·m]; 0 (the per-vertex form): not modelled.
+    double bendingStiffness() const;
+
     long defaultSteps() const;  // round(duration / dt), at least 1
     int planeCount() const;
     int sphereCount() const;
