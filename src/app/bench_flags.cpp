@@ -1,6 +1,7 @@
 #include "app/bench_flags.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <sstream>
 
@@ -73,6 +74,17 @@ bool parseGpuSweepFlag(const std::string& f, Args& args, GpuSweepOptions& o) {
     else
         return false;
     return true;
+}
+
+std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
+    std::vector<int> sizes;
+    for (double x : parsePositiveList(flag, value)) {
+        if (x != std::floor(x) || x < 2 || x > 65535)
+            throw InputError("command line", flag,
+                             "expected whole grid sides from 2 to 65535, got '" + value + "'");
+        sizes.push_back(int(x));
+    }
+    return sizes;
 }
 
 bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o) {

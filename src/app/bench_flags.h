@@ -11,14 +11,18 @@
 
 namespace cloth::app {
 
-int benchCommand(Args& args);           // cmd_bench.cpp: bench accuracy|stability|speed
+int benchCommand(Args& args);           // cmd_bench.cpp: bench accuracy|stability|speed|realtime
 int benchAccuracyCommand(Args& args);   // cmd_bench_accuracy.cpp
 int benchStabilityCommand(Args& args);  // cmd_bench_stability.cpp
 int benchSpeedCommand(Args& args);      // cmd_bench_speed.cpp
+int benchRealtimeCommand(Args& args);   // cmd_bench_realtime.cpp
 
 // Takes flag `f` if it is one of the common ones (--backend, --methods, --set, --out, --label,
 // --threads, --quick) and returns true; false leaves it to the subcommand.
 bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o);
+
+// --sizes LIST: whole grid sides from 2 to 65535, comma-separated; InputError naming `flag`.
+std::vector<int> parseSizes(const std::string& flag, const std::string& value);
 
 // --workgroups LIST, --gpu-forces global|tiled|both, --gpu-dispatch LIST, --check-every N,
 // --pass-times: true when `flag` was one of them (its value taken from `args` into `o`).

@@ -1,4 +1,4 @@
-// clothsim bench accuracy|stability|speed (DESIGN.md §5): picks the benchmark.
+// clothsim bench accuracy|stability|speed|realtime (DESIGN.md §5): picks the benchmark.
 #include <cstdio>
 #include <cstring>
 
@@ -8,7 +8,8 @@
 namespace cloth::app {
 namespace {
 
-constexpr const char* kHelp = R"(usage: clothsim bench accuracy|stability|speed SCENE [options]
+constexpr const char* kHelp =
+    R"(usage: clothsim bench accuracy|stability|speed|realtime [SCENE] [options]
 
   accuracy SCENE    error against a converged RK4 reference versus wall time, for every
                     integrator, time step and backend: the CSV and a log-log plot of the
@@ -19,8 +20,13 @@ constexpr const char* kHelp = R"(usage: clothsim bench accuracy|stability|speed 
   speed [SCENE]     steps per second of every backend over grid sizes (default scene
                     hanging), beside the one-thread baseline loop (1x) and the measured CPU
                     triad and GPU copy bandwidths: CSV, JSON, a table and a log-log plot
+  realtime          the real-time frontier: for every integrator and backend, the largest
+                    N x N sheet of a material (default cotton) draped onto a sphere that
+                    simulates 1 s in at most 1 s of wall time, with its dt, steps per frame,
+                    wall time per simulated second and error against a converged reference:
+                    CSV, JSON, a table and a plot
 
-'clothsim bench accuracy|stability|speed --help' list the options.
+'clothsim bench accuracy|stability|speed|realtime --help' list the options.
 Results go to --out DIR (default bench/results) as CSV (header with units), PNG and SVG plots
 (drawn by gnuplot from bench/*.gp; without gnuplot only the CSV is written).
 
@@ -43,8 +49,9 @@ int benchCommand(Args& args) {
     if (which == "accuracy") return benchAccuracyCommand(sub);
     if (which == "stability") return benchStabilityCommand(sub);
     if (which == "speed") return benchSpeedCommand(sub);
+    if (which == "realtime") return benchRealtimeCommand(sub);
     throw InputError("command line", which.empty() ? "bench" : which,
-                     "expected bench accuracy|stability|speed; see clothsim bench --help");
+                     "expected bench accuracy|stability|speed|realtime; see clothsim bench --help");
 }
 
 }  // namespace cloth::app

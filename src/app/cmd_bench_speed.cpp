@@ -60,17 +60,6 @@ options:
   --help              this text
 )";
 
-std::vector<int> parseSizes(const std::string& flag, const std::string& value) {
-    std::vector<int> sizes;
-    for (double x : parsePositiveList(flag, value)) {
-        if (x != std::floor(x) || x < 2 || x > 65535)
-            throw InputError("command line", flag,
-                             "expected whole grid sides from 2 to 65535, got '" + value + "'");
-        sizes.push_back(int(x));
-    }
-    return sizes;
-}
-
 // Returns false when --help was asked for.
 bool parse(Args& args, Options& o) {
     while (!args.done()) {

@@ -19,7 +19,7 @@ usage:
   clothsim view     [SCENE]                     interactive viewer
   clothsim run      SCENE [options]             headless simulation
   clothsim render   SCENE --png FILE [options]  headless image (EGL)
-  clothsim bench    speed|accuracy|stability [options]
+  clothsim bench    speed|accuracy|stability|realtime [options]
   clothsim validate SCENE                       check a scene, print what it models
   clothsim info                                 GL/EGL device, limits, build
 
