@@ -33,7 +33,9 @@ Search: N = 8, 16, 32, ... while real time, then bisection between the last N th
 first that was not, until they are within --tolerance of each other. Error: the frontier's state
 after T against symplectic Euler on the CPU in double, same N, at a tenth of its tight bound or
 of the smallest dt of the rows at that N (explicit Euler's), whichever is smaller: RMS over
-vertices of |x - x_ref| divided by the sheet's extent (its diagonal). One reference per N.
+vertices of |x - x_ref| divided by the sheet's extent (its diagonal). One reference per N, run
+again at twice its dt: how far that moves it (reference_change_rel) is the floor under which an
+error is not resolved.
 
 options:
   --material NAME       a preset: cotton (default), silk, denim, wool, polyester, rubber;

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "bench/bench_realtime_scene.h"
@@ -90,32 +91,6 @@ Frontier search(Method method, const BenchTarget& target, const Options& o) {
     return f;
 }
 
-struct Reference {
-    SimState state;
-    double dt = 0;
-};
-
-// Symplectic Euler on the CPU in double at min(its tight bound, `finest`) / factor, the steps
-// rounded up to a whole number over `time`, halved after an instability. `finest` is the
-// smallest Δt of the runs compared with it: explicit Euler steps far below symplectic Euler's
-// bound, and a reference coarser than the run it judges would measure its own error.
-Reference reference(Scene s, double finest, const Options& o) {
-    s.integrator.method = Method::SymplecticEuler;
-    const double tight = estimateStability(s, 40).tightDt(Method::SymplecticEuler);
-    const double wanted = std::min(tight > 0 ? tight : kFrame, finest) / o.referenceFactor;
-    long steps = std::max(1L, std::lround(std::ceil(o.time / wanted)));
-    BackendChoice cpu = o.base();
-    cpu.backend = Backend::Cpu;
-    cpu.precision = Precision::Double;
-    for (int halvings = 0; halvings <= kMaxHalvings; ++halvings, steps *= 2) {
-        s.integrator.dt = o.time / double(steps);
-        const std::unique_ptr<Solver> solver = makeSolver(s, cpu);
-        if (!solver->step(steps).unstable) return {solver->read(), s.integrator.dt};
-    }
-    throw std::runtime_error("the symplectic Euler reference at N = " + std::to_string(s.cloth.nu) +
-                             " is unstable at every dt tried");
-}
-
 double rmsError(const SimState& a, const SimState& b, double extent) {
     double sum = 0;
     for (std::size_t k = 0; k < a.positions.size(); ++k) {
@@ -123,6 +98,45 @@ double rmsError(const SimState& a, const SimState& b, double extent) {
         sum += glm::dot(d, d);
     }
     return std::sqrt(sum / double(a.positions.size())) / extent;
+}
+
+struct Reference {
+    SimState state;
+    double dt = 0;
+    // RMS distance / extent between the reference and the same run at twice its Δt: how far from
+    // converged it is, the floor under which an error says nothing (NaN: that run was unstable).
+    double change = NAN;
+};
+
+// Symplectic Euler on the CPU in double at min(its tight bound, `finest`) / factor, the steps
+// rounded up to an even number over `time`, halved after an instability; then again at twice
+// that Δt for Reference::change. `finest` is the smallest Δt of the runs compared with it:
+// explicit Euler steps far below symplectic Euler's bound, and a reference coarser than the run
+// it judges would measure its own error.
+Reference reference(Scene s, double finest, const Options& o) {
+    s.integrator.method = Method::SymplecticEuler;
+    const double tight = estimateStability(s, 40).tightDt(Method::SymplecticEuler);
+    const double wanted = std::min(tight > 0 ? tight : kFrame, finest) / o.referenceFactor;
+    long steps = std::max(2L, std::lround(std::ceil(o.time / wanted)));
+    steps += steps % 2;
+    BackendChoice cpu = o.base();
+    cpu.backend = Backend::Cpu;
+    cpu.precision = Precision::Double;
+    auto run = [&](long n) -> std::optional<SimState> {
+        s.integrator.dt = o.time / double(n);
+        const std::unique_ptr<Solver> solver = makeSolver(s, cpu);
+        if (solver->step(n).unstable) return std::nullopt;
+        return solver->read();
+    };
+    for (int halvings = 0; halvings <= kMaxHalvings; ++halvings, steps *= 2)
+        if (std::optional<SimState> state = run(steps)) {
+            Reference ref{std::move(*state), o.time / double(steps)};
+            if (const std::optional<SimState> coarse = run(steps / 2))
+                ref.change = rmsError(ref.state, *coarse, s.grid().extent());
+            return ref;
+        }
+    throw std::runtime_error("the symplectic Euler reference at N = " + std::to_string(s.cloth.nu) +
+                             " is unstable at every dt tried");
 }
 
 // Each frontier's error against the reference at its N, one reference per N.
@@ -137,8 +151,10 @@ void measureErrors(std::vector<Frontier>& rows, const Options& o) {
     for (const auto& [n, dt] : finest) {
         const Clock::time_point start = Clock::now();
         cache[n] = reference(sceneAt(o, n, Method::SymplecticEuler), dt, o);
-        std::printf("  reference N = %d: symplectic_euler cpu_double, dt = %.4g s [%.1f s]\n", n,
-                    cache[n].dt, since(start));
+        std::printf(
+            "  reference N = %d: symplectic_euler cpu_double, dt = %.4g s; at twice that dt the "
+            "state moves by %.3g x extent [%.1f s]\n",
+            n, cache[n].dt, cache[n].change, since(start));
         std::fflush(stdout);
     }
     for (Frontier& f : rows) {
@@ -147,6 +163,7 @@ void measureErrors(std::vector<Frontier>& rows, const Options& o) {
         const double extent = sceneAt(o, t.n, f.method).grid().extent();
         f.error = rmsError(t.state, cache[t.n].state, extent);
         f.referenceDt = cache[t.n].dt;
+        f.referenceChange = cache[t.n].change;
     }
 }
 

@@ -76,7 +76,10 @@ struct Frontier {
     int fail = -1;             // index of the smallest N above it that failed (-1: none tried)
     double error = NAN;        // RMS |x − x_ref| / extent at the best N after T
     double referenceDt = NAN;  // the reference's Δt [s]
-    double searchWall = 0;     // wall time of the whole search, reference excluded [s]
+    // How much the reference moves when its Δt is doubled (RMS / extent): errors below it are
+    // not resolved.
+    double referenceChange = NAN;
+    double searchWall = 0;  // wall time of the whole search, reference excluded [s]
     int n() const { return best >= 0 ? trials[std::size_t(best)].n : 0; }
 };
 

@@ -180,6 +180,7 @@ const std::vector<std::string> kFrontierColumns = {"method",
                                                    "next_wall_per_sim_s",
                                                    "pos_rms_err_rel",
                                                    "reference_dt_s",
+                                                   "reference_change_rel",
                                                    "cg_iterations_per_step",
                                                    "cg_misses",
                                                    "trials",
@@ -223,6 +224,8 @@ void expectFrontierRow(const std::map<std::string, std::string>& row) {
     EXPECT_TRUE(std::isfinite(error) && error >= 0 && error < 1) << what << ": " << error;
     EXPECT_GT(number(row, "reference_dt_s"), 0) << what;
     EXPECT_LT(number(row, "reference_dt_s"), dt) << what;
+    const double floor = number(row, "reference_change_rel");
+    EXPECT_TRUE(std::isfinite(floor) && floor >= 0 && floor < 1) << what << ": " << floor;
     if (!row.at("next_n").empty()) {
         EXPECT_GT(number(row, "next_n"), n) << what;
         EXPECT_NE(row.at("next_status"), "real_time") << what;
