@@ -23,8 +23,8 @@ constexpr const char* kHelp =
   realtime          the real-time frontier: for every integrator and backend, the largest
                     N x N sheet of a material (default cotton) draped onto a sphere that
                     simulates 1 s in at most 1 s of wall time, with its dt, steps per frame,
-                    wall time per simulated second and error against a converged reference:
-                    CSV, JSON, a table and a plot
+                    wall time per simulated second and error against a fine reference (and
+                    how far from converged that is): CSV, JSON, a table and a plot
 
 'clothsim bench accuracy|stability|speed|realtime --help' list the options.
 Results go to --out DIR (default bench/results) as CSV (header with units), PNG and SVG plots

@@ -1,7 +1,7 @@
 // `clothsim bench realtime`: the real-time frontier. For each integrator and target, the largest
 // N for which an N×N sheet of a material, draped onto a sphere, simulates T seconds in at most T
 // seconds of wall time (T = 1 s), at the largest Δt it stays stable at (implicit methods: one
-// step per 1/60 s frame), with the error after T against a converged reference at the same N.
+// step per 1/60 s frame), with the error after T against a fine reference at the same N.
 // Its options (app/cmd_bench_realtime.cpp reads them from the command line), the trials and the
 // frontier rows (bench_realtime.cpp searches, bench_realtime_trial.cpp times one trial,
 // bench_realtime_report.cpp writes the CSV, the JSON, the table and the plot).
