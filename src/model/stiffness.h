@@ -11,7 +11,17 @@
 
 namespace cloth {
 
-// One active entry of kSpringOffsets: a family the scene models.
+// A family is modelled when one of its slots of kSpringOffsets has a stiffness > 0
+// (Scene::slotStiffness: the per-vertex form's K of the family, or a material's K along u, along
+// v, of the shear springs; a material models no bend springs). Every slot of a modelled family is
+// walked, with its own K.
+inline bool familyModelled(const Scene& scene, Family f) {
+    for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
+        if (kSpringOffsets[s].family == f && scene.slotStiffness(int(s)) > 0) return true;
+    return false;
+}
+
+// One active entry of kSpringOffsets: a slot of a family the scene models.
 template <typename T>
 struct StencilSpring {
     int di, dj;
@@ -23,11 +33,11 @@ template <typename T>
 std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
     const Grid g = scene.grid();
     std::vector<StencilSpring<T>> springs;
-    for (const SpringOffset& o : kSpringOffsets) {
-        const double k = scene.springs.of(o.family);
-        if (k > 0)
-            springs.push_back(
-                {o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di, T(k), T(g.restLength(o.di, o.dj))});
+    for (std::size_t s = 0; s < kSpringOffsets.size(); ++s) {
+        const SpringOffset& o = kSpringOffsets[s];
+        if (!familyModelled(scene, o.family)) continue;
+        springs.push_back({o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di,
+                           T(scene.slotStiffness(int(s))), T(g.restLength(o.di, o.dj))});
     }
     return springs;
 }

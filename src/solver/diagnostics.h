@@ -11,9 +11,10 @@
 namespace cloth {
 
 struct Energy {
-    double kinetic = 0;  // Σ ½ m |v|²  [J]
+    // m_k and K of each slot as the solvers model them (Scene::vertexMass, slotStiffness).
+    double kinetic = 0;  // Σ ½ m_k |v_k|²  [J]
     double spring = 0;   // Σ over springs (each once) ½ K (|d| − L)²  [J]
-    double gravity = 0;  // −Σ m ⟨g, p⟩  [J]
+    double gravity = 0;  // −Σ m_k ⟨g, p_k⟩  [J]
     double total() const { return kinetic + spring + gravity; }
 };
 

@@ -3,6 +3,7 @@
 #include <limits>
 #include <tuple>
 
+#include "model/stiffness.h"
 
 namespace cloth {
 
@@ -15,9 +16,9 @@ const char* precisionName(Precision p) {
 
 Features Features::of(const Scene& scene) {
     Features f;
-    f.structural = scene.springs.structural > 0;
-    f.shear = scene.springs.shear > 0;
-    f.bend = scene.springs.bend > 0;
+    f.structural = familyModelled(scene, Family::Structural);
+    f.shear = familyModelled(scene, Family::Shear);
+    f.bend = familyModelled(scene, Family::Bend);
     f.wind = scene.wind.has_value() && scene.wind->strength != 0;
     f.planes = scene.planeCount();
     f.spheres = scene.sphereCount();

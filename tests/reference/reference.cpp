@@ -40,6 +40,17 @@ Simulation::Simulation(const Params& p) : prm_(p) {
         if (!c.isSphere) c.plane.normal = normalised(c.plane.normal);
     }
     const int n = prm_.nu * prm_.nv;
+    mass_.assign(n, prm_.density > 0 ? 0.0 : prm_.mass);
+    if (prm_.density > 0) {
+        const double quarter = prm_.density * du_ * dv_ / 4;
+        for (int j = 0; j + 1 < prm_.nv; ++j) {
+            for (int i = 0; i + 1 < prm_.nu; ++i) {
+                for (int corner : {j * prm_.nu + i, j * prm_.nu + i + 1, (j + 1) * prm_.nu + i,
+                                   (j + 1) * prm_.nu + i + 1})
+                    mass_[corner] += quarter;
+            }
+        }
+    }
     pinned_.assign(n, false);
     follow_.assign(n, -1);
     for (std::size_t k = 0; k < prm_.pins.size(); ++k) {
@@ -68,8 +79,15 @@ V3 Simulation::restPosition(int i, int j) const {
     return add(prm_.origin, add(scale(i * du_, u_), scale(j * dv_, vAxis_)));
 }
 
-double Simulation::stiffness(int family) const {
+double Simulation::stiffness(int di, int dj, int family) const {
+    for (const Params::OffsetStiffness& o : prm_.offsetStiffness) {
+        if (o.di == di && o.dj == dj) return o.k;
+    }
     return family == 0 ? prm_.kStructural : family == 1 ? prm_.kShear : prm_.kBend;
+}
+
+double Simulation::drag(int k) const {
+    return prm_.damping + prm_.dampingRate * mass_[k];
 }
 
 double Simulation::restLength(int di, int dj) const {
@@ -81,7 +99,7 @@ V3 Simulation::springForces(const std::vector<V3>& p, int i, int j) const {
     V3 f{0, 0, 0};
     const V3& pk = p[j * prm_.nu + i];
     for (const Offset& o : kOffsets) {
-        const double k = stiffness(o.family);
+        const double k = stiffness(o.di, o.dj, o.family);
         const int qi = i + o.di, qj = j + o.dj;
         if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
         const double len = restLength(o.di, o.dj);
@@ -104,7 +122,7 @@ std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x, const std::
             const int k = j * prm_.nu + i;
             if (pinned_[k]) continue;
             for (const Offset& o : kOffsets) {
-                const double stiff = stiffness(o.family);
+                const double stiff = stiffness(o.di, o.dj, o.family);
                 const int qi = i + o.di, qj = j + o.dj;
                 if (stiff == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
                 const int q = qj * prm_.nu + qi;
@@ -174,14 +192,14 @@ std::vector<V3> Simulation::forces(const std::vector<V3>& p) const {
     return f;
 }
 
-// docs/integrators.md: a(x, v) = (F(x) − μ v)/m + g; a pinned vertex's is not used (0 here).
+// docs/integrators.md: a(x, v) = (F(x) − μ_k v)/m_k + g; a pinned vertex's is not used (0 here).
 std::vector<V3> Simulation::accelerations(const std::vector<V3>& x,
                                           const std::vector<V3>& v) const {
     const std::vector<V3> f = forces(x);
     std::vector<V3> a(x.size(), V3{0, 0, 0});
     for (std::size_t k = 0; k < x.size(); ++k) {
         if (pinned_[k]) continue;
-        a[k] = add(scale(1.0 / prm_.mass, sub(f[k], scale(prm_.damping, v[k]))), prm_.gravity);
+        a[k] = add(scale(1.0 / mass_[k], sub(f[k], scale(drag(int(k)), v[k]))), prm_.gravity);
     }
     return a;
 }
@@ -230,7 +248,7 @@ void Simulation::step() {
 
 double Simulation::kineticEnergy(const std::vector<V3>& v) const {
     double e = 0;
-    for (const V3& x : v) e += 0.5 * prm_.mass * dot(x, x);
+    for (std::size_t k = 0; k < v.size(); ++k) e += 0.5 * mass_[k] * dot(v[k], v[k]);
     return e;
 }
 
@@ -239,7 +257,7 @@ double Simulation::springEnergy(const std::vector<V3>& p) const {
     for (int j = 0; j < prm_.nv; ++j) {
         for (int i = 0; i < prm_.nu; ++i) {
             for (const Offset& o : kHalfOffsets) {
-                const double k = stiffness(o.family);
+                const double k = stiffness(o.di, o.dj, o.family);
                 const int qi = i + o.di, qj = j + o.dj;
                 if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
                 const double stretch =
@@ -253,7 +271,7 @@ double Simulation::springEnergy(const std::vector<V3>& p) const {
 
 double Simulation::gravityEnergy(const std::vector<V3>& p) const {
     double e = 0;
-    for (const V3& x : p) e -= prm_.mass * dot(prm_.gravity, x);
+    for (std::size_t k = 0; k < p.size(); ++k) e -= mass_[k] * dot(prm_.gravity, p[k]);
     return e;
 }
 
