@@ -137,8 +137,8 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
     sweepRows(band, [&](int j) {
         const std::int64_t k = std::int64_t(j) * nu;
         forceRow(band, j, f);
-        update({x_.row(k), f, v_.row(k), xNext_.row(k), dt_t_, damping_, inverseMass_, gravity_.x,
-                gravity_.y, gravity_.z},
+        update({x_.row(k), f, v_.row(k), xNext_.row(k), inverseMass_.data() + k, dt_t_,
+                dampingRate_, gravity_.x, gravity_.y, gravity_.z},
                nu);
         for (; pin != pinList_.end() && *pin < k + nu; ++pin) {  // pins, then colliders (§2)
             xNext_.set(*pin, pinPosition_[*pin]);
@@ -201,8 +201,8 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
     template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                 \
     template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int) const; \
     template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                    \
-    template void CpuSolver<T>::gatherForces(Band&);                                             \
-    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                  \
+    template void CpuSolver<T>::gatherForces(Band&);                                              \
+    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                   \
     template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                      \
     template bool CpuSolver<T>::reportFirstBad(Band&, std::int64_t, std::int64_t);
 CLOTH_INSTANTIATE(float)
