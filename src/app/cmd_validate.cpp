@@ -101,22 +101,49 @@ void printCollider(size_t n, const Collider& c, double dt) {
 void printModel(const Scene& s) {
     const Grid g = s.grid();
     std::printf("scene        %s (%s)\n", s.name.c_str(), s.source.c_str());
-    std::printf(
-        "cloth        %d x %d = %lld vertices, %g x %g m, spacing %.4g x %.4g m, "
-        "mass %g kg per vertex\n",
-        g.nu, g.nv, (long long)g.count(), s.cloth.size.x, s.cloth.size.y, g.du, g.dv, s.cloth.mass);
+    std::printf("cloth        %d x %d = %lld vertices, %g x %g m, spacing %.4g x %.4g m\n", g.nu,
+                g.nv, (long long)g.count(), s.cloth.size.x, s.cloth.size.y, g.du, g.dv);
     std::printf("             origin %s, u axis %s, v axis %s\n", vec(g.origin).c_str(),
                 vec(g.u).c_str(), vec(g.v).c_str());
-    for (Family f : {Family::Structural, Family::Shear, Family::Bend}) {
-        const double k = s.springs.of(f);
-        if (k > 0)
-            std::printf("springs      %-10s K = %g N/m\n", familyName(f), k);
-        else
-            std::printf("springs      %-10s not modelled\n", familyName(f));
+    if (const std::optional<Material>& m = s.material) {
+        // docs/physics.md "From a material to the grid": what the grid models of the fabric.
+        const MembraneSprings k = membraneSprings(*m, g.du, g.dv);
+        const double c =
+            (m->stretch + std::sqrt(m->stretch * m->stretch + 4 * m->shear * m->shear)) / 2;
+        std::printf(
+            "material     %s: density %g kg/m^2, stretch %g N/m, shear %g N/m, bend %g N*m, "
+            "air damping %g 1/s\n",
+            m->preset.empty() ? "custom" : m->preset.c_str(), m->density, m->stretch, m->shear,
+            m->bend, m->airDamping);
+        std::printf(
+            "mass         %.6g kg in all; %.4g kg per interior vertex, %.4g on an edge, "
+            "%.4g at a corner\n",
+            s.totalMass(), s.vertexMass(1, 1), s.vertexMass(1, 0), s.vertexMass(0, 0));
+        std::printf(
+            "springs      structural K = %.6g N/m along u, %.6g N/m along v; shear K = "
+            "%.6g N/m; Poisson ratio %.3g (fixed by the lattice)\n",
+            k.alongU, k.alongV, k.shear, m->shear / c);
+        if (m->bend > 0)
+            std::printf(
+                "bending      B = %g N*m: NOT MODELLED YET (the grid has no bending "
+                "energy; the cloth folds freely)\n",
+                m->bend);
+        std::printf("forces       gravity %s m/s^2\n", vec(s.gravity).c_str());
+        std::printf("             air drag c = %g 1/s%s\n", m->airDamping,
+                    m->airDamping > 0 ? "" : " (not modelled)");
+    } else {
+        std::printf("mass         %g kg per vertex\n", s.cloth.mass);
+        for (Family f : {Family::Structural, Family::Shear, Family::Bend}) {
+            const double k = s.springs.of(f);
+            if (k > 0)
+                std::printf("springs      %-10s K = %g N/m\n", familyName(f), k);
+            else
+                std::printf("springs      %-10s not modelled\n", familyName(f));
+        }
+        std::printf("forces       gravity %s m/s^2\n", vec(s.gravity).c_str());
+        std::printf("             damping mu = %g N*s/m%s\n", s.damping,
+                    s.damping > 0 ? "" : " (not modelled)");
     }
-    std::printf("forces       gravity %s m/s^2\n", vec(s.gravity).c_str());
-    std::printf("             damping mu = %g N*s/m%s\n", s.damping,
-                s.damping > 0 ? "" : " (not modelled)");
     if (s.wind && s.wind->strength != 0)
         std::printf("             wind %s, K_w = %g N\n", vec(s.wind->direction).c_str(),
                     s.wind->strength);
@@ -160,16 +187,28 @@ std::string formatDt(double dt) {
     return buf;
 }
 
+// Steps of the safe dt that 1/60 s of simulation needs: what real time costs at this bound.
+std::string stepsPerFrame(double safeDt) {
+    if (std::isinf(safeDt)) return "1";
+    if (!(safeDt > 0)) return "-";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f", std::ceil((1.0 / 60) / safeDt));
+    return buf;
+}
+
 void printStability(const Scene& s) {
     const StabilityBound b = estimateStability(s, kPowerIterations);
     const double bound = b.safeDt(s.integrator.method), dt = s.integrator.dt;
     std::printf("stability    lambda_max <= %.6g N/m (Gershgorin, DESIGN.md §2)\n", b.lambdaMax);
     std::printf("             lambda_max ~= %.6g N/m (%d power iterations at the initial state)\n",
                 b.lambdaPower, kPowerIterations);
-    std::printf("             largest stable dt   safe (Gershgorin)      tight (power)\n");
+    std::printf(
+        "             largest stable dt   safe (Gershgorin)      tight (power)    steps per "
+        "1/60 s frame\n");
     for (Method m : kMethods)
-        std::printf("             %-18s  %-22s %s%s\n", methodName(m),
+        std::printf("             %-18s  %-22s %-16s %-10s%s\n", methodName(m),
                     formatDt(b.safeDt(m)).c_str(), formatDt(b.tightDt(m)).c_str(),
+                    stepsPerFrame(b.safeDt(m)).c_str(),
                     m == s.integrator.method ? "   <- the scene's" : "");
     if (dt < bound)
         std::printf("             dt = %g s is inside the bound (%.0f%% of it)\n", dt,

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "model/collider_speed.h"
-#include "model/mesh_sdf.h"
 #include "model/errors.h"
+#include "model/mesh_sdf.h"
 
 namespace cloth {
 namespace {

@@ -11,7 +11,6 @@
 #include "model/collider_motion.h"
 #include "model/collider_shapes.h"
 #include "model/mesh_sdf.h"
-#include "model/mesh_sdf.h"
 #include "model/scene.h"
 
 namespace cloth {

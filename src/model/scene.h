@@ -177,7 +177,7 @@ struct Scene {
     // A modelled spring stretched or squeezed by more than this fraction of its rest length is
     // reported as unstable: the run has left the physics a mass-spring cloth stands for.
     double maxStrain = 1;
-    double duration = 1;    // simulated time `run` covers without --steps [s]
+    double duration = 1;  // simulated time `run` covers without --steps [s]
 
     Grid grid() const;
     // What the solvers model, from either form. Vertex (i, j)'s mass [kg]: cloth.mass, or its

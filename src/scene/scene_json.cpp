@@ -71,15 +71,29 @@ Json collider(const Collider& c) {
 std::string sceneToJson(const Scene& s) {
     Json j;
     j["name"] = s.name;
-    j["cloth"] = {
-        {"resolution", {s.cloth.nu, s.cloth.nv}}, {"size", {s.cloth.size.x, s.cloth.size.y}},
-        {"origin", vec(s.cloth.origin)},          {"u_axis", vec(s.cloth.uAxis)},
-        {"v_axis", vec(s.cloth.vAxis)},           {"mass", s.cloth.mass}};
-    Json springs = Json::object();  // absent families stay absent: not modelled
-    for (Family f : {Family::Structural, Family::Shear, Family::Bend})
-        if (s.springs.of(f) > 0) springs[familyName(f)] = s.springs.of(f);
-    j["springs"] = springs;
-    j["damping"] = s.damping;
+    j["cloth"] = {{"resolution", {s.cloth.nu, s.cloth.nv}},
+                  {"size", {s.cloth.size.x, s.cloth.size.y}},
+                  {"origin", vec(s.cloth.origin)},
+                  {"u_axis", vec(s.cloth.uAxis)},
+                  {"v_axis", vec(s.cloth.vAxis)}};
+    if (const std::optional<Material>& m = s.material) {
+        // Every value written out: the preset's name is kept for the reader, the values win.
+        Json material = Json::object();
+        if (!m->preset.empty()) material["preset"] = m->preset;
+        material["density"] = m->density;
+        material["stretch"] = m->stretch;
+        material["shear"] = m->shear;
+        material["bend"] = m->bend;
+        material["air_damping"] = m->airDamping;
+        j["material"] = material;
+    } else {
+        j["cloth"]["mass"] = s.cloth.mass;
+        Json springs = Json::object();  // absent families stay absent: not modelled
+        for (Family f : {Family::Structural, Family::Shear, Family::Bend})
+            if (s.springs.of(f) > 0) springs[familyName(f)] = s.springs.of(f);
+        j["springs"] = springs;
+        j["damping"] = s.damping;
+    }
     j["gravity"] = vec(s.gravity);
     Json pins = Json::array();
     for (const Pin& p : s.pins) {

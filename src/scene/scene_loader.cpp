@@ -13,6 +13,7 @@
 
 #include "model/collider_limits.h"
 #include "model/errors.h"
+#include "model/material_presets.h"
 #include "model/pin_follow.h"
 #include "scene/key_path.h"
 #include "scene/params.h"
@@ -167,6 +168,32 @@ void SceneReader::readSprings(const Json& j, SpringStiffness& springs) const {
     springs.bend = param(j, "bend", "springs.bend", "springs.bend");
 }
 
+// docs/physics.md "Materials": a preset, each key given overriding it; without a preset,
+// density, stretch and shear are required.
+Material SceneReader::readMaterial(const Json& j) const {
+    expectObject(j, "material", {"preset", "density", "stretch", "shear", "bend", "air_damping"});
+    Material m;
+    if (j.contains("preset")) {
+        const Json& name = j["preset"];
+        if (!name.is_string()) fail("material.preset", "expected a string, got " + describe(name));
+        const std::optional<Material> preset = materialPreset(name.get<std::string>());
+        if (!preset)
+            fail("material.preset", "unknown preset \"" + name.get<std::string>() +
+                                        "\"; known: " + materialPresetList());
+        m = *preset;
+    }
+    auto read = [&](const char* key, double& value) {
+        const std::string path = std::string("material.") + key;
+        if (m.preset.empty() || j.contains(key)) value = param(j, key, path, path.c_str());
+    };
+    read("density", m.density);
+    read("stretch", m.stretch);
+    read("shear", m.shear);
+    read("bend", m.bend);
+    read("air_damping", m.airDamping);
+    return m;
+}
+
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
     expectObject(j, "integrator", {"method", "dt", "substeps", "tolerance", "max_iterations"});
     if (j.contains("method")) {
@@ -233,8 +260,8 @@ Wind SceneReader::readWind(const Json& j) const {
 
 Scene SceneReader::read(const Json& doc) {
     expectObject(doc, "",
-                 {"name", "cloth", "springs", "damping", "gravity", "pins", "integrator",
-                  "colliders", "wind", "max_speed", "max_strain", "duration"});
+                 {"name", "cloth", "material", "springs", "damping", "gravity", "pins",
+                  "integrator", "colliders", "wind", "max_speed", "max_strain", "duration"});
     Scene scene;
     scene.source = source_;
     scene.name = std::filesystem::path(source_).stem().string();
@@ -244,8 +271,27 @@ Scene SceneReader::read(const Json& doc) {
         scene.name = doc["name"].get<std::string>();
     }
     readCloth(required(doc, "cloth", ""), scene.cloth);
-    if (doc.contains("springs")) readSprings(doc["springs"], scene.springs);
-    scene.damping = param(doc, "damping", "damping", "damping");
+    if (doc.contains("material")) {
+        // One form or the other: a material's masses and springs replace the per-vertex keys.
+        const Json& cloth = doc["cloth"];
+        for (const char* key : {"springs", "damping"})
+            if (doc.contains(key))
+                fail(key, std::string("a scene gives either material or the per-vertex form "
+                                      "(cloth.mass, springs, damping), not both: remove ") +
+                              key + " or material");
+        if (cloth.contains("mass"))
+            fail("cloth.mass",
+                 "a scene gives either material or the per-vertex form (cloth.mass, springs, "
+                 "damping), not both: remove cloth.mass or material");
+        if (scene.cloth.nu < 2 || scene.cloth.nv < 2)
+            fail("material",
+                 "a material needs a sheet of at least 2 x 2 vertices; a single "
+                 "spring or a chain keeps the per-vertex form (cloth.mass, springs)");
+        scene.material = readMaterial(doc["material"]);
+    } else {
+        if (doc.contains("springs")) readSprings(doc["springs"], scene.springs);
+        scene.damping = param(doc, "damping", "damping", "damping");
+    }
     if (doc.contains("gravity")) scene.gravity = vec3(doc["gravity"], "gravity");
     if (doc.contains("pins")) scene.pins = readPins(doc["pins"], scene.cloth);
     readIntegrator(required(doc, "integrator", ""), scene.integrator);

@@ -45,8 +45,9 @@ void SceneReader::checkDerivedFinite(const Scene& s) const {
 
     // The grid: spacing, rest lengths (the spring code takes |d|, which squares d), extent and
     // rest positions. Only the families the scene models have springs to measure.
-    for (const SpringOffset& o : kSpringOffsets) {
-        if (s.springs.of(o.family) <= 0 || std::abs(o.di) >= g.nu || std::abs(o.dj) >= g.nv)
+    for (int slot = 0; slot < 12; ++slot) {
+        const SpringOffset& o = kSpringOffsets[std::size_t(slot)];
+        if (s.slotStiffness(slot) <= 0 || std::abs(o.di) >= g.nu || std::abs(o.dj) >= g.nv)
             continue;
         const double rest = g.restLength(o.di, o.dj);
         char what[96];
@@ -66,51 +67,76 @@ void SceneReader::checkDerivedFinite(const Scene& s) const {
     expect(reach, {{"cloth.origin", 2}},
            "the largest rest position |origin + size| (cloth.size added)");
 
-    // Mass: the integrators divide by it.
-    const double m = s.cloth.mass, inverseMass = 1 / m;
-    expect(inverseMass, {{"cloth.mass", inverseMass}}, "the inverse mass 1/m");
+    // A material's lattice (docs/physics.md): the shear springs add G·du²/dv² to the stiffness
+    // along u, which the structural springs must not have to cancel with a negative K.
+    if (s.material) {
+        const MembraneSprings k = membraneSprings(*s.material, g.du, g.dv);
+        expect(k.alongU + k.alongV + k.shear,
+               {{"material.stretch", s.material->stretch}, {"material.shear", s.material->shear}},
+               "the lattice's spring stiffness");
+        if (k.alongU < 0 || k.alongV < 0) {
+            char buf[300];
+            std::snprintf(buf, sizeof buf,
+                          "shear %g N/m is too stiff for stretch %g N/m on cells of %g x %g m: the "
+                          "springs along %s would need a negative stiffness (shear must be at most "
+                          "about stretch·min(du,dv)²/max(du,dv)²)",
+                          s.material->shear, s.material->stretch, g.du, g.dv,
+                          k.alongU < 0 ? "u" : "v");
+            fail("material.shear", buf);
+        }
+    }
+
+    // Mass: the integrators divide by it; the lightest vertex (a corner with a material) is the
+    // one that matters.
+    const char* massKey = s.material ? "material.density" : "cloth.mass";
+    const double m = s.material ? s.vertexMass(0, 0) : s.cloth.mass, inverseMass = 1 / m;
+    expect(m, {{massKey, m}}, "the vertex mass");
+    if (!(m > 0)) fail(massKey, "the lightest vertex's mass underflows to 0");
+    expect(inverseMass, {{massKey, inverseMass}}, "the inverse mass 1/m");
 
     // Gravity: its magnitude, the weight m·g, one step's g·dt² and the potential energy at rest
     // Σ m g·x that the diagnostics report.
     const double gravity = glm::length(s.gravity), dt = s.integrator.dt;
     expect(gravity, {{"gravity", 2}}, "|gravity|");
-    expect(m * gravity, {{"cloth.mass", m}, {"gravity", gravity}}, "the weight m·|gravity|");
+    expect(m * gravity, {{massKey, m}, {"gravity", gravity}}, "the weight m·|gravity|");
     expect(gravity * dt * dt, {{"gravity", gravity}, {"integrator.dt", dt * dt}},
            "one step's |gravity|·dt²");
     const double count = double(g.count());
     expect(count * m * gravity * reach,
-           {{"cloth.mass", m},
+           {{massKey, m},
             {"gravity", gravity},
             {extent > glm::length(g.origin) ? "cloth.size" : "cloth.origin", reach},
             {"cloth.resolution", count}},
            "the potential energy at rest Σ m·|gravity|·|x|");
 
-    // The stability bound (model/stability.h). Gershgorin's row sum is at most 8·ΣK (12
+    // The stability bound (model/stability.h). Gershgorin's row sum is at most 2·ΣK (12
     // neighbours, the off-diagonal counted twice), so bounding that bounds λ_max for any grid
     // and pins; validate's power estimate squares it, the integrators divide it by m and
     // multiply it by dt².
-    const SpringStiffness& k = s.springs;
-    const char* family = stiffestFamily(k);
-    const double lambda = 8 * (k.structural + k.shear + k.bend);
+    const char* family = s.material ? (s.material->stretch >= s.material->shear ? "material.stretch"
+                                                                                : "material.shear")
+                                    : stiffestFamily(s.springs);
+    double lambda = 0;  // 2·ΣK over the 12 slots: 8·(structural + shear + bend) per family
+    for (int slot = 0; slot < 12; ++slot) lambda += 2 * s.slotStiffness(slot);
     expect(lambda, {{family, 2}}, "the stability bound lambda_max <= 8·(structural+shear+bend)");
     expect(lambda * lambda, {{family, 2}}, "lambda_max² (the stability estimate squares it)");
-    const double w2 = lambda / m, c = s.damping / m;
-    expect(w2, {{family, lambda}, {"cloth.mass", inverseMass}},
-           "the stability bound's lambda_max/m");
+    const double w2 = lambda / m, c = s.dampingRate();
+    const char* dampingKey = s.material ? "material.air_damping" : "damping";
+    expect(w2, {{family, lambda}, {massKey, inverseMass}}, "the stability bound's lambda_max/m");
     expect(w2 * dt * dt, {{family, w2}, {"integrator.dt", dt * dt}},
            "the stiffness per step lambda_max·dt²/m");
-    expect(c, {{"damping", s.damping}, {"cloth.mass", inverseMass}}, "the damping rate damping/m");
-    expect(c * c + 4 * w2, {{"damping", c}, {family, std::sqrt(4 * w2)}},
+    expect(c, {{dampingKey, c}, {massKey, inverseMass}}, "the damping rate c");
+    expect(c * c + 4 * w2, {{dampingKey, c}, {family, std::sqrt(4 * w2)}},
            "the symplectic Euler stability bound's (damping/m)² + 4·lambda_max/m");
     for (Method method : kMethods)
-        if (std::isnan(methodDt(method, lambda, m, s.damping)))
+        if (std::isnan(methodDt(method, lambda, m, c * m)))
             fail(family,
                  std::string("the stability bound of ") + methodName(method) + " is not a number");
 
     // Wind: its acceleration K_w/m.
     if (s.wind) {
         const double strength = std::abs(s.wind->strength);
-        expect(strength * inverseMass, {{"wind.strength", strength}, {"cloth.mass", inverseMass}},
+        expect(strength * inverseMass, {{"wind.strength", strength}, {massKey, inverseMass}},
                "the wind's acceleration |strength|/m");
     }
 

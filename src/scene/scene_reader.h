@@ -49,6 +49,7 @@ private:
 
     void readCloth(const Json& j, ClothSpec& cloth) const;
     void readSprings(const Json& j, SpringStiffness& springs) const;
+    Material readMaterial(const Json& j) const;
     void readIntegrator(const Json& j, IntegratorSpec& integrator) const;
     std::vector<Pin> readPins(const Json& j, const ClothSpec& cloth) const;
     Collider readCollider(const Json& j, const std::string& path) const;

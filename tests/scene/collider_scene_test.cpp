@@ -8,8 +8,8 @@
 #include <string>
 
 #include "model/collider_mesh.h"
-#include "scene/collider_validate.h"
 #include "model/errors.h"
+#include "scene/collider_validate.h"
 #include "scene/scene_json.h"
 #include "scene/scene_loader.h"
 #include "solver/solver.h"

@@ -10,9 +10,9 @@
 #include "cpu/cpu_backend.h"
 #include "model/collider_motion.h"
 #include "model/collider_speed.h"
-#include "solver/diagnostics.h"
-#include "scene/scene_loader.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
+#include "solver/diagnostics.h"
 #include "support/reference_bridge.h"
 #include "support/shipped_outcomes.h"
 

@@ -42,17 +42,29 @@ std::vector<std::string> drawnSliders(ViewerSession& session) {
     return ui.drawnParams;
 }
 
-std::vector<std::string> tableSliders() {
+// A material sheet with wind: the material's rows replace the per-vertex form's.
+Scene materialScene() {
+    return parseScene(R"({"cloth": {"resolution": [8, 6], "size": [1, 0.8]},
+        "material": {"preset": "cotton"}, "pins": [[0, 0], [-1, 0]],
+        "wind": {"direction": [1, 0, 0], "strength": 0.2},
+        "integrator": {"method": "implicit_euler", "dt": 0.005, "substeps": 5}})",
+                      "material (test)");
+}
+
+// The table's viewer rows the scene models (a row's accessor gives a value), section by section.
+std::vector<std::string> tableSliders(const Scene& scene) {
     std::vector<std::string> rows;
     for (PanelSection section : {PanelSection::TimeStep, PanelSection::Forces, PanelSection::Wind})
         for (const ParamSpec& p : paramTable())
-            if (p.slider.section == section) rows.emplace_back(p.path);
+            if (p.slider.section == section && p.get(scene)) rows.emplace_back(p.path);
     return rows;
 }
 
 TEST(ViewerParamSliders, ThePanelDrawsASliderForEachViewerRowOfTheTable) {
     ViewerSession session(windScene(), {});
-    EXPECT_EQ(drawnSliders(session), tableSliders());
+    EXPECT_EQ(drawnSliders(session), tableSliders(windScene()));
+    ViewerSession material(materialScene(), {});
+    EXPECT_EQ(drawnSliders(material), tableSliders(materialScene()));
 }
 
 TEST(ViewerParamSliders, ASceneWithoutWindHasNoWindSliders) {
@@ -72,17 +84,19 @@ double sliderValue(const ParamSpec& p) {
 }
 
 TEST(ViewerParamSliders, EachRowIsEditableThroughTheSession) {
-    ViewerSession session(windScene(), {});
-    for (const ParamSpec& p : paramTable()) {
-        if (p.slider.section == PanelSection::Hidden) continue;
-        SCOPED_TRACE(p.path);
-        ViewerParams edited = session.params();
-        const double v = sliderValue(p);
-        ASSERT_NE(*p.get(edited.scene), v);
-        p.set(edited.scene, v);
-        session.applyParameters(edited);
-        ASSERT_TRUE(p.get(session.params().scene));
-        EXPECT_EQ(*p.get(session.params().scene), v);
+    for (const Scene& scene : {windScene(), materialScene()}) {
+        ViewerSession session(scene, {});
+        for (const ParamSpec& p : paramTable()) {
+            if (p.slider.section == PanelSection::Hidden || !p.get(scene)) continue;
+            SCOPED_TRACE(p.path);
+            ViewerParams edited = session.params();
+            const double v = sliderValue(p);
+            ASSERT_NE(*p.get(edited.scene), v);
+            p.set(edited.scene, v);
+            session.applyParameters(edited);
+            ASSERT_TRUE(p.get(session.params().scene));
+            EXPECT_EQ(*p.get(session.params().scene), v);
+        }
     }
 }
 
