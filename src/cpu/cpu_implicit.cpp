@@ -34,7 +34,7 @@ template <typename T>
 void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
                                  std::vector<Vec3<T>>& out) {
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, p.data(), pinned_.data(), out.data(),
-                     band.begin, band.end);
+                     band.begin, band.end, bending_);
     const T h2 = dt_t_ * dt_t_, drag = T(1) + dt_t_ * dampingRate_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         if (pinned_[k]) continue;
@@ -53,7 +53,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     const T h = dt_t_;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
-                     band.end);
+                     band.end, bending_);
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end)
         ap_[grab_->vertex] += grab_->stiffness * v_.get(grab_->vertex);
     for (std::int64_t k = band.begin; k < band.end; ++k) {

@@ -106,6 +106,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
             inverseMass_[std::size_t(grid_.index(i, j))] = T(1.0 / scene.vertexMass(i, j));
     dt_t_ = T(scene.integrator.dt);
     dampingRate_ = T(scene.dampingRate());
+    bending_ = bendingWeights(grid_, scene.bendingStiffness());
     gravity_ = cast<T>(scene.gravity);
     maxSpeed_ = scene.maxSpeed;
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);

@@ -15,6 +15,7 @@
 #include "cpu/cpu_rows.h"
 #include "cpu/cpu_soa.h"
 #include "cpu/worker_pool.h"
+#include "model/bending.h"
 #include "model/pin_follow.h"
 #include "model/stiffness.h"
 #include "solver/solver.h"
@@ -161,6 +162,7 @@ private:
     AlignedVector<T> inverseMass_;
     std::vector<std::uint8_t> pinned_;
     T dt_t_, dampingRate_, maxSpeed2_, windStrength_;  // dampingRate_: c [1/s], drag −c m_k v_k
+    BendingWeights bending_;  // a material's bending energy (model/bending.h); inactive: none
     Vec3<T> gravity_, windDirection_;
     CpuColliders<T> colliders_;
     // Poses the moving colliders and the pins that follow them at the end of step `stepNumber`

@@ -73,9 +73,11 @@ StiffMode stiffestMode(const Scene& scene, int iterations) {
         }
     StiffMode mode;
     const auto springs = activeSprings<double>(scene);
-    if (springs.empty()) return mode;
+    const BendingWeights bending = bendingWeights(g, scene.bendingStiffness());
+    if (springs.empty() && !bending.active()) return mode;
     for (int it = 0; it < iterations; ++it) {
-        stiffnessProduct(g.nu, g.nv, springs, x.data(), p.data(), pinned.data(), y.data(), 0, n);
+        stiffnessProduct(g.nu, g.nv, springs, x.data(), p.data(), pinned.data(), y.data(), 0, n,
+                         bending);
         double pp = 0, pmp = 0, py = 0, yy = 0;
         for (std::size_t k = 0; k < p.size(); ++k) {
             pp += glm::dot(p[k], p[k]);
@@ -133,10 +135,12 @@ StabilityBound estimateStability(const Scene& scene, int powerIterations) {
     for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
         stiffness[s] = scene.slotStiffness(int(s));
     StabilityBound b;
+    // The bending Hessian's rows add at most 16·(w_u + w_v + t) (model/bending.h).
+    const double bendingRow = bendingLambdaBound(bendingWeights(g, scene.bendingStiffness()));
     for (int j = 0; j < g.nv; ++j) {
         for (int i = 0; i < g.nu; ++i) {
             if (pinned[std::size_t(g.index(i, j))]) continue;
-            double row = 0;  // |diagonal| + Σ |off-diagonal| of this vertex's 3×3 block row
+            double row = bendingRow;  // |diagonal| + Σ |off-diagonal| of this vertex's block row
             for (std::size_t s = 0; s < kSpringOffsets.size(); ++s) {
                 const int qi = i + kSpringOffsets[s].di, qj = j + kSpringOffsets[s].dj;
                 if (!g.contains(qi, qj)) continue;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/bending.h"
 #include "model/forces.h"
 #include "model/scene.h"
 
@@ -50,11 +51,14 @@ Vec3<T> positionAt(const Vec3<T>* x, std::int64_t k) {
     return x[k];
 }
 
-// x and p: a Vec3<T> array or anything positionAt(x, k) reads (the CPU's Soa3).
+// x and p: a Vec3<T> array or anything positionAt(x, k) reads (the CPU's Soa3). With `bending`
+// active, its Hessian (constant: model/bending.h) is added: H p += −bendingForce(p).
 template <typename T, typename Positions, typename Vectors>
 void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                       const Positions& x, const Vectors& p, const std::uint8_t* pinned,
-                      Vec3<T>* out, std::int64_t begin, std::int64_t end) {
+                      Vec3<T>* out, std::int64_t begin, std::int64_t end,
+                      const BendingWeights& bending = {}) {
+    auto pAt = [&](int qi, int qj) { return positionAt(p, std::int64_t(qj) * nu + qi); };
     int i = int(begin % nu), j = int(begin / nu);
     for (std::int64_t k = begin; k < end; ++k) {
         Vec3<T> y(0);
@@ -69,6 +73,7 @@ void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& sprin
                 y += springJacobianTimes(positionAt(x, k), positionAt(x, q), s.stiffness,
                                          s.restLength, positionAt(p, k) - positionAt(p, q));
             }
+            if (bending.active()) y -= bendingForce<T>(bending, i, j, pAt);
         }
         out[k] = y;
         if (++i == nu) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "model/bending.h"
 #include "model/stiffness.h"
 
 namespace cloth {
@@ -33,6 +34,10 @@ Energy energy(const Scene& scene, const SimState& state) {
             }
         }
     }
+    const BendingWeights bending = bendingWeights(g, scene.bendingStiffness());
+    if (bending.active())
+        e.bending = bendingEnergy(
+            bending, [&](int i, int j) { return state.positions[std::size_t(g.index(i, j))]; });
     return e;
 }
 

@@ -15,7 +15,8 @@ struct Energy {
     double kinetic = 0;  // Σ ½ m_k |v_k|²  [J]
     double spring = 0;   // Σ over springs (each once) ½ K (|d| − L)²  [J]
     double gravity = 0;  // −Σ m_k ⟨g, p_k⟩  [J]
-    double total() const { return kinetic + spring + gravity; }
+    double bending = 0;  // a material's bending energy (model/bending.h) [J]
+    double total() const { return kinetic + spring + gravity + bending; }
 };
 
 Energy energy(const Scene& scene, const SimState& state);

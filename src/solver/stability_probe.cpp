@@ -66,7 +66,8 @@ double explicitEulerEnergy(const Trial& t, const SimState& s) {
     std::vector<glm::dvec3> x(n), hx(n);
     for (std::size_t k = 0; k < n; ++k) x[k] = s.positions[k] - t.start.positions[k];
     stiffnessProduct(s.nu, s.nv, t.springs, t.start.positions.data(), x.data(), t.pinned.data(),
-                     hx.data(), 0, std::int64_t(n));
+                     hx.data(), 0, std::int64_t(n),
+                     bendingWeights(t.scene.grid(), t.scene.bendingStiffness()));
     const double c = t.scene.dampingRate();
     double q = 0;
     for (std::size_t k = 0; k < n; ++k) {

@@ -83,6 +83,9 @@ struct Params {
         double k;  // [N/m]; 0 = not modelled
     };
     std::vector<OffsetStiffness> offsetStiffness;
+    // A material's bending stiffness B [N·m] (docs/physics.md "Bending"): the quadratic energy of
+    // second differences along u and v and a twist per cell; 0 = not modelled.
+    double bend = 0;
     double damping = 0;      // μ [N·s/m]: the drag −μ v on every vertex
     double dampingRate = 0;  // c [1/s]: a material's air damping, the drag −c·m_k·v on vertex k
     V3 gravity{0, -9.81, 0};               // [m/s²]
@@ -124,6 +127,7 @@ public:
     const std::vector<V3>& velocities() const { return v_; }
     double kineticEnergy() const;  // Σ ½ m_k |v_k|² [J]
     double springEnergy() const;   // Σ over springs, each once, ½ K (|d| − L)² [J]
+    double bendingEnergy() const;  // the bending energy of `bend` [J]
     double gravityEnergy() const;  // −Σ m_k ⟨g, p_k⟩ [J]
     double mass(int k) const { return mass_[k]; }  // m_k [kg]
     bool finiteAndBelowMaxSpeed() const;
@@ -150,6 +154,10 @@ private:
     double drag(int k) const;  // μ_k of the drag −μ_k v on vertex k [N·s/m]
     double restLength(int di, int dj) const;
     V3 springForces(const std::vector<V3>& p, int i, int j) const;
+    // The bending force −∂E_b/∂w of the field w, added into f: each stencil scatters its gradient
+    // to its members (the solvers gather; this is the same energy written the other way round).
+    // Entries of w at pinned vertices read as 0 unless `pinnedColumns`.
+    void addBending(const std::vector<V3>& w, std::vector<V3>& f, bool pinnedColumns = true) const;
     V3 windForce(const std::vector<V3>& p, int i, int j) const;
     void applyColliders(V3& p, V3& v) const;
     double colliderTime_ = 0;  // the end of the step being taken [s]: where colliders are
