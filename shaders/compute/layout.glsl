@@ -38,6 +38,8 @@ layout(std140, binding = 0) uniform Params {
     // twelve as the C++ float[12]. A material's structural springs along u and v differ.
     vec4 stiffness[3];
     vec4 restLength[3];
+    // w_u, w_v, t of a material's bending energy [N/m] (bending.glsl; read under HAS_BENDING).
+    vec4 bending;
 } params;
 
 #ifdef HAS_COLLIDERS

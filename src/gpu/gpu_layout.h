@@ -68,8 +68,11 @@ struct Params {
     // and is laid out exactly as a float[12]. The first starts on 16 bytes, after 12 unused.
     alignas(16) float stiffness[12];
     float restLength[12];
+    // A material's bending energy (model/bending.h): w_u, w_v, t inside the sheet [N/m], and 0;
+    // all 0 when the scene has none (then no kernel reads it: HAS_BENDING is not defined).
+    float bending[4];
 };
-static_assert(sizeof(Params) == 160);
+static_assert(sizeof(Params) == 176);
 static_assert(offsetof(Params, grid) == 0);
 static_assert(offsetof(Params, dt) == 8);
 static_assert(offsetof(Params, dampingRate) == 12);
@@ -80,6 +83,7 @@ static_assert(offsetof(Params, windStrength) == 44);
 static_assert(offsetof(Params, cgTolerance) == 48);
 static_assert(offsetof(Params, stiffness) == 64);
 static_assert(offsetof(Params, restLength) == 112);
+static_assert(offsetof(Params, bending) == 160);
 // GL guarantees every device at least this many bytes per uniform block
 // (GL_MAX_UNIFORM_BLOCK_SIZE); GpuSolver still checks the device's own value.
 inline constexpr std::size_t kMinUniformBlockSize = 16384;

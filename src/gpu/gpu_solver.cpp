@@ -11,6 +11,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/shader_loader.h"
+#include "model/bending.h"
 #include "model/errors.h"
 #include "model/pin_follow.h"
 
@@ -235,6 +236,10 @@ void GpuSolver::uploadParams(const Scene& scene) {
         p.stiffness[o] = float(scene.slotStiffness(int(o)));
         p.restLength[o] = float(g.restLength(kSpringOffsets[o].di, kSpringOffsets[o].dj));
     }
+    const BendingWeights bending = bendingWeights(g, scene.bendingStiffness());
+    p.bending[0] = float(bending.alongU);
+    p.bending[1] = float(bending.alongV);
+    p.bending[2] = float(bending.twist);
     glBindBuffer(GL_UNIFORM_BUFFER, paramsBuffer_);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof p, &p);
 }

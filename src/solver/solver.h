@@ -40,6 +40,7 @@ struct StepResult {
 // The features a scene declares, which decide what a solver computes (and on the GPU, compiles).
 struct Features {
     bool structural = false, shear = false, bend = false, wind = false;
+    bool bending = false;  // a material's bending energy (model/bending.h), not the bend springs
     int planes = 0, spheres = 0, boxes = 0, capsules = 0, meshes = 0;
     // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
     int contactExtras = 0;
