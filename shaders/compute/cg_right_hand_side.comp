@@ -1,5 +1,5 @@
 // implicit_euler, after the forces pass (docs/integrators.md): the right-hand side
-// b = h (F(x_n) − μ v_n + m g − h H v_n) of ((m + hμ) I + h² H) Δv = b, and the conjugate
+// b = h (F(x_n) + m_k (g − c v_n) − h H v_n) of (m_k (1 + hc) I + h² H) Δv = b, and the conjugate
 // gradient's start Δv = 0, r = b, p = r, with the work groups' partial sums of r·r.
 // Pinned rows are 0.
 #include "layout.glsl"
@@ -22,9 +22,11 @@ void main() {
         vec3 hv = stiffnessProduct(ij, k);
         if (grabbed(k)) hv += uGrab.w * v;
         float h = params.dt;
-        vec3 b = x.w == 0.0
-                     ? vec3(0.0)
-                     : h * (forces[k].xyz - params.damping * v + params.gravity / x.w - h * hv);
+        vec3 b = vec3(0.0);  // a pinned row (x.w = 0)
+        if (x.w != 0.0) {
+            float m = 1.0 / x.w;  // m_k [kg]
+            b = h * (forces[k].xyz + m * (params.gravity - params.dampingRate * v) - h * hv);
+        }
         cgVelocityChange[k] = vec4(0.0);
         cgResidual[k] = vec4(b, 0.0);
         cgDirection[k] = vec4(b, 0.0);

@@ -31,17 +31,19 @@ vec3 windForce(vec3 normal, vec3 direction, float strength) {
 }
 #endif
 
-// a(x, v) = (F(x) − μ v)/m + g of a free vertex (docs/integrators.md), m = 1/inverseMass.
-vec3 acceleration(vec3 f, vec3 v, float inverseMass, float damping, vec3 g) {
-    return (f - damping * v) * inverseMass + g;
+// a(x, v) = F(x)/m_k − c v + g of a free vertex (docs/integrators.md), 1/m_k = inverseMass, c the
+// damping rate: the drag −c m_k v over m_k. As the CPU's accelerationComponent
+// (src/model/spring_math.h).
+vec3 acceleration(vec3 f, vec3 v, float inverseMass, float dampingRate, vec3 g) {
+    return f * inverseMass - dampingRate * v + g;
 }
 
 #ifdef INTEGRATOR_EXPLICIT_EULER
 // The seed's explicit Euler (DESIGN.md §2, seed eq. (6)): the position moves with the OLD
 // velocity.
-void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float damping,
+void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float dampingRate,
                vec3 g) {
-    vec3 a = acceleration(f, v, inverseMass, damping, g);
+    vec3 a = acceleration(f, v, inverseMass, dampingRate, g);
     p += dt * v;
     v += dt * a;
 }
@@ -49,9 +51,9 @@ void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, 
 
 #ifdef INTEGRATOR_SYMPLECTIC_EULER
 // Symplectic (semi-implicit) Euler: the position moves with the NEW velocity.
-void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float damping,
+void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float dampingRate,
                vec3 g) {
-    v += dt * acceleration(f, v, inverseMass, damping, g);
+    v += dt * acceleration(f, v, inverseMass, dampingRate, g);
     p += dt * v;
 }
 #endif
@@ -59,17 +61,17 @@ void integrate(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, 
 #ifdef INTEGRATOR_VERLET
 // Velocity Verlet's first kick, damping at v_n, and drift: v_half = v_n + (h/2) a(x_n, v_n),
 // x_{n+1} = x_n + h v_half.
-void kickAndDrift(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt, float damping,
-                  vec3 g) {
-    v += (0.5 * dt) * acceleration(f, v, inverseMass, damping, g);
+void kickAndDrift(inout vec3 p, inout vec3 v, vec3 f, float inverseMass, float dt,
+                  float dampingRate, vec3 g) {
+    v += (0.5 * dt) * acceleration(f, v, inverseMass, dampingRate, g);
     p += dt * v;
 }
 
 // The second kick with its damping at v_{n+1} (the trapezoidal rule), solved per vertex:
-// v_{n+1} = (v_half + (h/2)(F_{n+1}/m + g)) / (1 + hμ/(2m)).
-vec3 kick(vec3 vHalf, vec3 f, float inverseMass, float dt, float damping, vec3 g) {
+// v_{n+1} = (v_half + (h/2)(F_{n+1}/m_k + g)) / (1 + hc/2).
+vec3 kick(vec3 vHalf, vec3 f, float inverseMass, float dt, float dampingRate, vec3 g) {
     float halfStep = 0.5 * dt;
-    return (vHalf + halfStep * (f * inverseMass + g)) / (1.0 + halfStep * damping * inverseMass);
+    return (vHalf + halfStep * (f * inverseMass + g)) / (1.0 + halfStep * dampingRate);
 }
 #endif
 

@@ -4,6 +4,6 @@
 void integrateVertex(uint step, uint k) {
     vec4 x = positions[k], v = velocities[k];
     vec3 p = x.xyz, vel = v.xyz;
-    integrate(p, vel, forces[k].xyz, x.w, params.dt, params.damping, params.gravity);
+    integrate(p, vel, forces[k].xyz, x.w, params.dt, params.dampingRate, params.gravity);
     finishStep(step, k, x, v, p, vel);
 }

@@ -3,8 +3,13 @@
 // the grid within two of the vertex: where the positions come from (the SSBO, or the work
 // group's tile in shared memory, forces_tile.glsl).
 
-// The springs of the up to 12 neighbours, the wind and the grab on vertex ij (index k), and its
-// normal.
+#ifdef HAS_BENDING
+#define BENDING_FIELD(q) positionAt(q)
+#include "bending.glsl"
+#endif
+
+// The springs of the up to 12 neighbours, a material's bending, the wind and the grab on vertex ij
+// (index k), and its normal.
 void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
     vec3 p = positionAt(ij);
     f = vec3(0.0);
@@ -16,6 +21,9 @@ void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
         if (!insideGrid(q)) continue;
         f += springForce(p, positionAt(q), springStiffness(s), springRestLength(s));
     }
+#endif
+#ifdef HAS_BENDING
+    f += bendingForce(ij, params.bending.xyz);
 #endif
     int i = ij.x, j = ij.y;
     n = vertexNormal(positionAt(ivec2(min(i + 1, gridU() - 1), j)),

@@ -10,7 +10,7 @@
 #endif
 
 layout(std430, binding = 0) STATE_COHERENT buffer Positions {
-    vec4 positions[];  // xyz [m], w inverse mass [1/kg], 0 for a pinned vertex
+    vec4 positions[];  // xyz [m], w the vertex's inverse mass 1/m_k [1/kg], 0 for a pinned vertex
 };
 layout(std430, binding = 1) STATE_COHERENT buffer Velocities {
     vec4 velocities[];  // xyz [m/s], w the pinned vertex's slot in pins[]
@@ -23,20 +23,23 @@ layout(std430, binding = 3) STATE_COHERENT buffer Normals {
 };
 // The scene's parameters (gpu::Params), the same for every invocation: a uniform block, read
 // through the uniform path rather than as storage. std140: each vec3 starts a 16-byte slot and the
-// float after it fills the slot's last 4 bytes.
+// float after it fills the slot's last 4 bytes; an array of vec4 starts on 16 bytes.
 layout(std140, binding = 0) uniform Params {
     ivec2 grid;             // nu, nv [vertices]
     float dt;               // Δt [s]
-    float damping;          // μ [N·s/m]
+    float dampingRate;      // c [1/s]: the drag on vertex k is −c·m_k·v_k
     vec3 gravity;           // g [m/s²]
     float maxSpeedSquared;  // max_speed² [m²/s²]: a faster vertex makes the step unstable
     vec3 windDirection;     // unit; 0 without wind
     float windStrength;     // K_w [N]; 0 without wind
-    vec3 stiffness;         // K of the structural, shear, bend families [N/m], by family index
     float cgTolerance;      // implicit_euler's relative CG tolerance on |r| / |b|
-    // L of spring-table slot o at [o / 4][o % 4] [m] (springRestLength): std140 would pad a
-    // float[12] to 16 bytes per element; vec4s pack the twelve as the C++ float[12].
+    // K [N/m] and L [m] of spring-table slot o at [o / 4][o % 4] (springStiffness,
+    // springRestLength): std140 would pad a float[12] to 16 bytes per element; vec4s pack the
+    // twelve as the C++ float[12]. A material's structural springs along u and v differ.
+    vec4 stiffness[3];
     vec4 restLength[3];
+    // w_u, w_v, t of a material's bending energy [N/m] (bending.glsl; read under HAS_BENDING).
+    vec4 bending;
 } params;
 
 #ifdef HAS_COLLIDERS

@@ -17,7 +17,7 @@ void main() {
     uint k = vertexIndex(ij);
     float h = params.dt;
     vec4 x = positions[k], v = velocities[k];
-    vec3 a = acceleration(forces[k].xyz, v.xyz, x.w, params.damping, params.gravity);
+    vec3 a = acceleration(forces[k].xyz, v.xyz, x.w, params.dampingRate, params.gravity);
     vec3 x0, v0;
     if (uStage == 0) {
         x0 = x.xyz;

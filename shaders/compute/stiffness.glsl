@@ -3,14 +3,18 @@
 // Mirrors src/model/stiffness.h. The including kernel #defines STIFFNESS_VECTOR as the array H
 // multiplies: velocities for the right-hand side, cgDirection for A p.
 #include "springs.glsl"
+#ifdef HAS_BENDING
+#define BENDING_FIELD(q) STIFFNESS_VECTOR[vertexIndex(q)].xyz
+#include "bending.glsl"
+#endif
 
 // (H w)_k = Σ_s J_s(x) (w_k − w_q) over the springs of vertex k, J_s clamped
 // (springJacobianTimes) at the positions x. The row of a pinned vertex is 0: a pin is a
 // constraint, not a degree of freedom; the solve keeps w = 0 there, which removes its column.
 vec3 stiffnessProduct(ivec2 ij, uint k) {
     vec3 y = vec3(0.0);
-#if NUM_SPRING_OFFSETS > 0
     if (positions[k].w == 0.0) return y;
+#if NUM_SPRING_OFFSETS > 0
     vec3 xk = positions[k].xyz;
     vec3 wk = STIFFNESS_VECTOR[k].xyz;
     for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
@@ -21,6 +25,9 @@ vec3 stiffnessProduct(ivec2 ij, uint k) {
         y += springJacobianTimes(xk, positions[kq].xyz, springStiffness(s), springRestLength(s),
                                  wk - STIFFNESS_VECTOR[kq].xyz);
     }
+#endif
+#ifdef HAS_BENDING
+    y -= bendingForce(ij, params.bending.xyz);  // the bending Hessian is constant: H_b w = −F_b(w)
 #endif
     return y;
 }

@@ -12,7 +12,7 @@ void main() {
     uint k = vertexIndex(ij);
     vec4 x = positions[k], v = velocities[k];
     vec3 p = x.xyz, vel = v.xyz;
-    kickAndDrift(p, vel, forces[k].xyz, x.w, params.dt, params.damping, params.gravity);
+    kickAndDrift(p, vel, forces[k].xyz, x.w, params.dt, params.dampingRate, params.gravity);
     applyPin(uStep, x, v, p, vel);
 #ifdef HAS_COLLIDERS
     applyColliders(uStep, p, vel);

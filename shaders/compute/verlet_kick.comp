@@ -13,7 +13,7 @@ void main() {
     uint k = vertexIndex(ij);
     vec4 x = positions[k], v = velocities[k];
     vec3 p = x.xyz;
-    vec3 vel = kick(v.xyz, forces[k].xyz, x.w, params.dt, params.damping, params.gravity);
+    vec3 vel = kick(v.xyz, forces[k].xyz, x.w, params.dt, params.dampingRate, params.gravity);
     applyPin(uStep, x, v, p, vel);
     velocities[k] = vec4(vel, v.w);
     checkStability(uStep, k, p, vel);

@@ -1,10 +1,12 @@
 // clothsim validate SCENE: checks a scene and prints what it models (DESIGN.md §5).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "app/backend_flags.h"
 #include "app/cli.h"
 #include "backends/solver_factory.h"
+#include "model/bending.h"
 #include "model/collider_limits.h"
 #include "model/collider_speed.h"
 #include "model/errors.h"
@@ -123,11 +125,15 @@ void printModel(const Scene& s) {
             "springs      structural K = %.6g N/m along u, %.6g N/m along v; shear K = "
             "%.6g N/m; Poisson ratio %.3g (fixed by the lattice)\n",
             k.alongU, k.alongV, k.shear, m->shear / c);
-        if (m->bend > 0)
+        const BendingWeights w = bendingWeights(g, s.bendingStiffness());
+        if (w.active())
             std::printf(
-                "bending      B = %g N*m: NOT MODELLED YET (the grid has no bending "
-                "energy; the cloth folds freely)\n",
-                m->bend);
+                "bending      B = %g N*m: energy weights %.4g N/m along u, %.4g along v, "
+                "twist %.4g; bending length (B/(rho g))^(1/3) = %.3g m\n",
+                m->bend, w.alongU, w.alongV, w.twist,
+                std::cbrt(m->bend / (m->density * std::max(glm::length(s.gravity), 1e-300))));
+        else
+            std::printf("bending      not modelled\n");
         std::printf("forces       gravity %s m/s^2\n", vec(s.gravity).c_str());
         std::printf("             air drag c = %g 1/s%s\n", m->airDamping,
                     m->airDamping > 0 ? "" : " (not modelled)");

@@ -11,8 +11,8 @@ namespace cloth {
 
 struct CpuOptions {
     Precision precision = Precision::Double;
-    int threads = 0;              // 0: one per hardware thread, 1: serial
-    CpuIsa isa = CpuIsa::Auto;    // row kernels; Auto: the widest this CPU has (cpu/cpu_rows.h)
+    int threads = 0;            // 0: one per hardware thread, 1: serial
+    CpuIsa isa = CpuIsa::Auto;  // row kernels; Auto: the widest this CPU has (cpu/cpu_rows.h)
 };
 
 std::unique_ptr<Solver> makeCpuSolver(const Scene& scene, const CpuOptions& options = {});

@@ -1,18 +1,19 @@
 // The CPU backend's colliders (docs/colliders.md): every shape with the shared response of
 // model/collider_contact.h, posed at the end of each step by model/collider_motion.h. A plane or
-// sphere without thickness, friction or motion gets DESIGN.md §2's rule bit for bit from it. applyRow() runs one loop per collider over a row of vertices, and first asks, in a
-// branch-free loop the compiler vectorises, whether any vertex of the row can touch it: a
-// collider far from the row costs that one pass (docs/performance.md).
+// sphere without thickness, friction or motion gets DESIGN.md §2's rule bit for bit from it.
+// applyRow() runs one loop per collider over a row of vertices, and first asks, in a branch-free
+// loop the compiler vectorises, whether any vertex of the row can touch it: a collider far from the
+// row costs that one pass (docs/performance.md).
 #pragma once
 
 #include <memory>
 #include <variant>
 #include <vector>
 
+#include "cpu/cpu_rows.h"
 #include "model/collider_contact.h"
 #include "model/collider_motion.h"
 #include "model/collider_pose.h"
-#include "cpu/cpu_rows.h"
 #include "model/scene.h"
 
 namespace cloth {

@@ -12,6 +12,7 @@
 
 #include "cpu/cpu_solver.h"
 #include "cpu/cpu_solver_vertex.h"
+#include "model/bending.h"
 #include "model/forces.h"
 
 namespace cloth {
@@ -85,6 +86,15 @@ void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
         kernels_->gather[families_](f + 2, g, nu - 4);
         springByspring(inner1, nu);
     }
+    if (bending_.active()) {  // after the springs, as in the vertex-by-vertex path
+        auto at = [&](int qi, int qj) { return x_.get(std::int64_t(qj) * nu + qi); };
+        for (int i = 0; i < nu; ++i) {
+            const Vec3<T> b = bendingForce<T>(bending_, i, j, at);
+            f.x[i] += b.x;
+            f.y[i] += b.y;
+            f.z[i] += b.z;
+        }
+    }
     if (features_.wind) {  // central differences, clamped at the border (DESIGN.md §2)
         const ConstRow3<T> row = x_.row(k), down = x_.row(std::int64_t(std::max(j - 1, 0)) * nu),
                            up = x_.row(std::int64_t(std::min(j + 1, nv - 1)) * nu);
@@ -137,8 +147,8 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
     sweepRows(band, [&](int j) {
         const std::int64_t k = std::int64_t(j) * nu;
         forceRow(band, j, f);
-        update({x_.row(k), f, v_.row(k), xNext_.row(k), dt_t_, damping_, inverseMass_, gravity_.x,
-                gravity_.y, gravity_.z},
+        update({x_.row(k), f, v_.row(k), xNext_.row(k), inverseMass_.data() + k, dt_t_,
+                dampingRate_, gravity_.x, gravity_.y, gravity_.z},
                nu);
         for (; pin != pinList_.end() && *pin < k + nu; ++pin) {  // pins, then colliders (§2)
             xNext_.set(*pin, pinPosition_[*pin]);
@@ -180,6 +190,7 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
             if (!interior && (qi < 0 || qi >= nu || qj < 0 || qj >= nv)) continue;
             f += springForce(p, x_.get(k + s.indexOffset), s.stiffness, s.restLength);
         }
+        if (bending_.active()) f += bendingForce<T>(bending_, i, j, at);
         if (features_.wind) {
             const Vec3<T> n = vertexNormal<T>(nu, nv, i, j, at), w = windDirection_;
             addWind(n.x, n.y, n.z, w.x, w.y, w.z, windStrength_, f.x, f.y, f.z);
@@ -201,8 +212,8 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
     template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                 \
     template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int) const; \
     template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                    \
-    template void CpuSolver<T>::gatherForces(Band&);                                             \
-    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                  \
+    template void CpuSolver<T>::gatherForces(Band&);                                              \
+    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                   \
     template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                      \
     template bool CpuSolver<T>::reportFirstBad(Band&, std::int64_t, std::int64_t);
 CLOTH_INSTANTIATE(float)

@@ -28,38 +28,39 @@ double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value
     return total;
 }
 
-// out = A p = (m + hμ) p + h² H p on this band (pinned rows 0), H the clamped stiffness of the
-// state x_ the step linearises at, plus the grab spring's K I.
+// out = A p = m_k (1 + hc) p + h² H p on this band (pinned rows 0), H the clamped stiffness of
+// the state x_ the step linearises at, plus the grab spring's K I.
 template <typename T>
 void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
                                  std::vector<Vec3<T>>& out) {
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, p.data(), pinned_.data(), out.data(),
-                     band.begin, band.end);
-    const T h2 = dt_t_ * dt_t_;
+                     band.begin, band.end, bending_);
+    const T h2 = dt_t_ * dt_t_, drag = T(1) + dt_t_ * dampingRate_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         if (pinned_[k]) continue;
-        out[k] = (T(1) / inverseMass_ + dt_t_ * damping_) * p[k] + h2 * out[k];
+        out[k] = (drag / inverseMass_[std::size_t(k)]) * p[k] + h2 * out[k];
     }
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
         out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
 }
 
-// Backward Euler linearised once (Baraff & Witkin): ((m + hμ) I + h² H) Δv =
-// h (F − μ v + m g − h H v), by conjugate gradient with pins as constraints (their rows held 0).
+// Backward Euler linearised once (Baraff & Witkin): (m_k (1 + hc) I + h² H) Δv =
+// h (F + m_k (g − c v) − h H v), by conjugate gradient with pins as constraints (their rows held
+// 0).
 template <typename T>
 bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     gatherForces(band);
     const T h = dt_t_;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
-                     band.end);
+                     band.end, bending_);
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end)
         ap_[grab_->vertex] += grab_->stiffness * v_.get(grab_->vertex);
     for (std::int64_t k = band.begin; k < band.end; ++k) {
+        const T m = T(1) / inverseMass_[std::size_t(k)];
         const Vec3<T> b =
-            pinned_[k]
-                ? Vec3<T>(0)
-                : h * (f_.get(k) - damping_ * v_.get(k) + gravity_ / inverseMass_ - h * ap_[k]);
+            pinned_[k] ? Vec3<T>(0)
+                       : h * (f_.get(k) + m * (gravity_ - dampingRate_ * v_.get(k)) - h * ap_[k]);
         dv_[k] = Vec3<T>(0);
         r_[k] = b;
         p_[k] = b;

@@ -43,12 +43,14 @@ struct ConstRow3 {
 };
 
 // One Euler update of a row: the state in (xIn, v), the force f, the new positions into xOut
-// (v in place). Parameters in SI units; inverseMass 1/kg, one mass per cloth (DESIGN.md §2).
+// (v in place). inverseMass: the row's 1/m_k [1/kg], one per vertex; dampingRate c [1/s]; the
+// rest in SI units.
 template <typename T>
 struct EulerRow {
     ConstRow3<T> xIn, f;
     Row3<T> v, xOut;
-    T h, damping, inverseMass, gx, gy, gz;
+    const T* inverseMass;
+    T h, dampingRate, gx, gy, gz;
 };
 
 // Row j's whole 12-neighbour gather over a run of columns where every neighbour exists: p the

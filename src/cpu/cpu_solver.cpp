@@ -99,9 +99,14 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;
     forcesValid_ = false;
-    inverseMass_ = T(1.0 / scene.cloth.mass);
+    // The masses of the scene as given: a new mass (the viewer's) rescales every vertex's.
+    inverseMass_.resize(std::size_t(grid_.count()));
+    for (int j = 0; j < grid_.nv; ++j)
+        for (int i = 0; i < grid_.nu; ++i)
+            inverseMass_[std::size_t(grid_.index(i, j))] = T(1.0 / scene.vertexMass(i, j));
     dt_t_ = T(scene.integrator.dt);
-    damping_ = T(scene.damping);
+    dampingRate_ = T(scene.dampingRate());
+    bending_ = bendingWeights(grid_, scene.bendingStiffness());
     gravity_ = cast<T>(scene.gravity);
     maxSpeed_ = scene.maxSpeed;
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
@@ -197,14 +202,15 @@ bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         Vec3<T> p = x_.get(k), v = v_.get(k);
         const Vec3<T> f = f_.get(k);  // the row kernels' update, one vertex at a time
-        for (int c = 0; c < 3; ++c) update(p[c], v[c], f[c], h, damping_, inverseMass_, gravity_[c]);
+        const T w = inverseMass_[std::size_t(k)];
+        for (int c = 0; c < 3; ++c) update(p[c], v[c], f[c], h, dampingRate_, w, gravity_[c]);
         if (!finishStep(band, k, p, v)) return false;
     }
     return true;
 }
 
 // Velocity Verlet, kick–drift–kick, the second kick's damping taken at v_{n+1} (trapezoidal):
-// v_{n+1} = (v_half + h/2 (F_{n+1}/m + g)) / (1 + hμ/(2m)). F_{n+1} stays in f_ for the next step.
+// v_{n+1} = (v_half + h/2 (F_{n+1}/m_k + g)) / (1 + hc/2). F_{n+1} stays in f_ for the next step.
 template <typename T>
 bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     if (!haveForces) {
@@ -222,9 +228,10 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     gatherForces(band);  // F(x_{n+1}); the kick reads only its own vertex
     haveForces = true;
     bool ok = true;
-    const T w = inverseMass_;
+    const T denominator = T(1) + half * dampingRate_;
     for (std::int64_t k = band.begin; k < band.end && ok; ++k) {  // kick
-        Vec3<T> v = (v_.get(k) + half * (f_.get(k) * w + gravity_)) / (T(1) + half * damping_ * w);
+        const T w = inverseMass_[std::size_t(k)];
+        Vec3<T> v = (v_.get(k) + half * (f_.get(k) * w + gravity_)) / denominator;
         if (pinned_[k]) v = pinVelocity(k);
         v_.set(k, v);
         const Vec3<T> p = x_.get(k);
@@ -256,7 +263,7 @@ bool CpuSolver<T>::stepRk4(Band& band, const Team& team) {
             }
             if (stage == 3) {
                 if (!finishStep(band, k, x0_[k] + sixth * (sumX_[k] + v),
-                                  v0_[k] + sixth * (sumV_[k] + a)))
+                                v0_[k] + sixth * (sumV_[k] + a)))
                     return false;
                 continue;
             }
@@ -362,7 +369,7 @@ std::size_t CpuSolver<T>::allocatedBytes() const {
     for (const auto* a :
          {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
         vectors += a->size();
-    return vectors * sizeof(Vec3<T>) + pinned_.size();
+    return vectors * sizeof(Vec3<T>) + inverseMass_.size() * sizeof(T) + pinned_.size();
 }
 
 template <typename T>

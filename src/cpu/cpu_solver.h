@@ -14,10 +14,11 @@
 #include "cpu/cpu_colliders.h"
 #include "cpu/cpu_rows.h"
 #include "cpu/cpu_soa.h"
-#include "model/pin_follow.h"
-#include "solver/solver.h"
-#include "model/stiffness.h"
 #include "cpu/worker_pool.h"
+#include "model/bending.h"
+#include "model/pin_follow.h"
+#include "model/stiffness.h"
+#include "solver/solver.h"
 
 namespace cloth {
 
@@ -112,7 +113,7 @@ private:
     void applyPin(std::int64_t k, Vec3<T>& p, Vec3<T>& v) const;
     void constrain(std::int64_t k, Vec3<T>& p, Vec3<T>& v);  // pins, then colliders
     bool checkStability(Band& band, std::int64_t k, const Vec3<T>& p, const Vec3<T>& v) const;
-    void applyColliders(Vec3<T>& p, Vec3<T>& v) const;              // colliders in scene order
+    void applyColliders(Vec3<T>& p, Vec3<T>& v) const;  // colliders in scene order
     [[gnu::cold, gnu::noinline]] void reportBad(Band& band, std::int64_t k, const Vec3<T>& p,
                                                 T speed2) const;
     Vec3<T> acceleration(std::int64_t k, const Vec3<T>& v) const;
@@ -156,9 +157,12 @@ private:
     double tolerance_ = 0;
     int maxIterations_ = 0;
     bool forcesValid_ = false;  // verlet: f_ holds F(x) of the current state
-    T inverseMass_;             // 1/m: one mass per cloth (DESIGN.md §2)
+    // 1/m_k [1/kg] per vertex (Scene::vertexMass), pinned ones included: a pin resets its
+    // vertex after the update, whatever its mass.
+    AlignedVector<T> inverseMass_;
     std::vector<std::uint8_t> pinned_;
-    T dt_t_, damping_, maxSpeed2_, windStrength_;
+    T dt_t_, dampingRate_, maxSpeed2_, windStrength_;  // dampingRate_: c [1/s], drag −c m_k v_k
+    BendingWeights bending_;  // a material's bending energy (model/bending.h); inactive: none
     Vec3<T> gravity_, windDirection_;
     CpuColliders<T> colliders_;
     // Poses the moving colliders and the pins that follow them at the end of step `stepNumber`

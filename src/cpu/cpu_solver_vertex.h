@@ -6,15 +6,20 @@
 #include <cmath>
 #include <variant>
 
-#include "model/spring_math.h"
-
 #include "cpu/cpu_solver.h"
+#include "model/spring_math.h"
 
 namespace cloth {
 
+// a = F w_k − c v + g (model/spring_math.h accelerationComponent, component by component).
 template <typename T>
 inline Vec3<T> CpuSolver<T>::acceleration(std::int64_t k, const Vec3<T>& v) const {
-    return (f_.get(k) - damping_ * v) * inverseMass_ + gravity_;
+    const Vec3<T> f = f_.get(k);
+    const T w = inverseMass_[std::size_t(k)];
+    Vec3<T> a;
+    for (int c = 0; c < 3; ++c)
+        a[c] = accelerationComponent(f[c], v[c], dampingRate_, w, gravity_[c]);
+    return a;
 }
 
 // A pinned vertex goes back to its pin, at the pin's velocity (0, or a followed collider's).

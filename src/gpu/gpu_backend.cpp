@@ -17,7 +17,9 @@ std::string describeGpu() {
 
 std::string describeGpuVariant(const Scene& scene, const GpuOptions& options) {
     std::string line;
-    for (const auto& [name, value] : gpuDefines(scene, chooseWorkGroup({options.workGroupX, options.workGroupY}, nullptr, options.workGroupKey))) {
+    for (const auto& [name, value] :
+         gpuDefines(scene, chooseWorkGroup({options.workGroupX, options.workGroupY}, nullptr,
+                                           options.workGroupKey))) {
         if (name == "SPRING_OFFSETS") continue;  // the table rows; NUM_SPRING_OFFSETS says enough
         const bool quote = value.find(' ') != std::string::npos;
         line += (line.empty() ? "" : " ") + name;
@@ -29,10 +31,10 @@ std::string describeGpuVariant(const Scene& scene, const GpuOptions& options) {
 std::optional<std::string> gpuGridRefusal(const Scene& scene, const GpuOptions& options) {
     const GpuInfo& info = GlContext::instance().info();
     try {
-        checkGridFits(scene,
-                      chooseWorkGroup({options.workGroupX, options.workGroupY}, &info,
-                                      options.workGroupKey),
-                      info);
+        checkGridFits(
+            scene,
+            chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey),
+            info);
     } catch (const InputError& e) {
         return e.reason();
     }

@@ -6,9 +6,9 @@
 #include <optional>
 #include <string>
 
+#include "gpu/gpu_options.h"
 #include "model/scene.h"
 #include "solver/solver.h"
-#include "gpu/gpu_options.h"
 
 namespace cloth {
 

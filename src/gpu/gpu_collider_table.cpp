@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cstring>
 
-#include "model/mesh_sdf.h"
-#include "model/errors.h"
-#include "model/pin_follow.h"
 #include "gpu/gpu_buffers.h"
+#include "model/errors.h"
+#include "model/mesh_sdf.h"
+#include "model/pin_follow.h"
 
 namespace cloth::gpu {
 namespace {

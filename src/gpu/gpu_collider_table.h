@@ -24,11 +24,11 @@
 #include <variant>
 #include <vector>
 
+#include "gpu/gpu_layout.h"
+#include "gpu/shader_loader.h"
 #include "model/collider_motion.h"
 #include "model/collider_pose.h"
 #include "model/scene.h"
-#include "gpu/gpu_layout.h"
-#include "gpu/shader_loader.h"
 
 namespace cloth::gpu {
 

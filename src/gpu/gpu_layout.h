@@ -11,7 +11,7 @@ namespace cloth::gpu {
 
 // Binding points of the shader storage blocks, as in layout.glsl.
 enum Binding : unsigned {
-    kPositions = 0,   // vec4 per vertex: xyz [m], w inverse mass [1/kg], 0 for a pinned vertex
+    kPositions = 0,   // vec4 per vertex: xyz [m], w inverse mass 1/m_k [1/kg], 0 when pinned
     kVelocities = 1,  // vec4 per vertex: xyz [m/s], w the pinned vertex's slot in kPins
     kForces = 2,      // vec4 per vertex: spring + wind force [N]
     kNormals = 3,     // vec4 per vertex: unit normal (0 where undefined)
@@ -50,34 +50,40 @@ enum CgReduction : int { kReduceStart = 0, kReduceAlpha = 1, kReduceBeta = 2 };
 inline constexpr unsigned kParamsBlock = 0;
 
 // The scene's parameters, read by every kernel: layout.glsl's std140 uniform block Params. std140
-// puts a vec3 at a multiple of 16 and lets a float fill the vec3's last 4 bytes; every member
-// here is one named quantity. Uploaded whole by GpuSolver::uploadParams.
+// puts a vec3 at a multiple of 16 and lets a float fill the vec3's last 4 bytes, and starts an
+// array of vec4 at a multiple of 16; every member here is one named quantity. Uploaded whole by
+// GpuSolver::uploadParams.
 struct Params {
-    glm::ivec2 grid;          // nu, nv [vertices]
-    float dt;                 // Δt [s]
-    float damping;            // μ [N·s/m]
-    glm::vec3 gravity;        // g [m/s²]
-    float maxSpeedSquared;    // max_speed² [m²/s²]: a faster vertex makes the step unstable
+    glm::ivec2 grid;        // nu, nv [vertices]
+    float dt;               // Δt [s]
+    float dampingRate;      // c [1/s]: the drag on vertex k is −c·m_k·v_k (Scene::dampingRate)
+    glm::vec3 gravity;      // g [m/s²]
+    float maxSpeedSquared;  // max_speed² [m²/s²]: a faster vertex makes the step unstable
     glm::vec3 windDirection;  // unit; 0 without wind
     float windStrength;       // K_w [N]; 0 without wind
-    glm::vec3 stiffness;      // K of the structural, shear, bend families [N/m], by family index
     float cgTolerance;        // implicit_euler's relative CG tolerance on |r| / |b| [1]
-    // L of spring-table slot o (kSpringOffsets[o]) at [o] [m]. GLSL declares it vec4[3], read
-    // at [o / 4][o % 4]: std140 strides a float[12] at 16 bytes per element, four times the
-    // room, while a vec4 array packs tightly and is laid out exactly as this float[12].
+    // K and L of spring-table slot o (kSpringOffsets[o]) at [o] [N/m], [m] (Scene::slotStiffness,
+    // Grid::restLength). GLSL declares each vec4[3], read at [o / 4][o % 4]: std140 strides a
+    // float[12] at 16 bytes per element, four times the room, while a vec4 array packs tightly
+    // and is laid out exactly as a float[12]. The first starts on 16 bytes, after 12 unused.
+    alignas(16) float stiffness[12];
     float restLength[12];
+    // A material's bending energy (model/bending.h): w_u, w_v, t inside the sheet [N/m], and 0;
+    // all 0 when the scene has none (then no kernel reads it: HAS_BENDING is not defined).
+    float bending[4];
 };
-static_assert(sizeof(Params) == 112);
+static_assert(sizeof(Params) == 176);
 static_assert(offsetof(Params, grid) == 0);
 static_assert(offsetof(Params, dt) == 8);
-static_assert(offsetof(Params, damping) == 12);
+static_assert(offsetof(Params, dampingRate) == 12);
 static_assert(offsetof(Params, gravity) == 16);
 static_assert(offsetof(Params, maxSpeedSquared) == 28);
 static_assert(offsetof(Params, windDirection) == 32);
 static_assert(offsetof(Params, windStrength) == 44);
-static_assert(offsetof(Params, stiffness) == 48);
-static_assert(offsetof(Params, cgTolerance) == 60);
-static_assert(offsetof(Params, restLength) == 64);
+static_assert(offsetof(Params, cgTolerance) == 48);
+static_assert(offsetof(Params, stiffness) == 64);
+static_assert(offsetof(Params, restLength) == 112);
+static_assert(offsetof(Params, bending) == 160);
 // GL guarantees every device at least this many bytes per uniform block
 // (GL_MAX_UNIFORM_BLOCK_SIZE); GpuSolver still checks the device's own value.
 inline constexpr std::size_t kMinUniformBlockSize = 16384;

@@ -28,7 +28,7 @@ inline constexpr long long manyStepsMaxVertices(bool software) {
 
 struct GpuOptions {
     int workGroupX = 16, workGroupY = 16;
-    int checkEvery = 64;                   // steps between reads of the instability flag
+    int checkEvery = 64;  // steps between reads of the instability flag
     ForcesKernel forces = ForcesKernel::Global;
     StepDispatch dispatch = StepDispatch::Auto;
     // What set the work group, as an error names it: the app's CLOTH_WORKGROUP, or the default.

@@ -11,6 +11,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/shader_loader.h"
+#include "model/bending.h"
 #include "model/errors.h"
 #include "model/pin_follow.h"
 
@@ -152,16 +153,18 @@ GpuSolver::~GpuSolver() {
     if (timer_ != 0) glDeleteQueries(1, &timer_);
 }
 
-// Rest positions with w = inverse mass (0 pinned); pinned vertices keep their slot in the pin
-// table in velocity.w. Conversions to float match the CPU float backend's.
+// Rest positions with w = the vertex's inverse mass (0 pinned); pinned vertices keep their slot
+// in the pin table in velocity.w. Conversions to float match the CPU float backend's.
 void GpuSolver::upload(const Scene& scene) {
     const Grid g = scene.grid();
     const std::size_t n = std::size_t(g.count());
     std::vector<glm::vec4> x(n), v(n, glm::vec4(0));
-    inverseMass_ = float(1.0 / scene.cloth.mass);
+    inverseMass_ = inverseMasses(scene);
     for (int j = 0; j < nv_; ++j)
-        for (int i = 0; i < nu_; ++i)
-            x[std::size_t(g.index(i, j))] = vec4(g.restPosition(i, j), inverseMass_);
+        for (int i = 0; i < nu_; ++i) {
+            const std::size_t k = std::size_t(g.index(i, j));
+            x[k] = vec4(g.restPosition(i, j), inverseMass_[k]);
+        }
     for (const Pin& p : scene.pins) {
         const std::int64_t k = g.index(p.i, p.j);
         if (pinSlots_.count(k) != 0) continue;  // listed twice
@@ -220,18 +223,23 @@ void GpuSolver::uploadParams(const Scene& scene) {
     const Grid g = scene.grid();
     gpu::Params p{};
     static_assert(std::size(gpu::Params{}.restLength) == kSpringOffsets.size());
+    static_assert(std::size(gpu::Params{}.stiffness) == kSpringOffsets.size());
     p.grid = glm::ivec2(nu_, nv_);
     p.dt = float(scene.integrator.dt);
-    p.damping = float(scene.damping);
+    p.dampingRate = float(scene.dampingRate());
     p.gravity = glm::vec3(scene.gravity);  // as the CPU float backend converts
     p.maxSpeedSquared = float(scene.maxSpeed * scene.maxSpeed);
     p.windDirection = scene.wind ? glm::vec3(scene.wind->direction) : glm::vec3(0);
     p.windStrength = scene.wind ? float(scene.wind->strength) : 0.0f;
-    p.stiffness = glm::vec3(float(scene.springs.structural), float(scene.springs.shear),
-                            float(scene.springs.bend));
     p.cgTolerance = float(scene.integrator.tolerance);
-    for (std::size_t o = 0; o < kSpringOffsets.size(); ++o)
+    for (std::size_t o = 0; o < kSpringOffsets.size(); ++o) {
+        p.stiffness[o] = float(scene.slotStiffness(int(o)));
         p.restLength[o] = float(g.restLength(kSpringOffsets[o].di, kSpringOffsets[o].dj));
+    }
+    const BendingWeights bending = bendingWeights(g, scene.bendingStiffness());
+    p.bending[0] = float(bending.alongU);
+    p.bending[1] = float(bending.alongV);
+    p.bending[2] = float(bending.twist);
     glBindBuffer(GL_UNIFORM_BUFFER, paramsBuffer_);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof p, &p);
 }

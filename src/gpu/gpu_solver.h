@@ -85,7 +85,9 @@ private:
     void uploadColliders(const Scene& scene);
     long posedSteps(long first);
     void runSteps(long first, long count);
-    void updateInverseMass(float inverseMass);
+    // 1/m_k of every vertex as float (Scene::vertexMass), k = j·nu + i.
+    static std::vector<float> inverseMasses(const Scene& scene);
+    void updateInverseMass(const Scene& scene);
     void storePin(int slot);
     void computeNormals() const;
     void allocateIntegratorBuffers();
@@ -128,7 +130,7 @@ private:
     int groupsX_, groupsY_;
     int checkEvery_;
     double maxSpeed_;
-    float inverseMass_ = 0;                     // [1/kg], in position.w of every free vertex
+    std::vector<float> inverseMass_;            // 1/m_k [1/kg], in position.w of a free vertex
     std::map<std::int64_t, PinSlot> pinSlots_;  // by vertex k: the pins and former pins
     std::vector<glm::vec4> pins_;               // host copy of the Pins table, by slot
     std::size_t pinCapacity_ = 0;               // rows allocated in the Pins buffer

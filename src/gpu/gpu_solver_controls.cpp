@@ -8,10 +8,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "model/pin_follow.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
 #include "gpu/gpu_solver.h"
+#include "model/pin_follow.h"
 
 namespace cloth {
 
@@ -27,7 +27,7 @@ void GpuSolver::write(const SimState& state) {
         throw std::invalid_argument("write: the state is for another grid");
     std::vector<glm::vec4> x(n), v(n);
     for (std::size_t k = 0; k < n; ++k) {
-        x[k] = vec4(state.positions[k], inverseMass_);
+        x[k] = vec4(state.positions[k], inverseMass_[k]);
         v[k] = vec4(state.velocities[k], 0);
     }
     for (const auto& [k, pin] : pinSlots_) {
@@ -69,7 +69,8 @@ void GpuSolver::setPinned(int i, int j, bool pinned) {
         it->second.pinned = false;
         following_.erase(k);
         pins_[std::size_t(it->second.slot)].w = 0;  // re-pinned, it is a still pin
-        subData(buffers_[gpu::kPositions], at + 3 * sizeof(float), &inverseMass_, sizeof(float));
+        subData(buffers_[gpu::kPositions], at + 3 * sizeof(float), &inverseMass_[std::size_t(k)],
+                sizeof(float));
         return;
     }
     if (it == pinSlots_.end()) {
@@ -109,8 +110,8 @@ void GpuSolver::setGrab(const std::optional<Grab>& grab) {
 }
 
 // Everything but the compiled variant is data: the Params block and the Colliders records are
-// rewritten in place (a collider's placement, thickness, friction, motion), and a new mass
-// rewrites position.w. Checks come first, so a refused scene changes nothing.
+// rewritten in place (a collider's placement, thickness, friction, motion), and new masses
+// rewrite position.w. Checks come first, so a refused scene changes nothing.
 void GpuSolver::setParameters(const Scene& scene) {
     if (scene.cloth.nu != nu_ || scene.cloth.nv != nv_)
         throw std::invalid_argument("setParameters: the grid size differs; build a new solver");
@@ -140,18 +141,29 @@ void GpuSolver::setParameters(const Scene& scene) {
     forcesKept_ = false;
     uploadParams(scene);
     uploadColliders(scene);
-    updateInverseMass(float(1.0 / scene.cloth.mass));
+    updateInverseMass(scene);
 }
 
-// position.w of every free vertex (pinned ones keep 0): one read-back and upload of the
-// positions, only when the mass changed.
-void GpuSolver::updateInverseMass(float inverseMass) {
+std::vector<float> GpuSolver::inverseMasses(const Scene& scene) {
+    const Grid g = scene.grid();
+    std::vector<float> w(std::size_t(g.count()));
+    for (int j = 0; j < g.nv; ++j)
+        for (int i = 0; i < g.nu; ++i)
+            w[std::size_t(g.index(i, j))] = float(1.0 / scene.vertexMass(i, j));  // as the CPU's
+    return w;
+}
+
+// position.w of every free vertex (pinned ones keep 0) from the scene's masses, each vertex its
+// own (a new cloth.mass scales them all; a material's lumped masses keep their ratios): one
+// read-back and upload of the positions, only when a mass changed.
+void GpuSolver::updateInverseMass(const Scene& scene) {
+    std::vector<float> inverseMass = inverseMasses(scene);
     if (inverseMass == inverseMass_) return;
-    inverseMass_ = inverseMass;
+    inverseMass_ = std::move(inverseMass);
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
     std::vector<glm::vec4> x = gpu::downloadVec4(buffers_[gpu::kPositions], n);
-    for (glm::vec4& xk : x)
-        if (xk.w != 0) xk.w = inverseMass;
+    for (std::size_t k = 0; k < n; ++k)
+        if (x[k].w != 0) x[k].w = inverseMass_[k];
     subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
 }
 

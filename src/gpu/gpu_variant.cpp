@@ -4,10 +4,11 @@
 #include <cstdlib>
 #include <regex>
 
-#include "model/errors.h"
-#include "solver/solver.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_collider_table.h"
+#include "model/errors.h"
+#include "model/stiffness.h"
+#include "solver/solver.h"
 
 namespace cloth {
 namespace {
@@ -39,14 +40,15 @@ std::string integratorDefine(Method m) {
                      std::string("'") + methodName(m) + "' has no GPU kernel");
 }
 
-// The rows of kSpringOffsets whose family the scene declares, as GLSL ivec4(di, dj, family,
-// slot): the shader's one spring loop walks exactly these (src/model/grid.h, the seed's Q10).
+// The rows of kSpringOffsets whose family the scene models, as GLSL ivec4(di, dj, family,
+// slot): the shader's one spring loop walks exactly these (src/model/grid.h, the seed's Q10),
+// each with the stiffness of its slot.
 std::pair<int, std::string> springTable(const Scene& scene) {
     int count = 0;
     std::string rows;
     for (std::size_t o = 0; o < kSpringOffsets.size(); ++o) {
         const SpringOffset& s = kSpringOffsets[o];
-        if (!(scene.springs.of(s.family) > 0)) continue;
+        if (!familyModelled(scene, s.family)) continue;
         rows += (count++ ? ", " : "") + std::string("ivec4(") + std::to_string(s.di) + ", " +
                 std::to_string(s.dj) + ", " + std::to_string(int(s.family)) + ", " +
                 std::to_string(o) + ")";
@@ -107,6 +109,7 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
     if (f.shear) d.push_back({"HAS_SHEAR", ""});
     if (f.bend) d.push_back({"HAS_BEND", ""});
     if (f.wind) d.push_back({"HAS_WIND", ""});
+    if (f.bending) d.push_back({"HAS_BENDING", ""});
     d.push_back({"NUM_PLANES", std::to_string(f.planes)});
     d.push_back({"NUM_SPHERES", std::to_string(f.spheres)});
     gpu::ColliderTable(scene, dragged).appendDefines(d);

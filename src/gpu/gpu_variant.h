@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "model/scene.h"
 #include "gpu/gpu_options.h"
 #include "gpu/shader_loader.h"
+#include "model/scene.h"
 
 namespace cloth {
 

@@ -43,11 +43,19 @@ CLOTH_LANE void addWind(T nx, T ny, T nz, T wx, T wy, T wz, T strength, T& fx, T
     fz += s * nz;
 }
 
-// One explicit or symplectic Euler update of one component (DESIGN.md §2, seed eq. (6)):
-// a = (F − μ v) w + g, w = 1/m; explicit moves p with the old v, symplectic with the new one.
+// The acceleration of one component of a free vertex (docs/integrators.md): a = F w − c v + g,
+// w = 1/m_k the vertex's inverse mass, c the damping rate (the drag −c m_k v over m_k; the
+// per-vertex form's (F − μ v)/m + g with c = μ/m).
+template <typename T>
+CLOTH_LANE T accelerationComponent(T f, T v, T dampingRate, T inverseMass, T g) {
+    return f * inverseMass - dampingRate * v + g;
+}
+
+// One explicit or symplectic Euler update of one component (DESIGN.md §2, seed eq. (6)) with
+// that acceleration; explicit moves p with the old v, symplectic with the new one.
 template <typename T, bool kSymplectic>
-CLOTH_LANE void eulerComponent(T& p, T& v, T f, T h, T damping, T inverseMass, T g) {
-    const T a = (f - damping * v) * inverseMass + g;
+CLOTH_LANE void eulerComponent(T& p, T& v, T f, T h, T dampingRate, T inverseMass, T g) {
+    const T a = accelerationComponent(f, v, dampingRate, inverseMass, g);
     if (!kSymplectic) p = p + h * v;
     v = v + h * a;
     if (kSymplectic) p = p + h * v;

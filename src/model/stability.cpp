@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "model/stiffness.h"
+#include "model/vertex_masses.h"
 
 namespace cloth {
 namespace {
@@ -49,12 +50,14 @@ double rk4Dt(double w2max, double c) {
 
 }  // namespace
 
-// Rayleigh-quotient power iteration on H at the rest state.
+// Power iteration on M⁻¹H at the rest state, with Rayleigh quotients pᵀHp/pᵀMp: M⁻¹H is
+// self-adjoint in the M inner product, so they bound ω²_max from below.
 StiffMode stiffestMode(const Scene& scene, int iterations) {
     const Grid g = scene.grid();
     const std::int64_t n = g.count();
     std::vector<std::uint8_t> pinned(std::size_t(n), 0);
     for (const Pin& p : scene.pins) pinned[std::size_t(g.index(p.i, p.j))] = 1;
+    const std::vector<double> mass = vertexMasses(scene);
     const std::size_t size = std::size_t(n);
     std::vector<glm::dvec3> x(size), p(size), y(size);
     for (int j = 0; j < g.nv; ++j)
@@ -70,17 +73,22 @@ StiffMode stiffestMode(const Scene& scene, int iterations) {
         }
     StiffMode mode;
     const auto springs = activeSprings<double>(scene);
-    if (springs.empty()) return mode;
+    const BendingWeights bending = bendingWeights(g, scene.bendingStiffness());
+    if (springs.empty() && !bending.active()) return mode;
     for (int it = 0; it < iterations; ++it) {
-        stiffnessProduct(g.nu, g.nv, springs, x.data(), p.data(), pinned.data(), y.data(), 0, n);
-        double pp = 0, py = 0, yy = 0;
+        stiffnessProduct(g.nu, g.nv, springs, x.data(), p.data(), pinned.data(), y.data(), 0, n,
+                         bending);
+        double pp = 0, pmp = 0, py = 0, yy = 0;
         for (std::size_t k = 0; k < p.size(); ++k) {
             pp += glm::dot(p[k], p[k]);
+            pmp += mass[k] * glm::dot(p[k], p[k]);
             py += glm::dot(p[k], y[k]);
+            y[k] /= mass[k];  // M⁻¹H p
             yy += glm::dot(y[k], y[k]);
         }
         if (!(pp > 0) || !(yy > 0)) break;
         mode.lambda = std::max(mode.lambda, py / pp);
+        mode.omega2 = std::max(mode.omega2, py / pmp);
         const double scale = 1 / std::sqrt(yy);
         for (std::size_t k = 0; k < p.size(); ++k) p[k] = y[k] * scale;
     }
@@ -88,57 +96,67 @@ StiffMode stiffestMode(const Scene& scene, int iterations) {
     return mode;
 }
 
-double methodDt(Method method, double lambda, double mass, double damping) {
-    const double c = damping / mass, w2 = lambda / mass;
-    const double drag = damping > 0 ? 2 / c : kInf;  // the rigid mode: |1 − cΔt| ≤ 1
+double methodDt(Method method, double omega2, double c) {
+    const double drag = c > 0 ? 2 / c : kInf;  // the rigid mode: |1 − cΔt| ≤ 1
     switch (method) {
         case Method::ExplicitEuler:
-            // det = 1 − cΔt + (λ/m)Δt² < 1  ⇔  Δt < μ/λ.
-            if (lambda <= 0) return drag;
-            return std::min(damping / lambda, drag);
+            // det = 1 − cΔt + ω²Δt² < 1  ⇔  Δt < c/ω².
+            if (omega2 <= 0) return drag;
+            return std::min(c / omega2, drag);
         case Method::SymplecticEuler:
-            return w2 > 0 ? (-c + std::sqrt(c * c + 4 * w2)) / w2 : drag;
+            return omega2 > 0 ? (-c + std::sqrt(c * c + 4 * omega2)) / omega2 : drag;
         case Method::Verlet:
-            return w2 > 0 ? 2 / std::sqrt(w2) : kInf;
+            return omega2 > 0 ? 2 / std::sqrt(omega2) : kInf;
         case Method::Rk4:
-            return rk4Dt(w2, c);
+            return rk4Dt(omega2, c);
         case Method::ImplicitEuler:
             return kInf;
     }
     return 0;
 }
 
+double methodDt(Method method, double lambda, double mass, double damping) {
+    return methodDt(method, lambda / mass, damping / mass);
+}
+
 double StabilityBound::safeDt(Method method) const {
-    return methodDt(method, lambdaMax, mass, damping);
+    return methodDt(method, omega2Max, dampingRate);
 }
 
 double StabilityBound::tightDt(Method method) const {
-    return methodDt(method, lambdaPower > 0 ? lambdaPower : lambdaMax, mass, damping);
+    return methodDt(method, omega2Power > 0 ? omega2Power : omega2Max, dampingRate);
 }
 
 StabilityBound estimateStability(const Scene& scene, int powerIterations) {
     const Grid g = scene.grid();
     std::vector<std::uint8_t> pinned(std::size_t(g.count()), 0);
     for (const Pin& p : scene.pins) pinned[std::size_t(g.index(p.i, p.j))] = 1;
-    double lambda = 0;
+    double stiffness[kSpringOffsets.size()];
+    for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
+        stiffness[s] = scene.slotStiffness(int(s));
+    StabilityBound b;
+    // The bending Hessian's rows add at most 16·(w_u + w_v + t) (model/bending.h).
+    const double bendingRow = bendingLambdaBound(bendingWeights(g, scene.bendingStiffness()));
     for (int j = 0; j < g.nv; ++j) {
         for (int i = 0; i < g.nu; ++i) {
             if (pinned[std::size_t(g.index(i, j))]) continue;
-            double row = 0;  // |diagonal| + Σ |off-diagonal| of this vertex's 3×3 block row
-            for (const SpringOffset& o : kSpringOffsets) {
-                const int qi = i + o.di, qj = j + o.dj;
+            double row = bendingRow;  // |diagonal| + Σ |off-diagonal| of this vertex's block row
+            for (std::size_t s = 0; s < kSpringOffsets.size(); ++s) {
+                const int qi = i + kSpringOffsets[s].di, qj = j + kSpringOffsets[s].dj;
                 if (!g.contains(qi, qj)) continue;
-                const double k = scene.springs.of(o.family);
+                const double k = std::abs(stiffness[s]);
                 row += pinned[std::size_t(g.index(qi, qj))] ? k : 2 * k;
             }
-            lambda = std::max(lambda, row);
+            b.lambdaMax = std::max(b.lambdaMax, row);
+            b.omega2Max = std::max(b.omega2Max, row / scene.vertexMass(i, j));
         }
     }
-    StabilityBound b;
-    b.lambdaMax = lambda;
-    b.mass = scene.cloth.mass;
-    b.damping = scene.damping;
-    if (powerIterations > 0) b.lambdaPower = stiffestMode(scene, powerIterations).lambda;
+    b.dampingRate = scene.dampingRate();
+    if (powerIterations > 0) {
+        const StiffMode mode = stiffestMode(scene, powerIterations);
+        b.lambdaPower = mode.lambda;
+        b.omega2Power = mode.omega2;
+    }
     b.explicitEulerDt = b.safeDt(Method::ExplicitEuler);
     b.symplecticEulerDt = b.safeDt(Method::SymplecticEuler);
     return b;
@@ -150,26 +168,38 @@ double stableDt(const Scene& scene) {
 
 std::string stabilityAdvice(const Scene& scene) {
     const StabilityBound b = estimateStability(scene);
-    const double bound = stableDt(scene);
+    const double bound = stableDt(scene), dt = scene.integrator.dt;
     char buf[300];
     if (std::isinf(bound)) {
         std::snprintf(buf, sizeof buf,
                       "%s is stable at any dt for the linear spring model; an unstable run "
                       "points at the nonlinear terms or the wind: try a smaller dt",
                       methodName(scene.integrator.method));
+    } else if (bound > 0 && scene.material) {
+        std::snprintf(buf, sizeof buf,
+                      "predicted stable dt < %.3g s for %s (omega_max^2 <= %.4g 1/s^2, "
+                      "air_damping %g 1/s); try --set integrator.dt=%.2g",
+                      bound, methodName(scene.integrator.method), b.omega2Max, b.dampingRate,
+                      0.5 * bound);
     } else if (bound > 0) {
         std::snprintf(buf, sizeof buf,
                       "predicted stable dt < %.3g s for %s (lambda_max <= %.4g N/m, damping %g); "
                       "try --set integrator.dt=%.2g",
                       bound, methodName(scene.integrator.method), b.lambdaMax, scene.damping,
                       0.5 * bound);
+    } else if (scene.material) {  // explicit Euler is stable iff c > ω²_max Δt
+        std::snprintf(buf, sizeof buf,
+                      "explicit Euler has no stable dt without damping (every spring mode grows); "
+                      "at dt = %g s it needs air_damping > omega_max^2*dt = %.3g 1/s: try --set "
+                      "material.air_damping=%.2g, or another integrator (--set "
+                      "integrator.method=\"verlet\")",
+                      dt, b.omega2Max * dt, 2 * b.omega2Max * dt);
     } else {
         std::snprintf(buf, sizeof buf,
                       "explicit Euler has no stable dt without damping (every spring mode grows); "
                       "at dt = %g s it needs damping > lambda_max*dt = %.3g N*s/m: try --set "
                       "damping=%.2g, or another integrator (--set integrator.method=\"verlet\")",
-                      scene.integrator.dt, b.lambdaMax * scene.integrator.dt,
-                      2 * b.lambdaMax * scene.integrator.dt);
+                      dt, b.lambdaMax * dt, 2 * b.lambdaMax * dt);
     }
     return buf;
 }
@@ -183,6 +213,11 @@ std::optional<std::string> dtWarning(const Scene& scene) {
                       "integrator.dt = %.3g s is beyond %s's predicted stability bound %.3g s: the "
                       "run may leave physics; lower integrator.dt",
                       dt, methodName(scene.integrator.method), bound);
+    else if (scene.material)
+        std::snprintf(buf, sizeof buf,
+                      "explicit_euler has no stable integrator.dt at air_damping %g 1/s: the run "
+                      "may leave physics; raise material.air_damping or change integrator.method",
+                      scene.dampingRate());
     else
         std::snprintf(buf, sizeof buf,
                       "explicit_euler has no stable integrator.dt at damping %g: the run may leave "

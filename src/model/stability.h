@@ -11,41 +11,53 @@
 
 namespace cloth {
 
-// Largest stable Δt of `method` for one spring mode of stiffness eigenvalue λ [N/m] with mass m
-// and damping μ, including the rigid (λ = 0) drag mode. +infinity: stable at every Δt (implicit
-// Euler; Verlet or RK4 with no spring); 0: no stable Δt (explicit Euler without damping).
-//   explicit_euler    Δt < μ/λ and μΔt/m < 2
-//   symplectic_euler  (λ/m)Δt² + 2(μ/m)Δt < 4
-//   verlet            Δt < 2/ω, ω² = λ/m (independent of μ with the trapezoidal damping)
+// Largest stable Δt of `method` for one mode x'' = −ω² x − c x' of the linearised cloth: ω² the
+// mode's eigenvalue of M⁻¹H [1/s²] (H = −∂F/∂x, M the vertex masses), c the damping rate [1/s]
+// (the drag −c·m_k·v_k is proportional to the mass, so every mode of M⁻¹H keeps its own c),
+// including the rigid (ω = 0) drag mode. +infinity: stable at every Δt (implicit Euler; Verlet or
+// RK4 with no spring); 0: no stable Δt (explicit Euler without damping).
+//   explicit_euler    Δt < c/ω² (= μ/λ) and cΔt < 2
+//   symplectic_euler  ω²Δt² + 2cΔt < 4
+//   verlet            Δt < 2/ω (independent of c with the trapezoidal damping)
 //   rk4               |1 + z + z²/2 + z³/6 + z⁴/24| ≤ 1 for z = Δt·(eigenvalues of the mode)
 //   implicit_euler    unconditional (linearised)
+double methodDt(Method method, double omega2, double c);
+// The same for the per-vertex form's mode of stiffness eigenvalue λ [N/m] on masses m [kg] with
+// damping μ [N·s/m]: ω² = λ/m, c = μ/m.
 double methodDt(Method method, double lambda, double mass, double damping);
 
 struct StabilityBound {
-    double lambdaMax = 0;    // Gershgorin bound on the stiffness matrix's eigenvalues [N/m]
-    double lambdaPower = 0;  // power-iteration estimate at the initial state (≤ the true λ_max);
-                             // 0 when not computed
-    double explicitEulerDt = 0;    // methodDt(explicit_euler, lambdaMax, ...) [s] (0: none)
-    double symplecticEulerDt = 0;  // methodDt(symplectic_euler, lambdaMax, ...) [s]
+    double lambdaMax = 0;    // Gershgorin bound on the eigenvalues of H [N/m] (the springs alone)
+    double lambdaPower = 0;  // the Rayleigh quotient of H on the power iteration's mode [N/m]
+                             // (≤ the true λ_max); 0 when not computed
+    // Gershgorin bound on the eigenvalues ω² of M⁻¹H [1/s²]: what the step's stability depends
+    // on. λ_max/m in the per-vertex form; with a material, the worst row of H over the vertex's
+    // own mass, where masses differ from vertex to vertex.
+    double omega2Max = 0;
+    double omega2Power = 0;      // power-iteration estimate of ω²_max (≤ the true one); 0: none
+    double dampingRate = 0;      // c [1/s] (Scene::dampingRate)
+    double explicitEulerDt = 0;  // methodDt(explicit_euler, omega2Max, c) [s] (0: none)
+    double symplecticEulerDt = 0;  // methodDt(symplectic_euler, omega2Max, c) [s]
 
-    // The bound of `method` from Gershgorin's λ (safe: λ_max ≤ it) or from the power estimate
+    // The bound of `method` from Gershgorin's ω² (safe: ω²_max ≤ it) or from the power estimate
     // (tight: the step at which the stiffest mode actually turns unstable).
     double safeDt(Method method) const;
-    double tightDt(Method method) const;  // = safeDt when lambdaPower was not computed
-
-    double mass = 1, damping = 0;
+    double tightDt(Method method) const;  // = safeDt when the power estimate was not computed
 };
 
 // λ_max ≤ max over free vertices of Σ_springs K + Σ_springs to free neighbours K (Gershgorin
-// on the free degrees of freedom: a spring to a pinned vertex adds only its diagonal K).
-// powerIterations > 0 also estimates λ_max of H = −∂F/∂x at the initial (rest) state by that
-// many power iterations (a Rayleigh quotient; the cost is one stencil pass each).
+// on the free degrees of freedom: a spring to a pinned vertex adds only its diagonal K), and
+// ω²_max ≤ the largest such row sum divided by its vertex's mass m_k (Gershgorin on M⁻¹H, whose
+// row k is H's over m_k). powerIterations > 0 also estimates ω²_max of M⁻¹H at the initial
+// (rest) state by that many power iterations (a Rayleigh quotient; one stencil pass each).
 StabilityBound estimateStability(const Scene& scene, int powerIterations = 0);
 
-// The stiffest mode of H = −∂F/∂x at the rest state by `iterations` power iterations: its
-// Rayleigh-quotient estimate λ [N/m] (≤ the true λ_max) and the unit-norm shape the iteration
-// ended on (zero on pinned vertices), k = j·nu + i. What estimateStability's lambdaPower uses.
+// The stiffest mode of M⁻¹H at the rest state by `iterations` power iterations: its
+// Rayleigh-quotient estimate ω² = pᵀHp/pᵀMp [1/s²] (≤ the true ω²_max), pᵀHp/pᵀp [N/m], and the
+// unit-norm shape the iteration ended on (zero on pinned vertices), k = j·nu + i. What
+// estimateStability's omega2Power and lambdaPower use.
 struct StiffMode {
+    double omega2 = 0;
     double lambda = 0;
     std::vector<glm::dvec3> shape;
 };

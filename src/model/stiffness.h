@@ -6,12 +6,23 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/bending.h"
 #include "model/forces.h"
 #include "model/scene.h"
 
 namespace cloth {
 
-// One active entry of kSpringOffsets: a family the scene models.
+// A family is modelled when one of its slots of kSpringOffsets has a stiffness > 0
+// (Scene::slotStiffness: the per-vertex form's K of the family, or a material's K along u, along
+// v, of the shear springs; a material models no bend springs). Every slot of a modelled family is
+// walked, with its own K.
+inline bool familyModelled(const Scene& scene, Family f) {
+    for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
+        if (kSpringOffsets[s].family == f && scene.slotStiffness(int(s)) > 0) return true;
+    return false;
+}
+
+// One active entry of kSpringOffsets: a slot of a family the scene models.
 template <typename T>
 struct StencilSpring {
     int di, dj;
@@ -23,11 +34,11 @@ template <typename T>
 std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
     const Grid g = scene.grid();
     std::vector<StencilSpring<T>> springs;
-    for (const SpringOffset& o : kSpringOffsets) {
-        const double k = scene.springs.of(o.family);
-        if (k > 0)
-            springs.push_back(
-                {o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di, T(k), T(g.restLength(o.di, o.dj))});
+    for (std::size_t s = 0; s < kSpringOffsets.size(); ++s) {
+        const SpringOffset& o = kSpringOffsets[s];
+        if (!familyModelled(scene, o.family)) continue;
+        springs.push_back({o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di,
+                           T(scene.slotStiffness(int(s))), T(g.restLength(o.di, o.dj))});
     }
     return springs;
 }
@@ -40,11 +51,14 @@ Vec3<T> positionAt(const Vec3<T>* x, std::int64_t k) {
     return x[k];
 }
 
-// x and p: a Vec3<T> array or anything positionAt(x, k) reads (the CPU's Soa3).
+// x and p: a Vec3<T> array or anything positionAt(x, k) reads (the CPU's Soa3). With `bending`
+// active, its Hessian (constant: model/bending.h) is added: H p += −bendingForce(p).
 template <typename T, typename Positions, typename Vectors>
 void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                       const Positions& x, const Vectors& p, const std::uint8_t* pinned,
-                      Vec3<T>* out, std::int64_t begin, std::int64_t end) {
+                      Vec3<T>* out, std::int64_t begin, std::int64_t end,
+                      const BendingWeights& bending = {}) {
+    auto pAt = [&](int qi, int qj) { return positionAt(p, std::int64_t(qj) * nu + qi); };
     int i = int(begin % nu), j = int(begin / nu);
     for (std::int64_t k = begin; k < end; ++k) {
         Vec3<T> y(0);
@@ -59,6 +73,7 @@ void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& sprin
                 y += springJacobianTimes(positionAt(x, k), positionAt(x, q), s.stiffness,
                                          s.restLength, positionAt(p, k) - positionAt(p, q));
             }
+            if (bending.active()) y -= bendingForce<T>(bending, i, j, pAt);
         }
         out[k] = y;
         if (++i == nu) {

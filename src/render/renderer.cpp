@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "model/stiffness.h"
 #include "render/collider_draw.h"
 #include "render/geometry.h"
 #include "render/gl_program.h"
@@ -258,8 +259,8 @@ void Renderer::Impl::drawSprings(const glm::mat4& viewProj, const RenderOptions&
         offsets[3 * s + 2] = GLint(kSpringOffsets[s].family);
     }
     glUniform3iv(glGetUniformLocation(springs.id(), "uOffsets"), 12, offsets);
-    const GLint on[3] = {scene.springs.structural > 0, scene.springs.shear > 0,
-                         scene.springs.bend > 0};
+    const GLint on[3] = {familyModelled(scene, Family::Structural),
+                         familyModelled(scene, Family::Shear), familyModelled(scene, Family::Bend)};
     glUniform3iv(glGetUniformLocation(springs.id(), "uFamilyOn"), 1, on);
     glUniform3fv(glGetUniformLocation(springs.id(), "uFamilyColour"), 3, &kFamilyColours[0].x);
     springs.set("uMode", 0);

@@ -3,30 +3,41 @@
 #include <cmath>
 #include <cstdio>
 
+#include "model/bending.h"
+#include "model/stiffness.h"
+
 namespace cloth {
 
 Energy energy(const Scene& scene, const SimState& state) {
     const Grid g = scene.grid();
-    const double m = scene.cloth.mass;
+    double stiffness[kSpringOffsets.size()];
+    for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
+        stiffness[s] =
+            familyModelled(scene, kSpringOffsets[s].family) ? scene.slotStiffness(int(s)) : 0.0;
     Energy e;
     for (int j = 0; j < g.nv; ++j) {
         for (int i = 0; i < g.nu; ++i) {
             const auto k = g.index(i, j);
             const glm::dvec3& p = state.positions[k];
+            const double m = scene.vertexMass(i, j);
             e.kinetic += 0.5 * m * glm::dot(state.velocities[k], state.velocities[k]);
             e.gravity -= m * glm::dot(scene.gravity, p);
-            for (const SpringOffset& o : kSpringOffsets) {
+            for (std::size_t s = 0; s < kSpringOffsets.size(); ++s) {
+                const SpringOffset& o = kSpringOffsets[s];
                 // Each spring once: only the offsets pointing "forward" in index order.
                 if (o.dj < 0 || (o.dj == 0 && o.di < 0)) continue;
-                const double stiffness = scene.springs.of(o.family);
-                if (stiffness <= 0 || !g.contains(i + o.di, j + o.dj)) continue;
+                if (stiffness[s] == 0 || !g.contains(i + o.di, j + o.dj)) continue;
                 const double stretch =
                     glm::length(state.positions[g.index(i + o.di, j + o.dj)] - p) -
                     g.restLength(o.di, o.dj);
-                e.spring += 0.5 * stiffness * stretch * stretch;
+                e.spring += 0.5 * stiffness[s] * stretch * stretch;
             }
         }
     }
+    const BendingWeights bending = bendingWeights(g, scene.bendingStiffness());
+    if (bending.active())
+        e.bending = bendingEnergy(
+            bending, [&](int i, int j) { return state.positions[std::size_t(g.index(i, j))]; });
     return e;
 }
 
@@ -44,7 +55,7 @@ double maxStrain(const Scene& scene, const SimState& state) {
             }
         }
     }
-    return scene.springs.structural > 0 ? strain : 0;
+    return familyModelled(scene, Family::Structural) ? strain : 0;
 }
 
 SpringStrain largestStrain(const Scene& scene, const SimState& state) {
@@ -52,7 +63,7 @@ SpringStrain largestStrain(const Scene& scene, const SimState& state) {
     SpringStrain worst;
     for (const SpringOffset& o : kSpringOffsets) {
         if (o.di < 0 || (o.di == 0 && o.dj < 0)) continue;  // each spring once
-        if (!(scene.springs.of(o.family) > 0)) continue;
+        if (!familyModelled(scene, o.family)) continue;
         const double rest = g.restLength(o.di, o.dj);
         for (int j = 0; j < g.nv; ++j)
             for (int i = 0; i < g.nu; ++i) {

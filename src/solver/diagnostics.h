@@ -11,10 +11,12 @@
 namespace cloth {
 
 struct Energy {
-    double kinetic = 0;  // Σ ½ m |v|²  [J]
+    // m_k and K of each slot as the solvers model them (Scene::vertexMass, slotStiffness).
+    double kinetic = 0;  // Σ ½ m_k |v_k|²  [J]
     double spring = 0;   // Σ over springs (each once) ½ K (|d| − L)²  [J]
-    double gravity = 0;  // −Σ m ⟨g, p⟩  [J]
-    double total() const { return kinetic + spring + gravity; }
+    double gravity = 0;  // −Σ m_k ⟨g, p_k⟩  [J]
+    double bending = 0;  // a material's bending energy (model/bending.h) [J]
+    double total() const { return kinetic + spring + gravity + bending; }
 };
 
 Energy energy(const Scene& scene, const SimState& state);

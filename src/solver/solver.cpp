@@ -3,6 +3,8 @@
 #include <limits>
 #include <tuple>
 
+#include "model/bending.h"
+#include "model/stiffness.h"
 
 namespace cloth {
 
@@ -15,10 +17,11 @@ const char* precisionName(Precision p) {
 
 Features Features::of(const Scene& scene) {
     Features f;
-    f.structural = scene.springs.structural > 0;
-    f.shear = scene.springs.shear > 0;
-    f.bend = scene.springs.bend > 0;
+    f.structural = familyModelled(scene, Family::Structural);
+    f.shear = familyModelled(scene, Family::Shear);
+    f.bend = familyModelled(scene, Family::Bend);
     f.wind = scene.wind.has_value() && scene.wind->strength != 0;
+    f.bending = bendingWeights(scene.grid(), scene.bendingStiffness()).active();
     f.planes = scene.planeCount();
     f.spheres = scene.sphereCount();
     f.boxes = scene.count<Box>();
@@ -36,6 +39,7 @@ std::string Features::describe() const {
             springs += name;
         }
     std::string s = springs.empty() ? "no springs" : springs;
+    if (bending) s += ", bending";
     if (wind) s += ", wind";
     for (auto [n, one, many] : {std::tuple{planes, "plane", "planes"},
                                 {spheres, "sphere", "spheres"},

@@ -40,6 +40,7 @@ struct StepResult {
 // The features a scene declares, which decide what a solver computes (and on the GPU, compiles).
 struct Features {
     bool structural = false, shear = false, bend = false, wind = false;
+    bool bending = false;  // a material's bending energy (model/bending.h), not the bend springs
     int planes = 0, spheres = 0, boxes = 0, capsules = 0, meshes = 0;
     // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
     int contactExtras = 0;
@@ -79,8 +80,8 @@ struct DeviceReport {
     double secondsPerStep = 0;  // device time per step of the last step(n) [s]; 0: not measured
     std::string timing;         // how: "GL timer query", "wall clock"; "" when not measured
     std::size_t bytes = 0;      // device memory the solver holds [bytes]; 0: none beyond the host's
-    std::string variant;        // the kernel variant, e.g. "16x16/global"; "" for one-variant backends
-    std::string dispatch;       // "per-step" or "many-steps"; "" where it does not apply
+    std::string variant;   // the kernel variant, e.g. "16x16/global"; "" for one-variant backends
+    std::string dispatch;  // "per-step" or "many-steps"; "" where it does not apply
 };
 
 // Seconds of one dispatch of a pass over the whole grid, alone, best of some repeats: what a step's

@@ -4,9 +4,10 @@
 #include <cmath>
 #include <random>
 
-#include "solver/diagnostics.h"
 #include "model/stability.h"
 #include "model/stiffness.h"
+#include "model/vertex_masses.h"
+#include "solver/diagnostics.h"
 
 namespace cloth {
 namespace {
@@ -17,6 +18,7 @@ struct Trial {
     SimState start;  // the solver's rest positions and the kick's velocities
     std::vector<std::uint8_t> pinned;
     std::vector<StencilSpring<double>> springs;
+    std::vector<double> mass;  // m_k [kg]
     double qStart = 0;
 };
 
@@ -26,20 +28,21 @@ double shortestSpring(const Scene& scene) {
     double shortest = 0;
     for (const SpringOffset& o : kSpringOffsets) {
         const double l = g.restLength(o.di, o.dj);
-        if (scene.springs.of(o.family) > 0 && l > 0 && (shortest == 0 || l < shortest))
+        if (familyModelled(scene, o.family) && l > 0 && (shortest == 0 || l < shortest))
             shortest = l;
     }
     return shortest > 0 ? shortest : 1;
 }
 
 // Velocities along the stiffest mode, scaled to a displacement amplitude a = kick·L_min (speed
-// a·ω, ω² = λ/m), plus 1e-4 of that speed in random directions on every free vertex: those reach
-// the modes the stiff shape leaves out, such as the out-of-plane ones whose limit is cΔt < 2.
+// a·ω, ω² the mode's eigenvalue of M⁻¹H), plus 1e-4 of that speed in random directions on every
+// free vertex: those reach the modes the stiff shape leaves out, such as the out-of-plane ones
+// whose limit is cΔt < 2.
 std::vector<glm::dvec3> kickVelocities(const Scene& scene, const std::vector<std::uint8_t>& pinned,
                                        const ProbeOptions& o) {
     const StiffMode mode = stiffestMode(scene, o.powerIterations);
-    const double c = scene.damping / scene.cloth.mass;
-    const double omega = std::max({std::sqrt(mode.lambda / scene.cloth.mass), c, 1.0});
+    const double c = scene.dampingRate();
+    const double omega = std::max({std::sqrt(mode.omega2), c, 1.0});
     const double speed = o.kick * shortestSpring(scene) * omega;
     double largest = 0;
     for (const glm::dvec3& s : mode.shape) largest = std::max(largest, glm::length(s));
@@ -55,20 +58,22 @@ std::vector<glm::dvec3> kickVelocities(const Scene& scene, const std::vector<std
     return v;
 }
 
-// Q = Σ |v|² + c⟨x, v⟩ + ⟨x, H x⟩/m over the free vertices, x = position − rest, H at rest: the
-// quadratic form explicit Euler scales by det(A) each step, mode by mode (see the header).
+// Q = Σ m_k (|v_k|² + c⟨x_k, v_k⟩) + ⟨x, H x⟩ over the free vertices, x = position − rest, H at
+// rest: the quadratic form explicit Euler scales by det(A) each step, mode by mode (see the
+// header).
 double explicitEulerEnergy(const Trial& t, const SimState& s) {
     const std::size_t n = s.positions.size();
     std::vector<glm::dvec3> x(n), hx(n);
     for (std::size_t k = 0; k < n; ++k) x[k] = s.positions[k] - t.start.positions[k];
     stiffnessProduct(s.nu, s.nv, t.springs, t.start.positions.data(), x.data(), t.pinned.data(),
-                     hx.data(), 0, std::int64_t(n));
-    const double c = t.scene.damping / t.scene.cloth.mass;
+                     hx.data(), 0, std::int64_t(n),
+                     bendingWeights(t.scene.grid(), t.scene.bendingStiffness()));
+    const double c = t.scene.dampingRate();
     double q = 0;
     for (std::size_t k = 0; k < n; ++k) {
         if (t.pinned[k]) continue;
         const glm::dvec3& v = s.velocities[k];
-        q += glm::dot(v, v) + c * glm::dot(x[k], v) + glm::dot(x[k], hx[k]) / t.scene.cloth.mass;
+        q += t.mass[k] * (glm::dot(v, v) + c * glm::dot(x[k], v)) + glm::dot(x[k], hx[k]);
     }
     return q;
 }
@@ -80,6 +85,7 @@ Trial prepareTrial(const Scene& linear, Solver& solver, const ProbeOptions& o) {
     t.pinned.assign(std::size_t(g.count()), 0);
     for (const Pin& p : linear.pins) t.pinned[std::size_t(g.index(p.i, p.j))] = 1;
     t.springs = activeSprings<double>(linear);
+    t.mass = vertexMasses(linear);
     t.start = solver.read();  // rest, as the solver's precision rounds it
     t.start.velocities = kickVelocities(linear, t.pinned, o);
     double fastest = 0;

@@ -8,10 +8,11 @@
 // kLinearReach of the shortest spring if that is lower: past it the spring is no longer linear
 // and an unstable mode grows more slowly), or, for explicit Euler only, when
 // its discrete energy Q grows. Explicit Euler leaves its bound slowly (a mode grows by
-// c·Δt·ε/2 per step at Δt = (1 + ε)·μ/λ, c = μ/m), far too slowly to run away in a short trial;
-// but for one mode of H, Q = |v|² + c⟨x, v⟩ + ⟨x, H x⟩/m (x the displacement from rest) obeys
-// Q_{n+1} = det(A)·Q_n exactly, det(A) = 1 − cΔt + (λ/m)Δt² (docs/physics.md), so Q grows
-// from the first step exactly when Δt > μ/λ. The other integrators leave their bounds through
+// c·Δt·ε/2 per step at Δt = (1 + ε)·c/ω², c the damping rate), far too slowly to run away in a
+// short trial; but for one mode of M⁻¹H (M the vertex masses, ω² its eigenvalue),
+// Q = Σ_k m_k (|v_k|² + c⟨x_k, v_k⟩) + ⟨x, H x⟩ (x the displacement from rest) obeys
+// Q_{n+1} = det(A)·Q_n exactly, det(A) = 1 − cΔt + ω²Δt² (docs/physics.md), so Q grows
+// from the first step exactly when Δt > c/ω². The other integrators leave their bounds through
 // an eigenvalue crossing −1 or the unit circle, which runs away within tens of steps.
 #pragma once
 

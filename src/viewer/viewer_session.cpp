@@ -168,29 +168,35 @@ std::vector<std::int64_t> ViewerSession::pinnedVertices() const {
     return v;
 }
 
-double ViewerSession::grabStiffness() const {
-    // The scene's integrator stays stable while λ_max is below the stiffness its Δt allows
-    // (docs/stability.md): the grab spring adds its K to λ_max, so take half of the margin the
-    // scene leaves, within [0.1, 2]·K_structural.
+double ViewerSession::grabStiffness(std::int64_t k) const {
+    // The scene's integrator stays stable while ω²_max of M⁻¹H is below the ω² its Δt allows
+    // (docs/stability.md): the grab spring adds K/m_k to vertex k's row, so take half of the
+    // margin the scene leaves, times m_k, within [0.1, 2]·K_structural.
     const Scene s = params_.effective();
-    const double k = std::max(s.springs.structural, 1.0);
+    double structural = 0;
+    for (std::size_t slot = 0; slot < kSpringOffsets.size(); ++slot)
+        if (kSpringOffsets[slot].family == Family::Structural)
+            structural = std::max(structural, s.slotStiffness(int(slot)));
+    const double stiffness = std::max(structural, 1.0);
     const Method method = s.integrator.method;
-    const double m = s.cloth.mass, mu = s.damping, dt = s.integrator.dt;
-    if (std::isinf(methodDt(method, 1e30, m, mu))) return 2 * k;  // unconditionally stable
-    if (!(methodDt(method, 0, m, mu) > dt)) return 0.1 * k;       // no margin at all
-    double lo = 0, hi = 1;  // bisection for the largest λ with a stable Δt above dt
-    while (methodDt(method, hi, m, mu) > dt && hi < 1e30) hi *= 4;
+    const double c = s.dampingRate(), dt = s.integrator.dt;
+    if (std::isinf(methodDt(method, 1e30, c))) return 2 * stiffness;  // unconditionally stable
+    if (!(methodDt(method, 0, c) > dt)) return 0.1 * stiffness;       // no margin at all
+    double lo = 0, hi = 1;  // bisection for the largest ω² with a stable Δt above dt
+    while (methodDt(method, hi, c) > dt && hi < 1e30) hi *= 4;
     for (int it = 0; it < 60; ++it) {
         const double mid = 0.5 * (lo + hi);
-        (methodDt(method, mid, m, mu) > dt ? lo : hi) = mid;
+        (methodDt(method, mid, c) > dt ? lo : hi) = mid;
     }
-    const double margin = lo - estimateStability(s).lambdaMax;
-    return std::clamp(0.5 * margin, 0.1 * k, 2.0 * k);
+    const int nu = s.cloth.nu;
+    const double mass = s.vertexMass(int(k % nu), int(k / nu));
+    const double margin = (lo - estimateStability(s).omega2Max) * mass;
+    return std::clamp(0.5 * margin, 0.1 * stiffness, 2.0 * stiffness);
 }
 
 void ViewerSession::grab(std::int64_t k, const glm::dvec3& target) {
     if (unstable()) return;
-    grab_ = Grab{k, target, grabStiffness()};
+    grab_ = Grab{k, target, grabStiffness(k)};
     solver_->setGrab(grab_);
 }
 

@@ -100,7 +100,7 @@ public:
 private:
     void rebuild();
     void replaceSolver(const Scene& effective, const BackendChoice& backend);
-    double grabStiffness() const;
+    double grabStiffness(std::int64_t k) const;  // for a grab of vertex k [N/m]
 
     // The drags where they are now, put on a new solver (whose clock starts again); throws like
     // setColliderDrag, before anything changed.

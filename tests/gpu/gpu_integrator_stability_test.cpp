@@ -169,7 +169,10 @@ namespace {
 // The agreement rule: at the same (K, Δt), CPU float and GPU reach the same verdict,
 // stable or unstable, except within ±10% of the boundary. Stiffness over six decades, each
 // explicit scheme at 0.85× and 1.15× its tight bound (0.5×/2× are further from the edge, where
-// agreement is easier), 1500 steps.
+// agreement is easier), 3000 steps. Just past the bound a mode grows slowly from rounding noise,
+// so the step at which it runs away depends on the last bits: rk4 at K = 1000, 1.15×, runs away
+// after 587 steps on the CPU in float and after 1039 or 1907 on the GPU, whether the drag is
+// taken as (F − μv)/m or as F/m − cv. Every run that runs away does so well within 3000.
 TEST_F(GpuIntegratorStability, CpuAndGpuAgreeOnStabilityAcrossSixDecadesOfStiffness) {
     int unstableVerdicts = 0;
     for (double k : {1e1, 1e3, 1e5, 1e7}) {
@@ -181,8 +184,8 @@ TEST_F(GpuIntegratorStability, CpuAndGpuAgreeOnStabilityAcrossSixDecadesOfStiffn
             const double bound = estimateStability(scene, 40).tightDt(method);
             for (double factor : {0.85, 1.15}) {
                 scene.integrator.dt = factor * bound;
-                const StepResult g = makeGpuSolver(scene)->step(1500);
-                const StepResult c = makeCpuSolver(scene, {Precision::Float, 1})->step(1500);
+                const StepResult g = makeGpuSolver(scene)->step(3000);
+                const StepResult c = makeCpuSolver(scene, {Precision::Float, 1})->step(3000);
                 EXPECT_EQ(g.unstable, c.unstable)
                     << methodName(method) << " K = " << k << ", dt = " << factor << " x bound: gpu "
                     << g.reason << " / cpu " << c.reason;

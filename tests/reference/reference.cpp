@@ -40,6 +40,17 @@ Simulation::Simulation(const Params& p) : prm_(p) {
         if (!c.isSphere) c.plane.normal = normalised(c.plane.normal);
     }
     const int n = prm_.nu * prm_.nv;
+    mass_.assign(n, prm_.density > 0 ? 0.0 : prm_.mass);
+    if (prm_.density > 0) {
+        const double quarter = prm_.density * du_ * dv_ / 4;
+        for (int j = 0; j + 1 < prm_.nv; ++j) {
+            for (int i = 0; i + 1 < prm_.nu; ++i) {
+                for (int corner : {j * prm_.nu + i, j * prm_.nu + i + 1, (j + 1) * prm_.nu + i,
+                                   (j + 1) * prm_.nu + i + 1})
+                    mass_[corner] += quarter;
+            }
+        }
+    }
     pinned_.assign(n, false);
     follow_.assign(n, -1);
     for (std::size_t k = 0; k < prm_.pins.size(); ++k) {
@@ -68,8 +79,15 @@ V3 Simulation::restPosition(int i, int j) const {
     return add(prm_.origin, add(scale(i * du_, u_), scale(j * dv_, vAxis_)));
 }
 
-double Simulation::stiffness(int family) const {
+double Simulation::stiffness(int di, int dj, int family) const {
+    for (const Params::OffsetStiffness& o : prm_.offsetStiffness) {
+        if (o.di == di && o.dj == dj) return o.k;
+    }
     return family == 0 ? prm_.kStructural : family == 1 ? prm_.kShear : prm_.kBend;
+}
+
+double Simulation::drag(int k) const {
+    return prm_.damping + prm_.dampingRate * mass_[k];
 }
 
 double Simulation::restLength(int di, int dj) const {
@@ -81,7 +99,7 @@ V3 Simulation::springForces(const std::vector<V3>& p, int i, int j) const {
     V3 f{0, 0, 0};
     const V3& pk = p[j * prm_.nu + i];
     for (const Offset& o : kOffsets) {
-        const double k = stiffness(o.family);
+        const double k = stiffness(o.di, o.dj, o.family);
         const int qi = i + o.di, qj = j + o.dj;
         if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
         const double len = restLength(o.di, o.dj);
@@ -104,7 +122,7 @@ std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x, const std::
             const int k = j * prm_.nu + i;
             if (pinned_[k]) continue;
             for (const Offset& o : kOffsets) {
-                const double stiff = stiffness(o.family);
+                const double stiff = stiffness(o.di, o.dj, o.family);
                 const int qi = i + o.di, qj = j + o.dj;
                 if (stiff == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
                 const int q = qj * prm_.nu + qi;
@@ -120,7 +138,70 @@ std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x, const std::
             }
         }
     }
+    // H_b w = −F_b(w); pinned rows stay 0.
+    std::vector<V3> fb(x.size(), zero);
+    addBending(w, fb, pinnedColumns);
+    for (std::size_t k = 0; k < y.size(); ++k)
+        if (!pinned_[k]) y[k] = sub(y[k], fb[k]);
     return y;
+}
+
+// docs/physics.md "Bending": E = ½ Σ w_u(j)|D_u|² + ½ Σ w_v(i)|D_v|² + ½ Σ_cells t|T|², with
+// w_u(j) = B·dv·s_j/du³, w_v(i) = B·du·s_i/dv³, t = 2B/(du·dv), s = ½ at a side's ends.
+namespace {
+double sideShare(int n, int count) {
+    return n == 0 || n == count - 1 ? 0.5 : 1.0;
+}
+}  // namespace
+
+void Simulation::addBending(const std::vector<V3>& w, std::vector<V3>& f,
+                            bool pinnedColumns) const {
+    const int nu = prm_.nu, nv = prm_.nv;
+    if (prm_.bend == 0 || nu < 2 || nv < 2) return;
+    const double du = prm_.sizeU / (nu - 1), dv = prm_.sizeV / (nv - 1);
+    const V3 zero{0, 0, 0};
+    auto at = [&](int i, int j) {
+        const int k = j * nu + i;
+        return pinned_[k] && !pinnedColumns ? zero : w[k];
+    };
+    auto push = [&](int i, int j, double c, const V3& d) {  // f −= c·d at (i, j)
+        f[j * nu + i] = sub(f[j * nu + i], scale(c, d));
+    };
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            if (i >= 1 && i <= nu - 2) {  // the second difference along u centred at (i, j)
+                const double wu = prm_.bend * dv * sideShare(j, nv) / (du * du * du);
+                const V3 d = add(sub(at(i - 1, j), scale(2, at(i, j))), at(i + 1, j));
+                push(i - 1, j, wu, d);
+                push(i, j, -2 * wu, d);
+                push(i + 1, j, wu, d);
+            }
+            if (j >= 1 && j <= nv - 2) {
+                const double wv = prm_.bend * du * sideShare(i, nu) / (dv * dv * dv);
+                const V3 d = add(sub(at(i, j - 1), scale(2, at(i, j))), at(i, j + 1));
+                push(i, j - 1, wv, d);
+                push(i, j, -2 * wv, d);
+                push(i, j + 1, wv, d);
+            }
+            if (i <= nu - 2 && j <= nv - 2) {  // the twist of the cell at (i, j)
+                const double t = 2 * prm_.bend / (du * dv);
+                const V3 twist =
+                    add(sub(sub(at(i, j), at(i + 1, j)), at(i, j + 1)), at(i + 1, j + 1));
+                push(i, j, t, twist);
+                push(i + 1, j, -t, twist);
+                push(i, j + 1, -t, twist);
+                push(i + 1, j + 1, t, twist);
+            }
+        }
+}
+
+double Simulation::bendingEnergy() const {
+    // The energy of a quadratic form: ½ ⟨p, −F_b(p)⟩ (F_b is linear and vanishes on affine maps).
+    std::vector<V3> f(p_.size(), V3{0, 0, 0});
+    addBending(p_, f);
+    double e = 0;
+    for (std::size_t k = 0; k < p_.size(); ++k) e -= 0.5 * dot(p_[k], f[k]);
+    return e;
 }
 
 // K_w ⟨n, û_w⟩ n with the central-difference vertex normal of §2 (seed §5.3).
@@ -171,17 +252,18 @@ std::vector<V3> Simulation::forces(const std::vector<V3>& p) const {
             f[j * prm_.nu + i] = fk;
         }
     }
+    addBending(p, f);
     return f;
 }
 
-// docs/integrators.md: a(x, v) = (F(x) − μ v)/m + g; a pinned vertex's is not used (0 here).
+// docs/integrators.md: a(x, v) = (F(x) − μ_k v)/m_k + g; a pinned vertex's is not used (0 here).
 std::vector<V3> Simulation::accelerations(const std::vector<V3>& x,
                                           const std::vector<V3>& v) const {
     const std::vector<V3> f = forces(x);
     std::vector<V3> a(x.size(), V3{0, 0, 0});
     for (std::size_t k = 0; k < x.size(); ++k) {
         if (pinned_[k]) continue;
-        a[k] = add(scale(1.0 / prm_.mass, sub(f[k], scale(prm_.damping, v[k]))), prm_.gravity);
+        a[k] = add(scale(1.0 / mass_[k], sub(f[k], scale(drag(int(k)), v[k]))), prm_.gravity);
     }
     return a;
 }
@@ -230,7 +312,7 @@ void Simulation::step() {
 
 double Simulation::kineticEnergy(const std::vector<V3>& v) const {
     double e = 0;
-    for (const V3& x : v) e += 0.5 * prm_.mass * dot(x, x);
+    for (std::size_t k = 0; k < v.size(); ++k) e += 0.5 * mass_[k] * dot(v[k], v[k]);
     return e;
 }
 
@@ -239,7 +321,7 @@ double Simulation::springEnergy(const std::vector<V3>& p) const {
     for (int j = 0; j < prm_.nv; ++j) {
         for (int i = 0; i < prm_.nu; ++i) {
             for (const Offset& o : kHalfOffsets) {
-                const double k = stiffness(o.family);
+                const double k = stiffness(o.di, o.dj, o.family);
                 const int qi = i + o.di, qj = j + o.dj;
                 if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
                 const double stretch =
@@ -253,7 +335,7 @@ double Simulation::springEnergy(const std::vector<V3>& p) const {
 
 double Simulation::gravityEnergy(const std::vector<V3>& p) const {
     double e = 0;
-    for (const V3& x : p) e -= prm_.mass * dot(prm_.gravity, x);
+    for (std::size_t k = 0; k < p.size(); ++k) e -= mass_[k] * dot(prm_.gravity, p[k]);
     return e;
 }
 

@@ -71,10 +71,25 @@ struct Params {
     double sizeU = 1, sizeV = 1;                         // [m]
     V3 origin{0, 0, 0}, uAxis{1, 0, 0}, vAxis{0, 0, 1};  // the reference normalises the axes
     double mass = 1;                                     // per vertex [kg]
-    double kStructural = 0, kShear = 0, kBend = 0;       // [N/m]; 0 = family not modelled
-    double damping = 0;                                  // μ [N·s/m]
-    V3 gravity{0, -9.81, 0};                             // [m/s²]
-    std::vector<std::array<int, 2>> pins;                // may be negative: -1 = last index
+    // DESIGN.md §2 "Mass", the physical form: with density > 0 the vertex masses are lumped from
+    // the area instead of `mass`: each du × dv cell gives a quarter of its ρ·du·dv to each of its
+    // four corners.
+    double density = 0;                             // ρ [kg/m²]
+    double kStructural = 0, kShear = 0, kBend = 0;  // [N/m]; 0 = family not modelled
+    // A stiffness of its own for the springs along offset (di, dj) of the §2 table, in place of
+    // its family's (a material's structural springs along u and along v differ).
+    struct OffsetStiffness {
+        int di, dj;
+        double k;  // [N/m]; 0 = not modelled
+    };
+    std::vector<OffsetStiffness> offsetStiffness;
+    // A material's bending stiffness B [N·m] (docs/physics.md "Bending"): the quadratic energy of
+    // second differences along u and v and a twist per cell; 0 = not modelled.
+    double bend = 0;
+    double damping = 0;      // μ [N·s/m]: the drag −μ v on every vertex
+    double dampingRate = 0;  // c [1/s]: a material's air damping, the drag −c·m_k·v on vertex k
+    V3 gravity{0, -9.81, 0};               // [m/s²]
+    std::vector<std::array<int, 2>> pins;  // may be negative: -1 = last index
     // Per pin (missing entries: -1): the index in `colliders` of the moving collider the pin
     // follows (docs/colliders.md §5: the collider's pose at t applied to the rest position), or
     // -1 for a pin held at its rest position.
@@ -110,9 +125,11 @@ public:
     const CgStats& cgStats() const { return cg_; }
     const std::vector<V3>& positions() const { return p_; }  // index k = j·nu + i
     const std::vector<V3>& velocities() const { return v_; }
-    double kineticEnergy() const;  // Σ ½ m |v|² [J]
+    double kineticEnergy() const;  // Σ ½ m_k |v_k|² [J]
     double springEnergy() const;   // Σ over springs, each once, ½ K (|d| − L)² [J]
-    double gravityEnergy() const;  // −Σ m ⟨g, p⟩ [J]
+    double bendingEnergy() const;  // the bending energy of `bend` [J]
+    double gravityEnergy() const;  // −Σ m_k ⟨g, p_k⟩ [J]
+    double mass(int k) const { return mass_[k]; }  // m_k [kg]
     bool finiteAndBelowMaxSpeed() const;
 
     // Spring + wind force on every vertex of an arbitrary state of this cloth [N] (F of §2).
@@ -133,13 +150,18 @@ public:
 
 private:
     V3 restPosition(int i, int j) const;
-    double stiffness(int family) const;
+    double stiffness(int di, int dj, int family) const;
+    double drag(int k) const;  // μ_k of the drag −μ_k v on vertex k [N·s/m]
     double restLength(int di, int dj) const;
     V3 springForces(const std::vector<V3>& p, int i, int j) const;
+    // The bending force −∂E_b/∂w of the field w, added into f: each stencil scatters its gradient
+    // to its members (the solvers gather; this is the same energy written the other way round).
+    // Entries of w at pinned vertices read as 0 unless `pinnedColumns`.
+    void addBending(const std::vector<V3>& w, std::vector<V3>& f, bool pinnedColumns = true) const;
     V3 windForce(const std::vector<V3>& p, int i, int j) const;
     void applyColliders(V3& p, V3& v) const;
     double colliderTime_ = 0;  // the end of the step being taken [s]: where colliders are
-    // a(x, v) = (F(x) − μ v)/m + g on free vertices, 0 on pinned ones.
+    // a(x, v) = (F(x) − μ_k v)/m_k + g on free vertices, 0 on pinned ones.
     std::vector<V3> accelerations(const std::vector<V3>& x, const std::vector<V3>& v) const;
     // Pins (x ← x_pin, v ← 0; a follow pin at its pose at colliderTime_, v ← v_c there), then
     // every collider in scene order, on every vertex.
@@ -152,12 +174,14 @@ private:
     void stepVerlet();
     void stepRk4();
     void stepImplicitEuler();
-    // Conjugate gradient on ((m + hμ) I + h² H(x)) dv = b from dv = 0; records the solve in cg_.
+    // Conjugate gradient on ((m_k + hμ_k) I + h² H(x)) dv = b from dv = 0; records the solve in
+    // cg_.
     std::vector<V3> solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b);
 
     Params prm_;
     double du_ = 0, dv_ = 0;
     V3 u_{}, vAxis_{}, wind_{};
+    std::vector<double> mass_;  // m_k [kg]
     std::vector<bool> pinned_;
     std::vector<int> follow_;  // per vertex: the collider a pinned vertex follows, or -1
     std::vector<V3> rest_;     // pinned vertices are held at their rest position (moved by

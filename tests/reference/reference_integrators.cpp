@@ -35,7 +35,7 @@ void Simulation::stepSymplecticEuler() {
 // recomputed here rather than kept from the previous step: the same numbers, since nothing moves
 // x between the two.
 void Simulation::stepVerlet() {
-    const double h = prm_.dt, m = prm_.mass, mu = prm_.damping;
+    const double h = prm_.dt;
     const std::vector<V3> a = accelerations(p_, v_);
     std::vector<V3> vHalf(v_.size());
     for (std::size_t k = 0; k < p_.size(); ++k) {
@@ -45,6 +45,7 @@ void Simulation::stepVerlet() {
     pinAndCollide(p_, vHalf);
     const std::vector<V3> f = forces(p_);
     for (std::size_t k = 0; k < p_.size(); ++k) {
+        const double m = mass_[k], mu = drag(int(k));
         const V3 kick = scale(h / 2, add(scale(1.0 / m, f[k]), prm_.gravity));
         v_[k] = scale(1.0 / (1 + h * mu / (2 * m)), add(vHalf[k], kick));
     }
@@ -81,15 +82,15 @@ void Simulation::stepRk4() {
 }
 
 // implicit_euler (Baraff & Witkin 1998), linearised once at x_n:
-// ((m + hμ) I + h² H) Δv = h (F(x_n) − μ v_n + m g − h H v_n); v += Δv; x += h v_new.
+// ((m_k + hμ_k) I + h² H) Δv = h (F(x_n) − μ_k v_n + m_k g − h H v_n); v += Δv; x += h v_new.
 void Simulation::stepImplicitEuler() {
-    const double h = prm_.dt, m = prm_.mass, mu = prm_.damping;
+    const double h = prm_.dt;
     const std::vector<V3> f = forces(p_);
     const std::vector<V3> hv = hessianProduct(p_, v_, true);  // a follow pin's v_n counts
     std::vector<V3> b(p_.size(), V3{0, 0, 0});
     for (std::size_t k = 0; k < p_.size(); ++k) {
         if (pinned_[k]) continue;  // the pinned rows are removed: Δv = 0 there
-        const V3 rhs = add(sub(f[k], scale(mu, v_[k])), scale(m, prm_.gravity));
+        const V3 rhs = add(sub(f[k], scale(drag(int(k)), v_[k])), scale(mass_[k], prm_.gravity));
         b[k] = scale(h, sub(rhs, scale(h, hv[k])));
     }
     const std::vector<V3> dv = solveImplicitSystem(p_, b);
@@ -105,7 +106,7 @@ void Simulation::stepImplicitEuler() {
 // run over the free vertices only; pinned entries of p and r stay 0.
 std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x,
                                                 const std::vector<V3>& b) {
-    const double h = prm_.dt, diagonal = prm_.mass + h * prm_.damping;
+    const double h = prm_.dt;
     const std::size_t n = x.size();
     auto dotFree = [&](const std::vector<V3>& a, const std::vector<V3>& c) {
         double s = 0;
@@ -114,9 +115,10 @@ std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x,
         }
         return s;
     };
-    auto apply = [&](const std::vector<V3>& w) {  // A w = (m + hμ) w + h² H w
+    auto apply = [&](const std::vector<V3>& w) {  // A w = (m_k + hμ_k) w + h² H w
         std::vector<V3> y = hessianProduct(x, w);
         for (std::size_t k = 0; k < n; ++k) {
+            const double diagonal = mass_[k] + h * drag(int(k));
             y[k] = pinned_[k] ? V3{0, 0, 0} : add(scale(diagonal, w[k]), scale(h * h, y[k]));
         }
         return y;

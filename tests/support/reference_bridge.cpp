@@ -5,8 +5,8 @@
 #include <type_traits>
 #include <variant>
 
-#include "scene/collider_validate.h"
 #include "model/pin_follow.h"
+#include "scene/collider_validate.h"
 #include "scene/scene_loader.h"
 
 namespace cloth {
@@ -106,6 +106,17 @@ ref::Params toReference(const Scene& scene) {
     p.kShear = scene.springs.shear;
     p.kBend = scene.springs.bend;
     p.damping = scene.damping;
+    if (scene.material) {
+        // The reference lumps the masses from the density itself; the springs' constants are
+        // the scene's mapping of the material (Scene::slotStiffness), slot by slot.
+        p.density = scene.material->density;
+        p.damping = 0;
+        p.dampingRate = scene.dampingRate();
+        p.bend = scene.material->bend;
+        for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
+            p.offsetStiffness.push_back(
+                {kSpringOffsets[s].di, kSpringOffsets[s].dj, scene.slotStiffness(int(s))});
+    }
     p.gravity = toV3(scene.gravity);
     for (const Pin& pin : scene.pins) {
         p.pins.push_back({pin.i, pin.j});

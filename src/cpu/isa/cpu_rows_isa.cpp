@@ -110,13 +110,15 @@ template <typename T, bool kSymplectic>
 void eulerLoop(const T* __restrict xx, const T* __restrict xy, const T* __restrict xz,
                const T* __restrict fx, const T* __restrict fy, const T* __restrict fz,
                T* __restrict vx, T* __restrict vy, T* __restrict vz, T* __restrict px,
-               T* __restrict py, T* __restrict pz, T h, T mu, T w, T gx, T gy, T gz, int n) {
+               T* __restrict py, T* __restrict pz, const T* __restrict inverseMass, T h, T c, T gx,
+               T gy, T gz, int n) {
     for (int i = 0; i < n; ++i) {
         T x = xx[i], y = xy[i], z = xz[i];
         T u = vx[i], v = vy[i], s = vz[i];
-        eulerComponent<T, kSymplectic>(x, u, fx[i], h, mu, w, gx);
-        eulerComponent<T, kSymplectic>(y, v, fy[i], h, mu, w, gy);
-        eulerComponent<T, kSymplectic>(z, s, fz[i], h, mu, w, gz);
+        const T w = inverseMass[i];
+        eulerComponent<T, kSymplectic>(x, u, fx[i], h, c, w, gx);
+        eulerComponent<T, kSymplectic>(y, v, fy[i], h, c, w, gy);
+        eulerComponent<T, kSymplectic>(z, s, fz[i], h, c, w, gz);
         px[i] = x;
         py[i] = y;
         pz[i] = z;
@@ -128,7 +130,7 @@ void eulerLoop(const T* __restrict xx, const T* __restrict xy, const T* __restri
 template <typename T, bool kSymplectic>
 void euler(const EulerRow<T>& r, int n) {
     eulerLoop<T, kSymplectic>(r.xIn.x, r.xIn.y, r.xIn.z, r.f.x, r.f.y, r.f.z, r.v.x, r.v.y, r.v.z,
-                              r.xOut.x, r.xOut.y, r.xOut.z, r.h, r.damping, r.inverseMass, r.gx,
+                              r.xOut.x, r.xOut.y, r.xOut.z, r.inverseMass, r.h, r.dampingRate, r.gx,
                               r.gy, r.gz, n);
 }
 
