@@ -24,9 +24,10 @@ Time step: explicit methods (explicit and symplectic Euler, Verlet, RK4) take 0.
 predicted bound at that N (power iteration at the rest state, model/stability.h), implicit Euler
 one 1/60 s frame; at most one frame either way, steps per frame = ceil((1/60 s) / dt). A run that
 turns unstable (or ends past max_strain) is retried at half the dt, up to 4 times; each row says
-how often. A trial steps one frame per call against the steady clock (the GPU finishes its work
-before the call returns), after one warm-up step whose state is discarded, and is cut off once
-its wall time passes 1.5 x the simulated time + 50 ms. A run that is too slow or cut off is run
+how often. A trial steps against the steady clock in calls of one step, then twice as many while
+a call takes under 5 ms, up to a frame (the GPU finishes its work before the call returns),
+after one warm-up step whose state is discarded, and is cut off once its wall time passes 1.5 x
+the simulated time + 50 ms. A run that is too slow or cut off is run
 once more and the faster kept (the machine may be shared: contention only slows a run down).
 
 Search: N = 8, 16, 32, ... while real time, then bisection between the last N that was and the
@@ -40,12 +41,11 @@ error is not resolved.
 options:
   --material NAME       a preset: cotton (default), silk, denim, wool, polyester, rubber;
                         --set material.KEY=VALUE overrides one of its numbers
-  --form per-vertex|material
-                        the cloth in the seed's per-vertex form (default): every vertex an
-                        interior vertex's mass, the material's membrane springs and drag, no
-                        bending; or as the material itself (lumped masses, and its bending
-                        energy where the solvers model one), refused where this build's
-                        solvers read only the per-vertex form
+  --form material|per-vertex
+                        the cloth as the material (default: lumped vertex masses, membrane
+                        springs, drag and bending energy, docs/physics.md), or in the seed's
+                        per-vertex form: every vertex an interior vertex's mass, the same
+                        membrane springs and drag, no bending (what uniform masses cost)
   --backend cpu|gpu|both   where to run (default both; without a GPU, both means cpu)
   --methods LIST        integrators, comma-separated, or all (default all)
   --sizes LIST          time these N only (no search); the frontier is the largest of them

@@ -226,12 +226,6 @@ int runBenchRealtime(const RealtimeOptions& options) {
     }
     // The scene with the --set overrides, checked before anything runs.
     const Scene probe = sceneAt(o, kFirstSize, Method::SymplecticEuler);
-    if (!Features::of(probe).structural)
-        throw InputError("command line", "--form",
-                         std::string("the solvers of this build see no springs in the ") +
-                             clothFormName(o.form) +
-                             " form of the material (they read the per-vertex form only): use "
-                             "--form per-vertex");
     if (o.label.empty()) o.label = o.material;
     outputPath(o.out, "");  // an unusable --out is refused now, not after the run
     auto targets = parseTargets("--backend", o.backend, {Precision::Float, Precision::Double});

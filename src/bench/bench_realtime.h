@@ -24,12 +24,12 @@ const char* clothFormName(ClothForm f);  // "material", "per-vertex"
 
 struct RealtimeOptions : BenchCommonOptions {
     RealtimeOptions() { methods.assign(std::begin(kMethods), std::end(kMethods)); }
-    std::string material = "cotton";        // --material: a preset (model/material_presets.h)
-    ClothForm form = ClothForm::PerVertex;  // material: where the solvers model one
-    double time = 1;                        // T: simulated time of a trial [s]
-    std::vector<int> sizes;                 // --sizes: time these N instead of searching
-    double tolerance = 0.1;                 // the bisection stops at failing/passing N <= 1 + this
-    double safety = 0.9;                    // explicit Δt = safety × the tight predicted bound
+    std::string material = "cotton";  // --material: a preset (model/material_presets.h)
+    ClothForm form = ClothForm::Material;
+    double time = 1;              // T: simulated time of a trial [s]
+    std::vector<int> sizes;       // --sizes: time these N instead of searching
+    double tolerance = 0.1;       // the bisection stops at failing/passing N <= 1 + this
+    double safety = 0.9;          // explicit Δt = safety × the tight predicted bound
     double referenceFactor = 10;  // the reference's Δt = min(tight bound, rows' Δt) / this
     int maxSize = 2048;           // the search's largest N
     bool error = true;            // run the references and measure the error

@@ -20,9 +20,9 @@ Scene realtimeDrape(const std::string& material, int n, double time,
 // The scene in the seed's per-vertex form: every vertex gets an interior vertex's mass ρ·du·dv,
 // the structural and shear springs the material's membrane constants (the mean of u and v where
 // the cells are not square), the drag μ = c·m; no bend springs and no bending energy. Border
-// vertices are a quarter or a half too heavy against the material's lumping; otherwise the same
-// cloth, for solvers that model only the per-vertex form. A scene without a material is returned
-// as it is.
+// vertices are twice, corners four times as heavy as the material lumps them; otherwise the
+// same membrane and drag: the seed's form of the cloth, beside which the material form shows what
+// its lumped masses and bending change. A scene without a material is returned as it is.
 Scene perVertexForm(const Scene& scene);
 
 }  // namespace cloth::app

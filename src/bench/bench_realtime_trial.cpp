@@ -14,6 +14,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int kPowerIterations = 40;       // the tight bound's power iteration (bench stability's)
 constexpr double kMaxStepsPerFrame = 1e8;  // below Δt ≈ 1.7e-10 s no trial could be real time
+// Steps go in chunks that start at one step and double while a chunk takes less than this, up to
+// a frame's: a trial far slower than real time is cut off after a few steps, not after a frame
+// that may take seconds, and a fast one soon steps whole frames (a call costs tens of µs).
+constexpr double kShortChunk = 0.005;  // [s]
 
 // `pattern` with its %g conversions of `a` (and `b`) filled in.
 std::string format(const char* pattern, double a, double b = 0) {
@@ -58,11 +62,12 @@ Trial timeTrial(const Scene& scene, const BackendChoice& choice, long stepsPerFr
     solver->step(1);
     solver->write(initial);
     const SolveStats before = solver->solveStats();
-    const long frames = std::max(1L, std::lround(time / kFrame));
-    long steps = 0;
+    const long total = std::max(1L, std::lround(time / kFrame)) * stepsPerFrame;
+    long steps = 0, chunk = 1;
     const Clock::time_point start = Clock::now();
-    for (long f = 1; f <= frames; ++f) {
-        const StepResult r = solver->step(stepsPerFrame);
+    while (steps < total) {
+        const double chunkStart = t.wall;
+        const StepResult r = solver->step(std::min(chunk, total - steps));
         steps += r.stepsTaken;
         t.wall = std::chrono::duration<double>(Clock::now() - start).count();
         t.simulated = double(steps) * t.dt;
@@ -71,7 +76,8 @@ Trial timeTrial(const Scene& scene, const BackendChoice& choice, long stepsPerFr
             t.reason = format("unstable at t = %.4g s: ", t.simulated) + r.reason;
             break;
         }
-        if (f == frames) {
+        if (t.wall - chunkStart < kShortChunk) chunk = std::min(2 * chunk, stepsPerFrame);
+        if (steps == total) {
             finish(t, scene, *solver, time);
         } else if (t.wall > kCutOffFactor * t.simulated + kCutOffSlack) {
             t.status = TrialStatus::CutOff;

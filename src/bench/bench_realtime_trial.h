@@ -1,5 +1,5 @@
-// One trial of `clothsim bench realtime`: a scene at one size, stepped frame by frame against the
-// wall clock, at the Δt its stability bound allows, halved after each instability.
+// One trial of `clothsim bench realtime`: a scene at one size, stepped against the wall clock at
+// the Δt its stability bound allows, halved after each instability.
 #pragma once
 
 #include "backends/solver_factory.h"
@@ -14,8 +14,8 @@ inline constexpr double kFrame = 1.0 / 60;  // one displayed frame [s]
 double firstDt(Method method, double tightDt, double safety);
 
 // Steps `scene` (its integrator and Δt = kFrame / stepsPerFrame set) on `choice` for `time`
-// simulated seconds, one frame per step(stepsPerFrame) call, timed by the steady clock (a GPU
-// solver's step(n) returns when the device has finished: it waits with glFinish). One warm-up
+// simulated seconds, in calls of step(n) of at most a frame each, timed by the steady clock (a
+// GPU solver's step(n) returns when the device has finished: it waits with glFinish). One warm-up
 // step first, then the initial state written back: shader compilation, thread start and first
 // touch of the arrays are set-up, not frames. Stopped as soon as the wall time passes
 // kCutOffFactor × the simulated time + kCutOffSlack (CutOff), or at an instability; a completed
