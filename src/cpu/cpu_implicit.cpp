@@ -45,8 +45,7 @@ void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p
 }
 
 // Backward Euler linearised once (Baraff & Witkin): (m_k (1 + hc) I + h² H) Δv =
-// h (F + m_k (g − c v) − h H v), by conjugate gradient with pins as constraints (their rows held
-// 0).
+// h (F + m_k (g − c v) − h H v), by conjugate gradient with pins as constraints (rows held 0).
 template <typename T>
 bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     gatherForces(band);

@@ -58,6 +58,7 @@ FallingSheet fallingSheet(const Scene& scene, const SimState& state) {
         total += m[k];
     }
     f.velocity /= total;
+    f.sideways = glm::length(glm::dvec2(f.velocity.x, f.velocity.z));
     for (const glm::dvec3& v : state.velocities)
         f.spread = std::max(f.spread, glm::length(v - f.velocity));
     f.strain = largestStrain(scene, state).strain;
@@ -80,8 +81,7 @@ std::vector<double> probedMasses(const Scene& probe, const SimState& afterOneSte
     return m;
 }
 
-std::vector<double> stepMasses(Solver& solver, const Scene& probe, const SimState& rest) {
-    solver.write(rest);
+std::vector<double> stepMasses(Solver& solver, const Scene& probe) {
     const StepResult r = solver.step(1);
     EXPECT_FALSE(r.unstable) << r.reason;
     return probedMasses(probe, solver.read());

@@ -27,11 +27,12 @@ Scene materialScene(Method method, double dt = 1e-4);
 // same drag rate c = airDamping) and its springs stay at rest.
 Scene fallingMaterialScene(Method method, double airDamping, double dt = 1e-4);
 
-// A falling sheet's state: the velocity of its centre of mass Σ m_k v_k / Σ m_k [m/s], the
-// largest |v_k − that| [m/s], and the largest relative stretch of a modelled spring.
+// A falling sheet's state: the velocity of its centre of mass Σ m_k v_k / Σ m_k [m/s] and its
+// part across gravity (x, z; gravity is along −y) [m/s], the largest |v_k − that velocity|
+// [m/s], and the largest relative stretch of a modelled spring.
 struct FallingSheet {
     glm::dvec3 velocity{0};
-    double spread = 0, strain = 0;
+    double sideways = 0, spread = 0, strain = 0;
 };
 FallingSheet fallingSheet(const Scene& scene, const SimState& state);
 
@@ -44,8 +45,9 @@ inline constexpr double kProbeWind = 1000;  // [N]: the corners reach 555 m/s af
 Scene massProbeScene(const Scene& scene);
 // m_k = Δt·K_w/|v_k| from the state after that one step [kg].
 std::vector<double> probedMasses(const Scene& probe, const SimState& afterOneStep);
-// One step of `solver` (built on `probe`) from the state `rest`: the masses it models [kg].
-std::vector<double> stepMasses(Solver& solver, const Scene& probe, const SimState& rest);
+// One step of `solver` (built on `probe`) from its state, which must be at rest: the masses it
+// models [kg].
+std::vector<double> stepMasses(Solver& solver, const Scene& probe);
 // Expects masses `m` [kg] to be the probe's lumped shares of `density` [kg/m²] (corners ¼, edges
 // ½ of a cell's ρ·du·dv), summing to density × area about the sheet's centroid, each to the
 // relative `tolerance`.
