@@ -19,7 +19,7 @@ void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
         ivec4 s = kSpringOffsets[o];
         ivec2 q = ij + s.xy;
         if (!insideGrid(q)) continue;
-        f += springForce(p, positionAt(q), springStiffness(s), springRestLength(s));
+        f += springForce(p, positionAt(q), springStiffnessAt(s, ij), springRestLength(s));
     }
 #endif
 #ifdef HAS_BENDING

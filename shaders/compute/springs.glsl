@@ -9,4 +9,16 @@ const ivec4 kSpringOffsets[NUM_SPRING_OFFSETS] = ivec4[](SPRING_OFFSETS);
 #endif
 
 float springStiffness(ivec4 s) { return params.stiffness[s.w / 4][s.w % 4]; }    // K [N/m]
+
+// K of spring s at vertex ij [N/m]: with HAS_BORDER_SHARES (a material), a structural spring on
+// a border line, both ends on the first or last row (along u) or column (along v), stands for
+// half a cell of cloth and has half the stiffness (src/model/grid.h onBorderLine).
+float springStiffnessAt(ivec4 s, ivec2 ij) {
+#ifdef HAS_BORDER_SHARES
+    bool onBorder = (s.y == 0 && (ij.y == 0 || ij.y == gridV() - 1)) ||
+                    (s.x == 0 && (ij.x == 0 || ij.x == gridU() - 1));
+    if (s.z == 0 && onBorder) return 0.5 * springStiffness(s);
+#endif
+    return springStiffness(s);
+}
 float springRestLength(ivec4 s) { return params.restLength[s.w / 4][s.w % 4]; }  // L [m]

@@ -22,8 +22,8 @@ vec3 stiffnessProduct(ivec2 ij, uint k) {
         ivec2 q = ij + s.xy;
         if (!insideGrid(q)) continue;
         uint kq = vertexIndex(q);
-        y += springJacobianTimes(xk, positions[kq].xyz, springStiffness(s), springRestLength(s),
-                                 wk - STIFFNESS_VECTOR[kq].xyz);
+        y += springJacobianTimes(xk, positions[kq].xyz, springStiffnessAt(s, ij),
+                                 springRestLength(s), wk - STIFFNESS_VECTOR[kq].xyz);
     }
 #endif
 #ifdef HAS_BENDING

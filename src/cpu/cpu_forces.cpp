@@ -28,10 +28,21 @@ void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
     for (const RowSpring& s : rowSprings_) {
         if (!s.upward || j + s.dj >= nv) continue;
         const int i0 = std::max(0, -s.di), i1 = std::min(nu, nu - s.di);
-        auto columns = [&](int a, int b) {
+        auto run = [&](int a, int b, T stiffness) {
             if (b <= a) return;
-            kernels_->coefficients(x_.row(k + a), x_.row(k + s.dj * nu + a + s.di), s.stiffness,
+            kernels_->coefficients(x_.row(k + a), x_.row(k + s.dj * nu + a + s.di), stiffness,
                                    s.restLength, ring + std::size_t(s.slot) * nu + a, b - a);
+        };
+        // A material's structural spring on a border line has half the stiffness
+        // (model/grid.h onBorderLine): along u the whole first and last row, along v the first
+        // and last column. 0.5·K times the rest is the bits of 0.5 times K times the rest.
+        const T half = T(0.5) * s.stiffness;
+        auto columns = [&](int a, int b) {
+            if (!s.halvedOnBorder) return run(a, b, s.stiffness);
+            if (s.dj == 0) return run(a, b, j == 0 || j == nv - 1 ? half : s.stiffness);
+            if (a == 0) run(0, 1, half);
+            if (b == nu) run(std::max(a, nu - 1), nu, half);
+            run(std::max(a, 1), std::min(b, nu - 1), s.stiffness);
         };
         if (gatherLater && kComputedInGather[s.table]) {
             columns(i0, 2);
@@ -188,7 +199,8 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
         for (const Spring& s : springs_) {
             const int qi = i + s.di, qj = j + s.dj;
             if (!interior && (qi < 0 || qi >= nu || qj < 0 || qj >= nv)) continue;
-            f += springForce(p, x_.get(k + s.indexOffset), s.stiffness, s.restLength);
+            f += springForce(p, x_.get(k + s.indexOffset), stiffnessAt(s, i, j, nu, nv),
+                             s.restLength);
         }
         if (bending_.active()) f += bendingForce<T>(bending_, i, j, at);
         if (features_.wind) {

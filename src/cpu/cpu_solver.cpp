@@ -91,7 +91,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
         while (kSpringOffsets[table].di != sp.di || kSpringOffsets[table].dj != sp.dj) ++table;
         families_ |= 1 << int(kSpringOffsets[table].family);
         rowSprings_.push_back({sp.di, sp.dj, sp.stiffness, sp.restLength, upward,
-                               upward ? upwardSprings_++ : -1, table});
+                               upward ? upwardSprings_++ : -1, table, sp.halvedOnBorder});
     }
     for (RowSpring& r : rowSprings_)  // a family's springs come in pairs ±(di, dj)
         for (const RowSpring& u : rowSprings_)

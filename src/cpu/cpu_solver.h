@@ -71,8 +71,9 @@ private:
         int di, dj;
         T stiffness, restLength;
         bool upward;
-        int slot;   // the coefficient array of this spring's upward direction
-        int table;  // its index in kSpringOffsets
+        int slot;             // the coefficient array of this spring's upward direction
+        int table;            // its index in kSpringOffsets
+        bool halvedOnBorder;  // model/stiffness.h StencilSpring
     };
     // The threads of one step(n) call: sync() is a barrier between passes (none when serial).
     struct Team {

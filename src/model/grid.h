@@ -46,6 +46,14 @@ inline constexpr std::array<SpringOffset, 12> kSpringOffsets{{
     {0, -2, Family::Bend},
 }};
 
+// A material's structural spring along a border, both of whose ends lie on the first or last row
+// (a spring along u) or column (along v), stands for the half cell of cloth beside it, not the
+// two halves an inner one has: its stiffness is halved (docs/physics.md "Borders"). `di`, `dj`:
+// a structural offset; (i, j): either end.
+inline bool onBorderLine(int di, int dj, int i, int j, int nu, int nv) {
+    return (dj == 0 && (j == 0 || j == nv - 1)) || (di == 0 && (i == 0 || i == nu - 1));
+}
+
 struct Grid {
     int nu = 2, nv = 1;
     double du = 0, dv = 0;  // spacing along û and v̂ [m]; 0 on a side of one vertex

@@ -28,7 +28,15 @@ struct StencilSpring {
     int di, dj;
     std::int64_t indexOffset;  // dj·nu + di
     T stiffness, restLength;
+    bool halvedOnBorder = false;  // a material's structural spring (model/grid.h onBorderLine)
 };
+
+// K of spring s at vertex (i, j): halved on a border line where the spring asks for it.
+template <typename T>
+T stiffnessAt(const StencilSpring<T>& s, int i, int j, int nu, int nv) {
+    return s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv) ? T(0.5) * s.stiffness
+                                                                      : s.stiffness;
+}
 
 template <typename T>
 std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
@@ -38,7 +46,8 @@ std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
         const SpringOffset& o = kSpringOffsets[s];
         if (!familyModelled(scene, o.family)) continue;
         springs.push_back({o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di,
-                           T(scene.slotStiffness(int(s))), T(g.restLength(o.di, o.dj))});
+                           T(scene.slotStiffness(int(s))), T(g.restLength(o.di, o.dj)),
+                           scene.material.has_value() && o.family == Family::Structural});
     }
     return springs;
 }
@@ -70,8 +79,9 @@ void stiffnessProduct(int nu, int nv, const std::vector<StencilSpring<T>>& sprin
                     if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
                 }
                 const std::int64_t q = k + s.indexOffset;
-                y += springJacobianTimes(positionAt(x, k), positionAt(x, q), s.stiffness,
-                                         s.restLength, positionAt(p, k) - positionAt(p, q));
+                y += springJacobianTimes(positionAt(x, k), positionAt(x, q),
+                                         stiffnessAt(s, i, j, nu, nv), s.restLength,
+                                         positionAt(p, k) - positionAt(p, q));
             }
             if (bending.active()) y -= bendingForce<T>(bending, i, j, pAt);
         }

@@ -30,7 +30,9 @@ Energy energy(const Scene& scene, const SimState& state) {
                 const double stretch =
                     glm::length(state.positions[g.index(i + o.di, j + o.dj)] - p) -
                     g.restLength(o.di, o.dj);
-                e.spring += 0.5 * stiffness[s] * stretch * stretch;
+                const bool half = scene.material && o.family == Family::Structural &&
+                                  onBorderLine(o.di, o.dj, i, j, g.nu, g.nv);
+                e.spring += (half ? 0.25 : 0.5) * stiffness[s] * stretch * stretch;
             }
         }
     }

@@ -22,6 +22,7 @@ Features Features::of(const Scene& scene) {
     f.bend = familyModelled(scene, Family::Bend);
     f.wind = scene.wind.has_value() && scene.wind->strength != 0;
     f.bending = bendingWeights(scene.grid(), scene.bendingStiffness()).active();
+    f.borderShares = scene.material.has_value() && f.structural;
     f.planes = scene.planeCount();
     f.spheres = scene.sphereCount();
     f.boxes = scene.count<Box>();

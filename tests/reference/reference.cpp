@@ -79,11 +79,17 @@ V3 Simulation::restPosition(int i, int j) const {
     return add(prm_.origin, add(scale(i * du_, u_), scale(j * dv_, vAxis_)));
 }
 
-double Simulation::stiffness(int di, int dj, int family) const {
+double Simulation::stiffness(int i, int j, int di, int dj, int family) const {
+    double k = family == 0 ? prm_.kStructural : family == 1 ? prm_.kShear : prm_.kBend;
     for (const Params::OffsetStiffness& o : prm_.offsetStiffness) {
-        if (o.di == di && o.dj == dj) return o.k;
+        if (o.di == di && o.dj == dj) k = o.k;
     }
-    return family == 0 ? prm_.kStructural : family == 1 ? prm_.kShear : prm_.kBend;
+    if (!prm_.cellShares || family != 0) return k;
+    // The cells beside the edge from (i, j) to (i + di, j + dj): along u those of cell rows
+    // j − 1 and j, along v those of cell columns i − 1 and i, where they exist.
+    const int line = dj == 0 ? j : i, cells = dj == 0 ? prm_.nv - 1 : prm_.nu - 1;
+    const int beside = (line - 1 >= 0 ? 1 : 0) + (line < cells ? 1 : 0);
+    return k * beside / 2;
 }
 
 double Simulation::drag(int k) const {
@@ -99,7 +105,7 @@ V3 Simulation::springForces(const std::vector<V3>& p, int i, int j) const {
     V3 f{0, 0, 0};
     const V3& pk = p[j * prm_.nu + i];
     for (const Offset& o : kOffsets) {
-        const double k = stiffness(o.di, o.dj, o.family);
+        const double k = stiffness(i, j, o.di, o.dj, o.family);
         const int qi = i + o.di, qj = j + o.dj;
         if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
         const double len = restLength(o.di, o.dj);
@@ -122,7 +128,7 @@ std::vector<V3> Simulation::hessianProduct(const std::vector<V3>& x, const std::
             const int k = j * prm_.nu + i;
             if (pinned_[k]) continue;
             for (const Offset& o : kOffsets) {
-                const double stiff = stiffness(o.di, o.dj, o.family);
+                const double stiff = stiffness(i, j, o.di, o.dj, o.family);
                 const int qi = i + o.di, qj = j + o.dj;
                 if (stiff == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
                 const int q = qj * prm_.nu + qi;
@@ -321,7 +327,7 @@ double Simulation::springEnergy(const std::vector<V3>& p) const {
     for (int j = 0; j < prm_.nv; ++j) {
         for (int i = 0; i < prm_.nu; ++i) {
             for (const Offset& o : kHalfOffsets) {
-                const double k = stiffness(o.di, o.dj, o.family);
+                const double k = stiffness(i, j, o.di, o.dj, o.family);
                 const int qi = i + o.di, qj = j + o.dj;
                 if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
                 const double stretch =

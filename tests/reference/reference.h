@@ -83,6 +83,9 @@ struct Params {
         double k;  // [N/m]; 0 = not modelled
     };
     std::vector<OffsetStiffness> offsetStiffness;
+    // A material's structural spring is the sum of a half from each cell beside it (docs/physics.md
+    // "Borders"): K·n/2 with n = 1 on a border line, 2 inside. Off: every spring has its K.
+    bool cellShares = false;
     // A material's bending stiffness B [N·m] (docs/physics.md "Bending"): the quadratic energy of
     // second differences along u and v and a twist per cell; 0 = not modelled.
     double bend = 0;
@@ -150,7 +153,8 @@ public:
 
 private:
     V3 restPosition(int i, int j) const;
-    double stiffness(int di, int dj, int family) const;
+    // K of the spring from (i, j) along offset (di, dj) of family `family` [N/m].
+    double stiffness(int i, int j, int di, int dj, int family) const;
     double drag(int k) const;  // μ_k of the drag −μ_k v on vertex k [N·s/m]
     double restLength(int di, int dj) const;
     V3 springForces(const std::vector<V3>& p, int i, int j) const;

@@ -1,6 +1,5 @@
-// A cloth of a material (DESIGN.md §2 "Mass", the physical form), built in code: the scene
-// loader does not read `material` yet. The tests of the per-vertex masses, the per-slot
-// stiffnesses and the damping rate share it.
+// A cloth of a material (DESIGN.md §2 "Mass", the physical form), built in code. The tests of
+// the per-vertex masses, the per-slot stiffnesses and the damping rate share it.
 #pragma once
 
 #include <glm/glm.hpp>

@@ -113,6 +113,7 @@ ref::Params toReference(const Scene& scene) {
         p.damping = 0;
         p.dampingRate = scene.dampingRate();
         p.bend = scene.material->bend;
+        p.cellShares = true;
         for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
             p.offsetStiffness.push_back(
                 {kSpringOffsets[s].di, kSpringOffsets[s].dj, scene.slotStiffness(int(s))});
