@@ -8,6 +8,20 @@
 #include "bending.glsl"
 #endif
 
+#ifdef HAS_WIND
+// K_w at vertex ij [N]: with HAS_BORDER_SHARES (a material) Params holds the pressure times a
+// cell's area, and a vertex on a border presses with its share of it (src/model/scene.h
+// windArea): half on an edge, a quarter at a corner.
+float windStrengthAt(ivec2 ij) {
+    float s = params.windStrength;
+#ifdef HAS_BORDER_SHARES
+    if (ij.x == 0 || ij.x == gridU() - 1) s *= 0.5;
+    if (ij.y == 0 || ij.y == gridV() - 1) s *= 0.5;
+#endif
+    return s;
+}
+#endif
+
 // The springs of the up to 12 neighbours, a material's bending, the wind and the grab on vertex ij
 // (index k), and its normal.
 void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
@@ -31,7 +45,7 @@ void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
                      positionAt(ivec2(i, min(j + 1, gridV() - 1))),
                      positionAt(ivec2(i, max(j - 1, 0))));
 #ifdef HAS_WIND
-    f += windForce(n, params.windDirection, params.windStrength);
+    f += windForce(n, params.windDirection, windStrengthAt(ij));
 #endif
     if (grabbed(k)) f += grabForce(p, uGrab.xyz, uGrab.w);
 }

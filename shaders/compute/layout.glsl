@@ -31,7 +31,7 @@ layout(std140, binding = 0) uniform Params {
     vec3 gravity;           // g [m/s²]
     float maxSpeedSquared;  // max_speed² [m²/s²]: a faster vertex makes the step unstable
     vec3 windDirection;     // unit; 0 without wind
-    float windStrength;     // K_w [N]; 0 without wind
+    float windStrength;     // K_w [N] (a material's: K_w [N/m²] × du·dv); 0 without wind
     float cgTolerance;      // implicit_euler's relative CG tolerance on |r| / |b|
     // K [N/m] and L [m] of spring-table slot o at [o / 4][o % 4] (springStiffness,
     // springRestLength): std140 would pad a float[12] to 16 bytes per element; vec4s pack the

@@ -112,7 +112,7 @@ void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
         const Vec3<T> w = windDirection_;
         auto columns = [&](int i, int n) {
             kernels_->wind(f + i, row + std::max(i - 1, 0), row + std::min(i + 1, nu - 1), down + i,
-                           up + i, w.x, w.y, w.z, windStrength_, n);
+                           up + i, w.x, w.y, w.z, windStrengthAt(i, j), n);
         };
         columns(0, 1);
         if (nu > 2) columns(1, nu - 2);
@@ -205,7 +205,7 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
         if (bending_.active()) f += bendingForce<T>(bending_, i, j, at);
         if (features_.wind) {
             const Vec3<T> n = vertexNormal<T>(nu, nv, i, j, at), w = windDirection_;
-            addWind(n.x, n.y, n.z, w.x, w.y, w.z, windStrength_, f.x, f.y, f.z);
+            addWind(n.x, n.y, n.z, w.x, w.y, w.z, windStrengthAt(i, j), f.x, f.y, f.z);
         }
         f_.set(k, f);
         if (++i == nu) {

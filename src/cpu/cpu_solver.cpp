@@ -110,7 +110,11 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     gravity_ = cast<T>(scene.gravity);
     maxSpeed_ = scene.maxSpeed;
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
-    windStrength_ = scene.wind ? T(scene.wind->strength) : T(0);
+    for (int column = 0; column < 2; ++column)  // a corner, an edge's, an inner vertex's area
+        for (int row = 0; row < 2; ++row)
+            windStrength_[column][row] =
+                scene.wind ? T(scene.wind->strength * scene.windArea(column ? 0 : 1, row ? 0 : 1))
+                           : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
     colliders_.take(scene);
 }

@@ -162,7 +162,12 @@ private:
     // vertex after the update, whatever its mass.
     AlignedVector<T> inverseMass_;
     std::vector<std::uint8_t> pinned_;
-    T dt_t_, dampingRate_, maxSpeed2_, windStrength_;  // dampingRate_: c [1/s], drag −c m_k v_k
+    T dt_t_, dampingRate_, maxSpeed2_;  // dampingRate_: c [1/s], drag −c m_k v_k
+    // K_w times Scene::windArea: [on the first or last column][on the first or last row].
+    T windStrength_[2][2];
+    T windStrengthAt(int i, int j) const {
+        return windStrength_[i == 0 || i == grid_.nu - 1][j == 0 || j == grid_.nv - 1];
+    }
     BendingWeights bending_;  // a material's bending energy (model/bending.h); inactive: none
     Vec3<T> gravity_, windDirection_;
     CpuColliders<T> colliders_;

@@ -60,7 +60,7 @@ struct Params {
     glm::vec3 gravity;      // g [m/s²]
     float maxSpeedSquared;  // max_speed² [m²/s²]: a faster vertex makes the step unstable
     glm::vec3 windDirection;  // unit; 0 without wind
-    float windStrength;       // K_w [N]; 0 without wind
+    float windStrength;       // K_w [N] (a material's: K_w [N/m²] × du·dv); 0 without wind
     float cgTolerance;        // implicit_euler's relative CG tolerance on |r| / |b| [1]
     // K and L of spring-table slot o (kSpringOffsets[o]) at [o] [N/m], [m] (Scene::slotStiffness,
     // Grid::restLength). GLSL declares each vec4[3], read at [o / 4][o % 4]: std140 strides a

@@ -230,7 +230,9 @@ void GpuSolver::uploadParams(const Scene& scene) {
     p.gravity = glm::vec3(scene.gravity);  // as the CPU float backend converts
     p.maxSpeedSquared = float(scene.maxSpeed * scene.maxSpeed);
     p.windDirection = scene.wind ? glm::vec3(scene.wind->direction) : glm::vec3(0);
-    p.windStrength = scene.wind ? float(scene.wind->strength) : 0.0f;
+    // A material's: the pressure times an inner vertex's area; the shader halves it per border
+    // (HAS_BORDER_SHARES, forces.glsl windStrengthAt), as Scene::windArea does.
+    p.windStrength = scene.wind ? float(scene.wind->strength * scene.windArea(1, 1)) : 0.0f;
     p.cgTolerance = float(scene.integrator.tolerance);
     for (std::size_t o = 0; o < kSpringOffsets.size(); ++o) {
         p.stiffness[o] = float(scene.slotStiffness(int(o)));

@@ -93,6 +93,14 @@ double Scene::vertexMass(int i, int j) const {
     return material->density * (g.du * shareU) * (g.dv * shareV);
 }
 
+double Scene::windArea(int i, int j) const {
+    if (!material) return 1;
+    const Grid g = grid();
+    const double shareU = (i == 0 || i == g.nu - 1) ? 0.5 : 1.0;
+    const double shareV = (j == 0 || j == g.nv - 1) ? 0.5 : 1.0;
+    return (g.du * shareU) * (g.dv * shareV);
+}
+
 double Scene::totalMass() const {
     if (!material) return cloth.mass * cloth.nu * cloth.nv;
     return material->density * cloth.size.x * cloth.size.y;

@@ -183,6 +183,10 @@ struct Scene {
     // What the solvers model, from either form. Vertex (i, j)'s mass [kg]: cloth.mass, or its
     // share of the area times the density (corners ¼, edges ½ of a cell's du·dv).
     double vertexMass(int i, int j) const;
+    // What the wind's K_w is multiplied by at vertex (i, j): for a material, the vertex's share of
+    // the area [m²] (K_w is then a pressure [N/m²], and a finer grid feels the same wind); 1 for
+    // the per-vertex form (K_w a force per vertex [N], DESIGN.md §2).
+    double windArea(int i, int j) const;
     double totalMass() const;  // [kg]
     // K of the spring of kSpringOffsets[slot] [N/m]; 0: not modelled.
     double slotStiffness(int slot) const;

@@ -126,6 +126,26 @@ TEST(Material, SolverMassesAreTheLumpedAreaTimesTheDensity) {
     }
 }
 
+// A material's wind is a pressure (docs/physics.md "Wind"): the sheet takes the impulse
+// Δt·P·area·cos θ at every resolution, and every vertex the same acceleration, its force
+// scaling with its share of the area as its mass does. (A force per vertex, the per-vertex
+// form's, gives N/area m⁻² times it: 84 at 8 cells, 1100 at 32, seen with windArea 1.) Float:
+// the rounding of the wind's force and of the rest lengths, 5e-8 seen.
+TEST(Material, WindIsAPressureAtEveryResolution) {
+    for (Precision precision : {Precision::Double, Precision::Float})
+        for (int cells : {8, 32, 128}) {
+            const Scene scene = windSheetScene(cells);
+            std::unique_ptr<Solver> solver = makeCpuSolver(scene, {precision, 2});
+            solver->step(1);
+            const WindImpulse w = windImpulse(scene, solver->read());
+            std::printf("%s, %3d cells: impulse / (dt P A cos) = %.9f, speeds spread %.2g\n",
+                        precisionName(precision), cells, w.ofPressure, w.spread);
+            const double tolerance = precision == Precision::Double ? 1e-9 : 1e-4;
+            EXPECT_NEAR(w.ofPressure, 1, tolerance) << cells << " cells";
+            EXPECT_LT(w.spread, tolerance) << cells << " cells";
+        }
+}
+
 // Every vertex has the same drag rate c, so an unpinned sheet falls without deforming and its
 // centre of mass follows v(t) = g/c (1 − e^{−ct}); its kinetic energy is ½ ρA|v|². Δt = 1e-4 s
 // over t = 0.5 s with c = 4/s: the first-order schemes miss the law by ½ g c h t e^{−ct}

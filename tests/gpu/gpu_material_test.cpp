@@ -41,6 +41,19 @@ TEST_P(GpuMaterial, MatchesTheReferenceAndTheCpuFloatBackend) {
     EXPECT_LT(toCpu, kCpuFloatTolerance);
 }
 
+// The wind as a pressure (tests/cpu/material_test.cpp WindIsAPressureAtEveryResolution): the
+// shader's windStrengthAt gives each vertex its share of the area.
+TEST_F(GpuMaterial, WindIsAPressureAtEveryResolution) {
+    for (int cells : {8, 32, 128}) {
+        const Scene scene = windSheetScene(cells);
+        const WindImpulse w = windImpulse(scene, runGpu(scene, 1));
+        std::printf("%3d cells: impulse / (dt P A cos) = %.7f, speeds spread %.2g\n", cells,
+                    w.ofPressure, w.spread);
+        EXPECT_NEAR(w.ofPressure, 1, 1e-4) << cells << " cells";
+        EXPECT_LT(w.spread, 1e-4) << cells << " cells";
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Methods, GpuMaterial, ::testing::ValuesIn(kMethods),
                          [](const ::testing::TestParamInfo<Method>& p) {
                              return std::string(methodName(p.param));

@@ -221,7 +221,9 @@ V3 Simulation::windForce(const std::vector<V3>& p, int i, int j) const {
     const double len = norm(axb);
     if (len < 1e-12) return {0, 0, 0};
     const V3 n = scale(1.0 / len, axb);
-    return scale(prm_.windStrength * dot(n, wind_), n);
+    // A material's K_w is a pressure on the vertex's area, its mass over the density.
+    const double area = prm_.density > 0 ? mass_[std::size_t(j * prm_.nu + i)] / prm_.density : 1;
+    return scale(area * prm_.windStrength * dot(n, wind_), n);
 }
 
 // Plane (Q12): project onto it and cancel the normal velocity. Sphere (Q13): push to the surface

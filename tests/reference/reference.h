@@ -99,7 +99,7 @@ struct Params {
     std::vector<int> pinFollow;
     bool wind = false;
     V3 windDirection{1, 0, 0};
-    double windStrength = 0;          // K_w [N]
+    double windStrength = 0;          // K_w [N]; with density > 0 a pressure [N/m²]
     std::vector<Collider> colliders;  // applied in this order
     Method method = Method::ExplicitEuler;
     double dt = 1e-3;           // [s]

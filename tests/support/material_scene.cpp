@@ -30,7 +30,7 @@ Scene materialScene(Method method, double dt) {
       "gravity": [0.3, -9.81, 0.1],
       "pins": [[0, -1], [-1, -1]],
       "integrator": { "method": "symplectic_euler", "dt": 0.0001 },
-      "wind": { "direction": [1, 0.2, 0.6], "strength": 0.001 }
+      "wind": { "direction": [1, 0.2, 0.6], "strength": 0.2 }
     })",
                          "material (test)");
     s.material = fabric(0.1);
@@ -75,9 +75,15 @@ Scene massProbeScene(const Scene& scene) {
 }
 
 std::vector<double> probedMasses(const Scene& probe, const SimState& afterOneStep) {
+    const Grid g = probe.grid();
+    auto share = [](int i, int n) { return i == 0 || i == n - 1 ? 0.5 : 1.0; };
     std::vector<double> m;
-    for (const glm::dvec3& v : afterOneStep.velocities)
-        m.push_back(probe.integrator.dt * probe.wind->strength / glm::length(v));
+    for (std::size_t k = 0; k < afterOneStep.velocities.size(); ++k) {
+        const int i = int(k % std::size_t(g.nu)), j = int(k / std::size_t(g.nu));
+        const double area = g.du * share(i, g.nu) * g.dv * share(j, g.nv);
+        m.push_back(probe.integrator.dt * probe.wind->strength * area /
+                    glm::length(afterOneStep.velocities[k]));
+    }
     return m;
 }
 
@@ -108,6 +114,42 @@ void expectLumpedMasses(const Scene& probe, double density, const std::vector<do
     const double expected = density * probe.cloth.size.x * probe.cloth.size.y;
     EXPECT_NEAR(total, expected, tolerance * expected) << what;
     EXPECT_LT(glm::length(moment / total - centroid), tolerance * g.extent()) << what;
+}
+
+Scene windSheetScene(int cells) {
+    Scene s = parseScene(R"({
+      "name": "wind sheet",
+      "cloth": { "resolution": [8, 6], "size": [1.0, 0.75], "origin": [0, 1, 0],
+                 "u_axis": [1, 0, 0], "v_axis": [0, 0, 1] },
+      "material": { "preset": "cotton" },
+      "gravity": [0, 0, 0],
+      "integrator": { "method": "symplectic_euler", "dt": 0.0001 },
+      "wind": { "direction": [0.8660254037844386, 0.5, 0], "strength": 10 }
+    })",
+                         "wind sheet (test)");
+    s.cloth.nu = cells + 1;
+    s.cloth.nv = 3 * cells / 4 + 1;
+    return s;
+}
+
+WindImpulse windImpulse(const Scene& scene, const SimState& afterOneStep) {
+    const Grid g = scene.grid();
+    const glm::dvec3 normal = glm::normalize(glm::cross(g.u, g.v));
+    double momentum = 0, mean = 0;
+    const auto& v = afterOneStep.velocities;
+    for (std::size_t k = 0; k < v.size(); ++k) {
+        const int i = int(k % std::size_t(g.nu)), j = int(k / std::size_t(g.nu));
+        momentum += scene.vertexMass(i, j) * glm::dot(v[k], normal);
+        mean += glm::length(v[k]) / double(v.size());
+    }
+    const double cosine = std::abs(glm::dot(normal, scene.wind->direction));
+    const double area = scene.cloth.size.x * scene.cloth.size.y;
+    WindImpulse w;
+    w.ofPressure =
+        std::abs(momentum) / (scene.integrator.dt * scene.wind->strength * area * cosine);
+    for (const glm::dvec3& vk : v)
+        w.spread = std::max(w.spread, std::abs(glm::length(vk) / mean - 1));
+    return w;
 }
 
 }  // namespace cloth

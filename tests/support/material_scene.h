@@ -14,7 +14,8 @@ namespace cloth {
 // 16×12 vertices on 1.2 × 0.66 m, so du = 0.08 m ≠ dv = 0.06 m and the structural springs along
 // u and v differ; density 0.15 kg/m², stretch 5000 N/m, shear 500 N/m, air damping 0.1 1/s; the
 // axes orthogonal and tilted, pinned at the two corners of its upper edge, gravity off-axis, a
-// light wind (the same force on every vertex, so a different acceleration on each mass).
+// light wind (a pressure of 0.2 N/m²: a force on each vertex's share of the area, ¼ and ½ of an
+// inner vertex's at the corners and edges, as its mass).
 //
 // Lumped, a corner weighs ρ du dv/4 = 0.18 g and its springs give it the largest λ_k/m_k, about
 // 1.1e8 1/s², hence ω_max ≈ 1.05e4 1/s: Δt = 1e-4 s is inside symplectic Euler's, Verlet's and
@@ -36,13 +37,14 @@ struct FallingSheet {
 FallingSheet fallingSheet(const Scene& scene, const SimState& state);
 
 // The masses a solver models, measured: `probe` is the scene with gravity 0 and a wind of
-// kProbeWind N along the cloth's normal, by symplectic Euler. One step from rest gives vertex k
-// the velocity Δt·K_w/m_k along the normal, whatever the springs (at rest they pull with 0, up
-// to the rounding of the rest lengths: K ≈ 6e3 N/m times 1e-8 m in float, 1e-7 of the wind) and
-// the drag (v = 0). Pins are removed.
-inline constexpr double kProbeWind = 1000;  // [N]: the corners reach 555 m/s after 1e-4 s
+// pressure kProbeWind along the cloth's normal, by symplectic Euler. One step from rest gives
+// vertex k the velocity Δt·K_w·A_k/m_k along the normal, A_k its share of the area (as lumped
+// here, apart from Scene::windArea), whatever the springs (at rest they pull with 0, up to the
+// rounding of the rest lengths: K ≈ 6e3 N/m times 1e-8 m in float, 1e-7 of a corner's 240 N)
+// and the drag (v = 0). Pins are removed.
+inline constexpr double kProbeWind = 2e5;  // [N/m²]: every vertex reaches 133 m/s after 1e-4 s
 Scene massProbeScene(const Scene& scene);
-// m_k = Δt·K_w/|v_k| from the state after that one step [kg].
+// m_k = Δt·K_w·A_k/|v_k| from the state after that one step [kg].
 std::vector<double> probedMasses(const Scene& probe, const SimState& afterOneStep);
 // One step of `solver` (built on `probe`) from its state, which must be at rest: the masses it
 // models [kg].
@@ -52,5 +54,16 @@ std::vector<double> stepMasses(Solver& solver, const Scene& probe);
 // relative `tolerance`.
 void expectLumpedMasses(const Scene& probe, double density, const std::vector<double>& m,
                         double tolerance, const std::string& what);
+
+// A flat sheet of cells × (3/4 cells) cells on 1 × 0.75 m of cotton, no gravity or pins, in a
+// wind of pressure 10 N/m² at 60° from its normal (docs/physics.md "Wind").
+Scene windSheetScene(int cells);
+// After one symplectic step from rest: the sheet's momentum along its normal over the impulse
+// Δt·P·area·cos 60° the whole area feels (1 for a pressure), and the largest relative
+// difference of the vertices' speeds from their mean (0: every vertex accelerates alike).
+struct WindImpulse {
+    double ofPressure = 0, spread = 0;
+};
+WindImpulse windImpulse(const Scene& scene, const SimState& afterOneStep);
 
 }  // namespace cloth
