@@ -15,13 +15,14 @@ using Options = SpeedOptions;
 
 constexpr const char* kHelp = R"(usage: clothsim bench speed [SCENE] [options]
 
-Times the scene (default scenes/hanging.json) resized to each size x size grid on every backend
-asked for (the CPU in float and double, the GPU in float) and on the baseline: the seed's
-explicit Euler loop, one thread, double, the 1x line of the speed-ups. After warm-up steps, a
-batch of steps is sized to about 50 ms and repeated until 0.3 s and 5 batches have passed; the
-median batch is reported. The CPU's triad bandwidth and the GPU's copy-kernel bandwidth are
-measured in the same run; achieved GB/s counts the bytes a step must move at least (read and
-write each vertex's position and velocity).
+Times the scene (default bench/hanging_per_vertex.json, the seed's per-vertex hanging cloth)
+resized to each size x size grid on every backend asked for (the CPU in float and double, the
+GPU in float) and on the baseline: the seed's explicit Euler loop, one thread, double, the 1x
+line of the speed-ups. After warm-up steps, a batch of steps is sized to about 50 ms and
+repeated until 0.3 s and 5 batches have passed; the median batch is reported. The CPU's triad
+bandwidth and the GPU's copy-kernel bandwidth are measured in the same run; achieved GB/s
+counts the bytes a step must move at least (read and write each vertex's position and
+velocity).
 
 options:
   --sizes LIST        grid sides, comma-separated (default 32,64,...,4096: the default sizes
@@ -87,9 +88,9 @@ bool parse(Args& args, Options& o) {
         throw InputError("command line", "--peer-dt", "sets the peer's step: give --peer too");
     if (!o.peer.empty() && !o.sizesGiven) o.sizes = {64, 128, 256};
     if (o.scenePath.empty())
-        o.scenePath = (std::filesystem::path(benchScriptDir(o.scriptDir)).parent_path() /
-                       "scenes/hanging.json")
-                          .string();
+        o.scenePath =
+            (std::filesystem::path(benchScriptDir(o.scriptDir)) / "hanging_per_vertex.json")
+                .string();
     return true;
 }
 

@@ -45,6 +45,8 @@ options:
   --precision float|double  CPU arithmetic (default double)
   --set KEY.PATH=JSON       override a scene key, validated like the file (repeatable)
   --colour checker|strain   cloth colours: front/back checker or per-vertex strain
+  --strain-scale S          the strain drawn at full colour (default 0.05; woven fabrics
+                            stretch about 0.01 under their own weight)
   --wireframe               draw the grid's edges
   --springs                 overlay the springs of a few vertices (structural, shear, bend)
   --help                    this text
@@ -62,6 +64,7 @@ struct RenderArgs {
     BackendChoice backend = backendChoiceFromEnvironment();
     std::vector<std::string> sets;
     bool strain = false, wireframe = false, springs = false;
+    float strainScale = 0.05f;  // relative stretch at full colour (render::RenderOptions)
 };
 
 void parseSize(const std::string& flag, const std::string& v, RenderArgs& o) {
@@ -80,6 +83,15 @@ long parseSteps(const std::string& flag, const std::string& v) {
     if (v.empty() || *end != '\0' || n < 0)
         throw InputError("command line", flag, "expected a whole number ≥ 0, got '" + v + "'");
     return n;
+}
+
+float parseStrainScale(const std::string& flag, const std::string& v) {
+    char* end = nullptr;
+    const double s = std::strtod(v.c_str(), &end);
+    if (v.empty() || *end != '\0' || !(s >= 1e-4 && s <= 10))
+        throw InputError("command line", flag,
+                         "expected a strain within 1e-4..10, got '" + v + "'");
+    return float(s);
 }
 
 double parseFps(const std::string& flag, const std::string& v) {
@@ -108,6 +120,8 @@ bool parse(Args& args, RenderArgs& o) {
             if (c != "checker" && c != "strain")
                 throw InputError("command line", f, "expected checker or strain, got '" + c + "'");
             o.strain = c == "strain";
+        } else if (f == "--strain-scale") {
+            o.strainScale = parseStrainScale(f, args.value(f));
         } else if (f == "--frames") {
             o.framesDir = args.value(f);
         } else if (f == "--every") {
@@ -231,6 +245,7 @@ public:
         for (const Pin& p : scene.pins) pins.push_back(scene.grid().index(p.i, p.j));
         renderer_.setPins(pins);
         options_.colour = o.strain ? render::ColourMode::Strain : render::ColourMode::Checker;
+        options_.strainScale = o.strainScale;
         options_.wireframe = o.wireframe;
         options_.springs = o.springs;
     }

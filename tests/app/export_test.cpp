@@ -76,27 +76,12 @@ std::array<double, 3> normalAt(const std::vector<std::array<double, 3>>& p, int 
 TEST(Export, ObjFramesSortInStepOrderAndMatchTheSolverState) {
     const fs::path dir = test::freshTempDir("export_test", "frames");
     const int nu = 7, nv = 5, every = 40, steps = 200;
-    const auto r = runProcess({kExe,
-                               "run",
-                               kDrape,
-                               "--steps",
-                               std::to_string(steps),
-                               "--quiet",
-                               "--set",
-                               "cloth.resolution=[7, 5]",
-                               "--set",
-                               "integrator.dt=1e-3",
-                               "--set",
-                               "damping=0.5",
-                               "--frames",
-                               (dir / "f").string(),
-                               "--every",
-                               std::to_string(every),
-                               "--out-csv",
-                               (dir / "final.csv").string(),
-                               "--out-obj",
-                               (dir / "final.obj").string()},
-                              120);
+    const auto r =
+        runProcess({kExe, "run", kDrape, "--steps", std::to_string(steps), "--quiet", "--set",
+                    "cloth.resolution=[7, 5]", "--set", "integrator.dt=1e-3", "--frames",
+                    (dir / "f").string(), "--every", std::to_string(every), "--out-csv",
+                    (dir / "final.csv").string(), "--out-obj", (dir / "final.obj").string()},
+                   120);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(dir / "f")) names.push_back(e.path().filename());

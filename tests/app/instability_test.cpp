@@ -304,12 +304,13 @@ TEST(Instability, SpringPastMaxStrainExitsThreeOnBothBackends) {
     }
 }
 
-// A run that has left physics without a non-finite number or a speed past max_speed: hanging at
-// 4× its explicit Euler bound (1.2e-4 s against 2.94e-5 s) swings at ~12 m/s with springs near
-// 100% strain (measured: strain 0.91 and 12.7 m/s in the final state). It used to exit 0; the
-// strain check stops it (the CPU in double, whose trajectory is the same on every machine).
+// A run that has left physics without a non-finite number or a speed past max_speed: the seed's
+// per-vertex hanging cloth (bench/hanging_per_vertex.json, explicit Euler) at 4× its bound (1.2e-4
+// s against 2.94e-5 s) swings at ~12 m/s with springs near 100% strain (measured: strain 0.91
+// and 12.7 m/s in the final state). It used to exit 0; the strain check stops it (the CPU in
+// double, whose trajectory is the same on every machine).
 TEST(Instability, HangingFarPastItsBoundStopsByStrain) {
-    const std::string hanging = std::string(CLOTH_SOURCE_DIR) + "/scenes/hanging.json";
+    const std::string hanging = std::string(CLOTH_SOURCE_DIR) + "/bench/hanging_per_vertex.json";
     const ProcessResult r =
         runProcess({kExe, "run", hanging, "--quiet", "--set", "integrator.dt=1.2e-4"}, kTimeout);
     EXPECT_EQ(r.exitCode, 3) << test::describe(r);

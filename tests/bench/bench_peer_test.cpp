@@ -8,8 +8,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "scene/scene_loader.h"
 #include "cpu/cpu_backend.h"
+#include "scene/scene_loader.h"
 #include "solver/solver.h"
 #include "support/process.h"
 
@@ -46,8 +46,9 @@ TEST(BenchPeer, UnknownPeerIsRefusedNamingTheFlag) {
 
 #ifdef CLOTH_HAVE_BULLET
 
+// The speed benchmark's default scene: the seed's per-vertex hanging cloth.
 Scene hanging(int n) {
-    return loadScene(CLOTH_SOURCE_DIR "/scenes/hanging.json",
+    return loadScene(CLOTH_SOURCE_DIR "/bench/hanging_per_vertex.json",
                      {"cloth.resolution=[" + std::to_string(n) + "," + std::to_string(n) + "]"});
 }
 

@@ -9,7 +9,7 @@ namespace {
 class GpuInertFeatures : public GpuTest {};
 
 TEST_F(GpuInertFeatures, MovesAsTheDeclaredScene) {
-    const Scene s = loadScene(CLOTH_SOURCE_DIR "/scenes/hanging.json",
+    const Scene s = loadScene(CLOTH_SOURCE_DIR "/bench/hanging_per_vertex.json",
                               {"cloth.resolution=[19,13]"});  // not multiples of a work group
     const Scene inert = app::withInertFeatures(s);
     ASSERT_FALSE(Features::of(inert) == Features::of(s));

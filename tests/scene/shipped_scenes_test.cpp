@@ -45,6 +45,11 @@ TEST_P(ShippedScene, StaysStableForItsWholeDuration) {
         EXPECT_TRUE(allFinite(s));
         // Settled or settling: nothing moves anywhere near max_speed.
         for (const glm::dvec3& v : s.velocities) ASSERT_LT(glm::length(v), 10.0);
+        // A fabric (a material) hangs as cloth, not as a rubber sheet: under its weight and a
+        // wind of about 2 g no structural spring is stretched by 10 % (measured in double:
+        // 3.3–7.2 %, at a pin or a collider's edge; the median spring 0.07–0.4 %). The
+        // per-vertex scenes of before stretched by up to 50 % (hanging) and 27 % (flag).
+        if (scene.material) EXPECT_LT(maxStrain(scene, s), 0.1) << precisionName(p);
     }
 }
 

@@ -2,15 +2,15 @@
 // spring every integrator's bound is exact for its one mode λ = K; on a small cloth explicit
 // Euler's measured bound is μ/λ_max, between the Gershgorin (safe) and the power-iteration
 // (tight) predictions.
-#include "cpu/cpu_backend.h"
 #include "solver/stability_probe.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "scene/scene_loader.h"
+#include "cpu/cpu_backend.h"
 #include "model/stability.h"
+#include "scene/scene_loader.h"
 
 namespace cloth {
 namespace {
@@ -47,8 +47,10 @@ TEST(StabilityProbe, EveryExplicitIntegratorMeetsItsBoundOnTheSpring) {
     }
 }
 
+// The seed's per-vertex hanging cloth (one mass, drag μ per vertex: DESIGN.md §2's bound).
 TEST(StabilityProbe, ExplicitEulerOnAClothSitsBetweenTheSafeAndTheTightPrediction) {
-    const Scene s = load("hanging.json", {"cloth.resolution=[6,7]"});
+    const Scene s =
+        loadScene(CLOTH_SOURCE_DIR "/bench/hanging_per_vertex.json", {"cloth.resolution=[6,7]"});
     const StabilityBound b = estimateStability(s, 40);
     for (Precision p : {Precision::Double, Precision::Float}) {
         const ProbeResult r = probe(s, Method::ExplicitEuler, p);
