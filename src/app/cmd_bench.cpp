@@ -18,7 +18,7 @@ constexpr const char* kHelp =
                     beside the predicted bounds, over stiffness (and mass and damping for
                     explicit Euler): the CSV and log-log plots
   speed [SCENE]     steps per second of every backend over grid sizes (default scene
-                    bench/hanging_per_vertex.json, the seed's per-vertex hanging cloth),
+                    scenes/hanging.json, denim: the same cloth, finer, at every size),
                     beside the one-thread baseline loop (1x) and the measured CPU
                     triad and GPU copy bandwidths: CSV, JSON, a table and a log-log plot
   realtime          the real-time frontier: for every integrator and backend, the largest

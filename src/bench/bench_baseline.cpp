@@ -20,9 +20,11 @@ BaselineCloth::BaselineCloth(const Scene& scene)
       nu_(grid_.nu),
       nv_(grid_.nv),
       dt_(scene.integrator.dt),
-      mass_(scene.cloth.mass),
-      damping_(scene.damping),
-      k_{scene.springs.structural, scene.springs.shear, scene.springs.bend},
+      mass_(scene.material ? scene.vertexMass(1, 1) : scene.cloth.mass),
+      damping_(scene.material ? scene.dampingRate() * scene.vertexMass(1, 1) : scene.damping),
+      k_{scene.material ? scene.slotStiffness(0) : scene.springs.structural,
+         scene.material ? scene.slotStiffness(4) : scene.springs.shear,
+         scene.material ? 0.0 : scene.springs.bend},
       gravity_{scene.gravity.x, scene.gravity.y, scene.gravity.z} {
     const std::size_t n = std::size_t(nu_) * nv_;
     x_.resize(n);

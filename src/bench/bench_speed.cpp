@@ -19,6 +19,7 @@
 #include "bench/bench_speed_model.h"
 #include "bench/bench_speed_timing.h"
 #include "model/errors.h"
+#include "model/stability.h"
 #include "scene/scene_loader.h"
 
 namespace cloth::app {
@@ -176,6 +177,21 @@ std::vector<std::string> withResolution(std::vector<std::string> sets, int side)
     return sets;
 }
 
+// The scene at side × side. A material resized is the same cloth, finer, and its stable Δt
+// shrinks with the cells: unless the command line sets integrator.dt, each size steps at the
+// fraction of its own bound (model/stability.h stableDt) that the scene's Δt is of the bound at
+// the scene's resolution.
+Scene sizedScene(const Options& o, const Scene& declared, int side) {
+    Scene s = loadScene(o.scenePath, withResolution(o.sets, side));
+    const bool dtSet = std::any_of(o.sets.begin(), o.sets.end(), [](const std::string& set) {
+        return set.rfind("integrator.dt=", 0) == 0;
+    });
+    if (!s.material || dtSet) return s;
+    const double scale = stableDt(s) / stableDt(declared);
+    if (std::isfinite(scale) && scale > 0) s.integrator.dt = declared.integrator.dt * scale;
+    return s;
+}
+
 // A GPU size beyond the device's limits, checked before anything runs: refused naming the limit
 // when the user listed it (--sizes), else (the default sizes, "as far as memory allows") its GPU
 // rows are skipped with that reason on stderr. Returns the sizes to skip.
@@ -246,7 +262,7 @@ int runBenchSpeed(const SpeedOptions& options) {
             gpuSkipped};
     std::vector<SpeedRow> rows;
     for (int side : o.sizes) {
-        const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
+        const Scene sized = sizedScene(o, scene, side);
         rows.push_back(timeBaseline(sized, side, w));
         if (o.features != FeatureSet::All) timeBackends(sized, side, "declared", w, rows);
         if (o.features != FeatureSet::Declared)

