@@ -188,7 +188,7 @@ TEST(BenchSpeed, AnUnstableRunIsReportedAsARowNotAnError) {
     const fs::path d = tempDir("unstable");
     const auto r =
         runProcess({kExe, "bench", "speed", "--sizes", "16", "--backend", "cpu", "--quick", "--set",
-                    "integrator.dt=1e-3", "--out", d.string(), "--label", "t"},
+                    "integrator.dt=1e-2", "--out", d.string(), "--label", "t"},
                    300);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     EXPECT_NE(r.err.find("became unstable"), std::string::npos) << r.err;
