@@ -45,7 +45,8 @@ options:
                       path compiled in and run), or both; rows say which in 'features'
   --peer bullet       also time Bullet's btSoftBody on the same cloth (same links, masses,
                       pins, gravity, dt; stiffness and damping mapped, see docs/performance.md)
-                      at sizes up to 512 (default sizes 64,128,256), checked not to explode
+                      at sizes up to 512 (default sizes 64,128,256), checked not to explode;
+                      a per-vertex scene only (default bench/hanging_per_vertex.json)
   --peer-dt SECONDS   the peer's step, with its stiffness and damping mapped at that step
                       (default the scene's dt); compare simulated_s_per_s then
   --workgroups LIST   GPU work-group shapes WXxWY, comma-separated (default 16x16); every GPU
@@ -91,11 +92,13 @@ bool parse(Args& args, Options& o) {
     if (o.peerDt > 0 && o.peer.empty())
         throw InputError("command line", "--peer-dt", "sets the peer's step: give --peer too");
     if (!o.peer.empty() && !o.sizesGiven) o.sizes = {64, 128, 256};
+    // The peer maps the per-vertex form (cloth.mass, springs, damping): its default is the
+    // seed's cloth.
+    const std::filesystem::path bench = benchScriptDir(o.scriptDir);
     if (o.scenePath.empty())
-        o.scenePath =
-            (std::filesystem::path(benchScriptDir(o.scriptDir)).parent_path() / "scenes" /
-             "hanging.json")
-                .string();
+        o.scenePath = (o.peer.empty() ? bench.parent_path() / "scenes" / "hanging.json"
+                                      : bench / "hanging_per_vertex.json")
+                          .string();
     return true;
 }
 

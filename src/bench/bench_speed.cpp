@@ -234,6 +234,11 @@ int runBenchSpeed(const SpeedOptions& options) {
     }
     o.sizes = fitting;
     const Scene scene = loadScene(o.scenePath, o.sets);
+    if (!o.peer.empty() && scene.material)
+        throw InputError("command line", "--peer",
+                         "the " + o.peer + " peer maps the per-vertex form (cloth.mass, springs, "
+                         "damping) and " + o.scenePath + " gives a material: use "
+                         "bench/hanging_per_vertex.json");
     auto targets = parseTargets("--backend", o.backend, {Precision::Float, Precision::Double});
     targets = availableTargets(targets, scene, o.backend == "gpu", o.base());
     const bool gpu = std::any_of(targets.begin(), targets.end(),
