@@ -10,3 +10,16 @@ const ivec4 kSpringOffsets[NUM_SPRING_OFFSETS] = ivec4[](SPRING_OFFSETS);
 
 float springStiffness(ivec4 s) { return params.stiffness[s.w / 4][s.w % 4]; }    // K [N/m]
 float springRestLength(ivec4 s) { return params.restLength[s.w / 4][s.w % 4]; }  // L [m]
+
+#ifdef HAS_SPRING_DAMPING
+// βK [N·s/m] of spring s: its damping along the spring (docs/physics.md "Spring damping").
+float springDampingOf(ivec4 s) { return params.springDamping * springStiffness(s); }
+
+// Damping along a spring, src/model/spring_math.h addSpringDamping: βK ((w·d)/|d|²) d with
+// d = x_q − x_k and w = w_q − w_k (velocities: the force; any field: −(∂F/∂v) w). Nothing for a
+// spring squeezed below 1e-12 L.
+vec3 springDampingForce(vec3 d, vec3 w, float dampingK, float restLength) {
+    float d2 = dot(d, d), floorLength = 1e-12 * restLength;
+    return d2 >= floorLength * floorLength ? (dampingK * dot(w, d) / d2) * d : vec3(0.0);
+}
+#endif

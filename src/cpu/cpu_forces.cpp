@@ -95,6 +95,15 @@ void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
             f.z[i] += b.z;
         }
     }
+    if (features_.springDamping) {  // after the bending, spring by spring as the scalar path
+        for (const RowSpring& s : rowSprings_) {
+            const int qj = j + s.dj, i0 = std::max(0, -s.di), i1 = std::min(nu, nu - s.di);
+            if (qj < 0 || qj >= nv || i1 <= i0) continue;
+            const std::int64_t q = std::int64_t(qj) * nu + i0 + s.di;
+            kernels_->springDamping(f + i0, x_.row(k + i0), x_.row(q), v_.row(k + i0), v_.row(q),
+                                    s.damping, s.restLength, i1 - i0);
+        }
+    }
     if (features_.wind) {  // central differences, clamped at the border (DESIGN.md §2)
         const ConstRow3<T> row = x_.row(k), down = x_.row(std::int64_t(std::max(j - 1, 0)) * nu),
                            up = x_.row(std::int64_t(std::min(j + 1, nv - 1)) * nu);
@@ -191,6 +200,7 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
             f += springForce(p, x_.get(k + s.indexOffset), s.stiffness, s.restLength);
         }
         if (bending_.active()) f += bendingForce<T>(bending_, i, j, at);
+        if (features_.springDamping) addSpringDampingAt(nu, nv, springs_, x_, v_, k, i, j, f);
         if (features_.wind) {
             const Vec3<T> n = vertexNormal<T>(nu, nv, i, j, at), w = windDirection_;
             addWind(n.x, n.y, n.z, w.x, w.y, w.z, windStrength_, f.x, f.y, f.z);

@@ -74,7 +74,8 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
 
 template <typename T>
 bool CpuSolver<T>::fused() const {
-    return kernels_ && (method_ == Method::ExplicitEuler || method_ == Method::SymplecticEuler);
+    return kernels_ && !features_.springDamping &&
+           (method_ == Method::ExplicitEuler || method_ == Method::SymplecticEuler);
 }
 
 // Everything a scene sets that leaves the grid, the pins and the features as they are.
@@ -91,7 +92,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
         while (kSpringOffsets[table].di != sp.di || kSpringOffsets[table].dj != sp.dj) ++table;
         families_ |= 1 << int(kSpringOffsets[table].family);
         rowSprings_.push_back({sp.di, sp.dj, sp.stiffness, sp.restLength, upward,
-                               upward ? upwardSprings_++ : -1, table});
+                               upward ? upwardSprings_++ : -1, table, sp.damping});
     }
     for (RowSpring& r : rowSprings_)  // a family's springs come in pairs ±(di, dj)
         for (const RowSpring& u : rowSprings_)
@@ -195,7 +196,7 @@ bool CpuSolver<T>::advance(Band& band, const Team& team, long stepNumber, bool& 
 template <typename T>
 bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
     if (fused()) return stepEulerFused(band, symplectic);
-    gatherForcesScalar(band.begin, band.end);
+    gatherForces(band);
     team.sync();
     const T h = dt_t_;
     const auto update = symplectic ? eulerComponent<T, true> : eulerComponent<T, false>;

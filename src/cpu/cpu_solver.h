@@ -73,6 +73,7 @@ private:
         bool upward;
         int slot;   // the coefficient array of this spring's upward direction
         int table;  // its index in kSpringOffsets
+        T damping;  // βK [N·s/m] (StencilSpring::damping)
     };
     // The threads of one step(n) call: sync() is a barrier between passes (none when serial).
     struct Team {
@@ -122,7 +123,9 @@ private:
     template <typename PerVertex>
     double reduce(Band& band, const Team& team, const PerVertex& value);
     void systemProduct(const Band& band, const std::vector<Vec3<T>>& p, std::vector<Vec3<T>>& out);
-    bool fused() const;  // explicit/symplectic Euler on row kernels: forces and update in one sweep
+    // explicit/symplectic Euler on row kernels: forces and update in one sweep. Not with spring
+    // damping, whose gather reads the neighbours' velocities, which the sweep updates in place.
+    bool fused() const;
     void recordSolve(long stepNumber, int iterations, double residual, bool converged);
     StepResult stepThreaded(long n);
 

@@ -41,6 +41,8 @@ struct StepResult {
 struct Features {
     bool structural = false, shear = false, bend = false, wind = false;
     bool bending = false;  // a material's bending energy (model/bending.h), not the bend springs
+    // Damping along the springs (Scene::springDamping > 0 and some spring modelled).
+    bool springDamping = false;
     int planes = 0, spheres = 0, boxes = 0, capsules = 0, meshes = 0;
     // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
     int contactExtras = 0;

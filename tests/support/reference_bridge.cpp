@@ -112,6 +112,7 @@ ref::Params toReference(const Scene& scene) {
         p.density = scene.material->density;
         p.damping = 0;
         p.dampingRate = scene.dampingRate();
+        p.springDamping = scene.springDamping();
         p.bend = scene.material->bend;
         for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)
             p.offsetStiffness.push_back(

@@ -56,6 +56,24 @@ void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
     accumulateLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, c, n);
 }
 
+// Spring damping (spring_math.h addSpringDamping): one spring per element, its far end q.
+template <typename T>
+void dampingLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict px,
+                 const T* __restrict py, const T* __restrict pz, const T* __restrict qx,
+                 const T* __restrict qy, const T* __restrict qz, const T* __restrict ux,
+                 const T* __restrict uy, const T* __restrict uz, const T* __restrict wx,
+                 const T* __restrict wy, const T* __restrict wz, T dampingK, T restLength, int n) {
+    for (int i = 0; i < n; ++i)
+        addSpringDamping(qx[i] - px[i], qy[i] - py[i], qz[i] - pz[i], wx[i] - ux[i], wy[i] - uy[i],
+                         wz[i] - uz[i], dampingK, restLength, fx[i], fy[i], fz[i]);
+}
+template <typename T>
+void springDamping(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, ConstRow3<T> vp, ConstRow3<T> vq,
+                   T dampingK, T restLength, int n) {
+    dampingLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, vp.x, vp.y, vp.z, vq.x, vq.y, vq.z,
+                dampingK, restLength, n);
+}
+
 template <typename T, int kFamilies>
 void gather(Row3<T> f, const GatherRow<T>& g, int n) {
     T* __restrict fx = f.x;
@@ -235,7 +253,8 @@ const RowKernels<T>& rowKernels() {
                                        &euler<T, true>,
                                        &anyBad<T>,
                                        &contact<T, false>,
-                                       &contact<T, true>};
+                                       &contact<T, true>,
+                                       &springDamping<T>};
     return kernels;
 }
 template const RowKernels<float>& rowKernels();
