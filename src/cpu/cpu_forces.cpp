@@ -145,26 +145,36 @@ void CpuSolver<T>::gatherForces(Band& band) {
 // One sweep does the whole step: row j's forces, from the old positions x_, are used at once to
 // update row j into xNext_ and v_ (no force array goes to memory and back), then pins, colliders
 // and the instability check on that row. Neighbouring bands only read x_, so one barrier per
-// step suffices, and the sweep always completes the step, even past an unstable vertex.
+// step suffices, and the sweep always completes the step, even past an unstable vertex. With
+// spring damping the gather reads the neighbours' velocities too, so the new ones go to vNext_
+// (the row copied, then updated in place), which swaps with v_ at the end of the step.
 template <typename T>
 bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
     const int nu = grid_.nu;
     const auto update = symplectic ? kernels_->symplecticEuler : kernels_->explicitEuler;
     const Row3<T> f = band.force.row(0);
     auto pin = std::lower_bound(pinList_.begin(), pinList_.end(), band.begin);
+    Soa3<T>& vOut = features_.springDamping ? vNext_ : v_;
     bool ok = true;
     sweepRows(band, [&](int j) {
         const std::int64_t k = std::int64_t(j) * nu;
         forceRow(band, j, f);
-        update({x_.row(k), f, v_.row(k), xNext_.row(k), inverseMass_.data() + k, dt_t_,
-                dampingRate_, gravity_.x, gravity_.y, gravity_.z},
+        const Row3<T> v = vOut.row(k);
+        if (&vOut != &v_) {
+            const ConstRow3<T> old = v_.row(k);
+            std::copy_n(old.x, nu, v.x);
+            std::copy_n(old.y, nu, v.y);
+            std::copy_n(old.z, nu, v.z);
+        }
+        update({x_.row(k), f, v, xNext_.row(k), inverseMass_.data() + k, dt_t_, dampingRate_,
+                gravity_.x, gravity_.y, gravity_.z},
                nu);
         for (; pin != pinList_.end() && *pin < k + nu; ++pin) {  // pins, then colliders (§2)
             xNext_.set(*pin, pinPosition_[*pin]);
-            v_.set(*pin, pinVelocity(*pin));
+            vOut.set(*pin, pinVelocity(*pin));
         }
-        if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v_.row(k), nu, *kernels_);
-        if (ok && kernels_->anyBad(xNext_.row(k), v_.row(k), maxSpeed2_, nu))
+        if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v, nu, *kernels_);
+        if (ok && kernels_->anyBad(xNext_.row(k), v, maxSpeed2_, nu))
             ok = reportFirstBad(band, k, k + nu);
     });
     return ok;
@@ -174,8 +184,9 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
 template <typename T>
 bool CpuSolver<T>::reportFirstBad(Band& band, std::int64_t begin, std::int64_t end) {
     const Soa3<T>& x = fused() ? xNext_ : x_;
+    const Soa3<T>& vel = fused() && features_.springDamping ? vNext_ : v_;
     for (std::int64_t k = begin; k < end; ++k) {
-        const Vec3<T> p = x.get(k), v = v_.get(k);
+        const Vec3<T> p = x.get(k), v = vel.get(k);
         if (!badVertex(p.x, p.y, p.z, v.x, v.y, v.z, maxSpeed2_)) continue;
         reportBad(band, k, p, glm::dot(v, v));
         return false;

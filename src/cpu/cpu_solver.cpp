@@ -43,9 +43,10 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     takeFollowPins(scene);
     method_ = scene.integrator.method;
     takeParameters(scene);
-    if (fused())
+    if (fused()) {
         xNext_ = x_;
-    else
+        if (features_.springDamping) vNext_ = v_;
+    } else
         f_.assign(n, Vec3<T>(0));
     if (method_ == Method::Rk4)
         for (auto* a : {&x0_, &v0_, &sumX_, &sumV_}) a->assign(n, Vec3<T>(0));
@@ -74,8 +75,7 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
 
 template <typename T>
 bool CpuSolver<T>::fused() const {
-    return kernels_ && !features_.springDamping &&
-           (method_ == Method::ExplicitEuler || method_ == Method::SymplecticEuler);
+    return kernels_ && (method_ == Method::ExplicitEuler || method_ == Method::SymplecticEuler);
 }
 
 // Everything a scene sets that leaves the grid, the pins and the features as they are.
@@ -196,7 +196,7 @@ bool CpuSolver<T>::advance(Band& band, const Team& team, long stepNumber, bool& 
 template <typename T>
 bool CpuSolver<T>::stepEuler(Band& band, const Team& team, bool symplectic) {
     if (fused()) return stepEulerFused(band, symplectic);
-    gatherForces(band);
+    gatherForcesScalar(band.begin, band.end);
     team.sync();
     const T h = dt_t_;
     const auto update = symplectic ? eulerComponent<T, true> : eulerComponent<T, false>;
@@ -292,7 +292,7 @@ StepResult CpuSolver<T>::step(long n) {
             ++result.stepsTaken;
             poseColliders(steps_ + s + 1);
             const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
-            if (fused()) std::swap(x_, xNext_);  // the fused sweep always completes its step
+            if (fused()) swapFused();  // the fused sweep always completes its step
             if (!ok) break;
         }
     } else {
@@ -323,7 +323,7 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     long posed = steps_ + 1;
     poseColliders(posed);
     auto swapPositions = [this, &posed]() noexcept {
-        if (fused()) std::swap(x_, xNext_);
+        if (fused()) swapFused();
         poseColliders(++posed);
     };
     std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
@@ -366,7 +366,7 @@ SimState CpuSolver<T>::read() const {
 template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
-    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_}) vectors += std::size_t(a->size());
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_}) vectors += std::size_t(a->size());
     for (const auto* a :
          {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
         vectors += a->size();

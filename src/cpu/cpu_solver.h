@@ -8,6 +8,7 @@
 #include <atomic>
 #include <barrier>
 #include <memory>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -123,9 +124,13 @@ private:
     template <typename PerVertex>
     double reduce(Band& band, const Team& team, const PerVertex& value);
     void systemProduct(const Band& band, const std::vector<Vec3<T>>& p, std::vector<Vec3<T>>& out);
-    // explicit/symplectic Euler on row kernels: forces and update in one sweep. Not with spring
-    // damping, whose gather reads the neighbours' velocities, which the sweep updates in place.
-    bool fused() const;
+    bool fused() const;  // explicit/symplectic Euler on row kernels: forces and update in one sweep
+    // The end of a fused step: the new positions (and, with spring damping, velocities) become
+    // the state.
+    void swapFused() noexcept {
+        std::swap(x_, xNext_);
+        if (features_.springDamping) std::swap(v_, vNext_);
+    }
     void recordSolve(long stepNumber, int iterations, double residual, bool converged);
     StepResult stepThreaded(long n);
 
@@ -140,7 +145,9 @@ private:
     const RowKernels<T>* kernels_ = nullptr;  // null on the scalar path
     // x_, v_: the state. The fused Euler sweep writes the new positions into xNext_ (neighbours
     // still read the old ones) and the two swap at the end of the step; it needs no f_.
-    Soa3<T> x_, v_, f_, xNext_;
+    // With spring damping the forces read the neighbours' velocities too: the sweep writes the
+    // new ones into vNext_, which swaps with v_ likewise.
+    Soa3<T> x_, v_, f_, xNext_, vNext_;
     std::vector<Vec3<T>> pinPosition_;
     std::vector<std::int64_t> pinList_;  // the pinned vertices, ascending
     // Pins that follow a collider (model/pin_follow.h), posed with the colliders; their velocity
