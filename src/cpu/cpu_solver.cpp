@@ -227,6 +227,8 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     }
     team.sync();
     gatherForces(band);  // F(x_{n+1}); the kick reads only its own vertex
+    // ... but spring damping's gather reads the neighbours' v_half, which the kick overwrites.
+    if (features_.springDamping) team.sync();
     haveForces = true;
     bool ok = true;
     const T denominator = T(1) + half * dampingRate_;
