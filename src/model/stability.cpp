@@ -187,7 +187,7 @@ double stableDt(const Scene& scene) {
 std::string stabilityAdvice(const Scene& scene) {
     const StabilityBound b = estimateStability(scene);
     const double bound = stableDt(scene), dt = scene.integrator.dt;
-    char buf[300];
+    char buf[400];
     if (std::isinf(bound)) {
         std::snprintf(buf, sizeof buf,
                       "%s is stable at any dt for the linear spring model; an unstable run "
@@ -196,22 +196,22 @@ std::string stabilityAdvice(const Scene& scene) {
     } else if (bound > 0 && scene.material) {
         std::snprintf(buf, sizeof buf,
                       "predicted stable dt < %.3g s for %s (omega_max^2 <= %.4g 1/s^2, "
-                      "air_damping %g 1/s); try --set integrator.dt=%.2g",
+                      "air_damping %g 1/s, spring_damping %g s); try --set integrator.dt=%.2g",
                       bound, methodName(scene.integrator.method), b.omega2Max, b.dampingRate,
-                      0.5 * bound);
+                      b.springDamping, 0.5 * bound);
     } else if (bound > 0) {
         std::snprintf(buf, sizeof buf,
                       "predicted stable dt < %.3g s for %s (lambda_max <= %.4g N/m, damping %g); "
                       "try --set integrator.dt=%.2g",
                       bound, methodName(scene.integrator.method), b.lambdaMax, scene.damping,
                       0.5 * bound);
-    } else if (scene.material) {  // explicit Euler is stable iff c > ω²_max Δt
+    } else if (scene.material) {  // explicit Euler is stable iff c/ω²_max + β > Δt
         std::snprintf(buf, sizeof buf,
                       "explicit Euler has no stable dt without damping (every spring mode grows); "
-                      "at dt = %g s it needs air_damping > omega_max^2*dt = %.3g 1/s: try --set "
-                      "material.air_damping=%.2g, or another integrator (--set "
-                      "integrator.method=\"verlet\")",
-                      dt, b.omega2Max * dt, 2 * b.omega2Max * dt);
+                      "at dt = %g s it needs air_damping > omega_max^2*dt = %.3g 1/s or "
+                      "spring_damping > dt: try --set material.spring_damping=%.2g, or another "
+                      "integrator (--set integrator.method=\"verlet\")",
+                      dt, b.omega2Max * dt, 2 * dt);
     } else {
         std::snprintf(buf, sizeof buf,
                       "explicit Euler has no stable dt without damping (every spring mode grows); "
@@ -225,7 +225,7 @@ std::string stabilityAdvice(const Scene& scene) {
 std::optional<std::string> dtWarning(const Scene& scene) {
     const double bound = stableDt(scene), dt = scene.integrator.dt;
     if (std::isinf(bound) || (bound > 0 && dt < bound)) return std::nullopt;
-    char buf[200];
+    char buf[400];
     if (bound > 0)
         std::snprintf(buf, sizeof buf,
                       "integrator.dt = %.3g s is beyond %s's predicted stability bound %.3g s: the "
@@ -233,9 +233,10 @@ std::optional<std::string> dtWarning(const Scene& scene) {
                       dt, methodName(scene.integrator.method), bound);
     else if (scene.material)
         std::snprintf(buf, sizeof buf,
-                      "explicit_euler has no stable integrator.dt at air_damping %g 1/s: the run "
-                      "may leave physics; raise material.air_damping or change integrator.method",
-                      scene.dampingRate());
+                      "explicit_euler has no stable integrator.dt at air_damping %g 1/s and "
+                      "spring_damping %g s: the run may leave physics; raise "
+                      "material.spring_damping or change integrator.method",
+                      scene.dampingRate(), scene.springDamping());
     else
         std::snprintf(buf, sizeof buf,
                       "explicit_euler has no stable integrator.dt at damping %g: the run may leave "
