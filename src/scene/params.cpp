@@ -71,7 +71,7 @@ constexpr ParamSpec kParams[] = {
      [](Scene& s, double v) { if (s.material) s.material->airDamping = v; }},
     {"material.spring_damping", "s", 0, kInf, false, false, 0, false,
      "damping along each spring β, in units of its stiffness: F = β·K·((v_q − v_k)·d̂)·d̂",
-     {PanelSection::Forces, SliderScale::Log, 0, 0.1, "spring damping [s]"},
+     {PanelSection::Forces, SliderScale::Log, 0, 1e-2, "spring damping [s]"},
      [](const Scene& s) {
          return s.material ? std::optional(s.material->springDamping) : std::nullopt;
      },
