@@ -19,7 +19,8 @@ namespace cloth {
 
 // The coefficients of row j's upward springs into ring slot j % 3; with gatherLater, those of
 // the springs to the rows above only at the two border columns on each side: forceRow's gather
-// computes the others.
+// computes the others. With spring damping, every column's damping coefficient too, into the
+// damping ring: like the spring's, computed once for both ends of the spring.
 template <typename T>
 void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
     const int nu = grid_.nu, nv = grid_.nv;
@@ -39,16 +40,25 @@ void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
         } else {
             columns(i0, i1);
         }
+        if (features_.springDamping && i1 > i0) {
+            T* damping = band.dampingCoefficients.data() +
+                         (std::size_t(j % 3) * upwardSprings_ + s.slot) * nu + i0;
+            const std::int64_t q = k + s.dj * nu + i0 + s.di;
+            kernels_->dampingCoefficients(x_.row(k + i0), x_.row(q), v_.row(k + i0), v_.row(q),
+                                          s.damping, s.restLength, damping, i1 - i0);
+        }
     }
 }
 
 // The coefficient of spring s for the vertex at column i of row j: an upward spring's is at its
 // own vertex, a downward one's at its far end (row j + dj, column i + di).
 template <typename T>
-const T* CpuSolver<T>::coefficientAt(const Band& band, const RowSpring& s, int j, int i) const {
+const T* CpuSolver<T>::coefficientAt(const Band& band, const RowSpring& s, int j, int i,
+                                     bool damping) const {
     const int nu = grid_.nu;
     const int cj = s.upward ? j : j + s.dj, ci = s.upward ? i : i + s.di;
-    return band.coefficients.data() + (std::size_t(cj % 3) * upwardSprings_ + s.slot) * nu + ci;
+    const T* ring = damping ? band.dampingCoefficients.data() : band.coefficients.data();
+    return ring + (std::size_t(cj % 3) * upwardSprings_ + s.slot) * nu + ci;
 }
 
 // Row j's forces into f: the springs in table order, then the wind, then the grab. Columns two
@@ -99,9 +109,8 @@ void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
         for (const RowSpring& s : rowSprings_) {
             const int qj = j + s.dj, i0 = std::max(0, -s.di), i1 = std::min(nu, nu - s.di);
             if (qj < 0 || qj >= nv || i1 <= i0) continue;
-            const std::int64_t q = std::int64_t(qj) * nu + i0 + s.di;
-            kernels_->springDamping(f + i0, x_.row(k + i0), x_.row(q), v_.row(k + i0), v_.row(q),
-                                    s.damping, s.restLength, i1 - i0);
+            kernels_->accumulate(f + i0, x_.row(k + i0), x_.row(std::int64_t(qj) * nu + i0 + s.di),
+                                 coefficientAt(band, s, j, i0, true), i1 - i0);
         }
     }
     if (features_.wind) {  // central differences, clamped at the border (DESIGN.md §2)
@@ -229,13 +238,14 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
-#define CLOTH_INSTANTIATE(T)                                                                      \
-    template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                 \
-    template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int) const; \
-    template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                    \
-    template void CpuSolver<T>::gatherForces(Band&);                                              \
-    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                   \
-    template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                      \
+#define CLOTH_INSTANTIATE(T)                                                                     \
+    template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                \
+    template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int, bool) \
+        const;                                                                                   \
+    template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                   \
+    template void CpuSolver<T>::gatherForces(Band&);                                             \
+    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                  \
+    template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                     \
     template bool CpuSolver<T>::reportFirstBad(Band&, std::int64_t, std::int64_t);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

@@ -67,6 +67,7 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
         band.end = std::int64_t(band.rowEnd) * nu;
         if (kernels_) {
             band.coefficients.assign(std::size_t(3) * upwardSprings_ * std::size_t(nu), T(0));
+            if (features_.springDamping) band.dampingCoefficients = band.coefficients;
             if (fused()) band.force.assign(nu, Vec3<T>(0));
         }
     }
@@ -379,7 +380,9 @@ template <typename T>
 std::size_t CpuSolver<T>::scratchBytes() const {
     std::size_t bytes = 0;
     for (const Band& b : bands_)
-        bytes += (b.coefficients.size() + 3 * std::size_t(b.force.size())) * sizeof(T);
+        bytes += (b.coefficients.size() + b.dampingCoefficients.size() +
+                  3 * std::size_t(b.force.size())) *
+                 sizeof(T);
     return bytes;
 }
 

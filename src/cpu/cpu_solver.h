@@ -64,7 +64,8 @@ private:
         // Spring coefficients of the last 3 rows (row j in slot j % 3), one array of nu per
         // upward spring: each spring's sqrt and division are done once for its two ends.
         AlignedVector<T> coefficients;
-        Soa3<T> force;  // one row of forces (the fused Euler sweep)
+        AlignedVector<T> dampingCoefficients;  // the same for the spring damping (when modelled)
+        Soa3<T> force;                         // one row of forces (the fused Euler sweep)
     };
     // A spring of the offset table as the row pass sees it: "upward" springs (dj > 0, or dj = 0
     // and di > 0) have their coefficients computed; the others read those of their reverse.
@@ -101,7 +102,10 @@ private:
     // Rows two or more from the border, wide enough to have columns that are too: one gather.
     bool interiorRow(int j) const { return j >= 2 && j < grid_.nv - 2 && grid_.nu >= 5; }
     void forceRow(Band& band, int j, Row3<T> f);
-    const T* coefficientAt(const Band& band, const RowSpring& s, int j, int i) const;
+    // The spring's coefficient (or, with `damping`, its damping coefficient) for the vertex at
+    // column i of row j, in the band's ring.
+    const T* coefficientAt(const Band& band, const RowSpring& s, int j, int i,
+                           bool damping = false) const;
     bool stepEulerFused(Band& band, bool symplectic);
     bool reportFirstBad(Band& band, std::int64_t begin, std::int64_t end);
     // One step of the scene's integrator over this band's vertices; false if it went unstable.

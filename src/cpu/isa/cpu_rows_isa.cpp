@@ -56,22 +56,23 @@ void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
     accumulateLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, c, n);
 }
 
-// Spring damping (spring_math.h addSpringDamping): one spring per element, its far end q.
+// Spring damping coefficients (spring_math.h springDampingCoefficient): one spring per element,
+// its far end q.
 template <typename T>
-void dampingLoop(T* __restrict fx, T* __restrict fy, T* __restrict fz, const T* __restrict px,
-                 const T* __restrict py, const T* __restrict pz, const T* __restrict qx,
-                 const T* __restrict qy, const T* __restrict qz, const T* __restrict ux,
-                 const T* __restrict uy, const T* __restrict uz, const T* __restrict wx,
-                 const T* __restrict wy, const T* __restrict wz, T dampingK, T restLength, int n) {
+void dampingLoop(const T* __restrict px, const T* __restrict py, const T* __restrict pz,
+                 const T* __restrict qx, const T* __restrict qy, const T* __restrict qz,
+                 const T* __restrict ux, const T* __restrict uy, const T* __restrict uz,
+                 const T* __restrict wx, const T* __restrict wy, const T* __restrict wz, T dampingK,
+                 T restLength, T* __restrict c, int n) {
     for (int i = 0; i < n; ++i)
-        addSpringDamping(qx[i] - px[i], qy[i] - py[i], qz[i] - pz[i], wx[i] - ux[i], wy[i] - uy[i],
-                         wz[i] - uz[i], dampingK, restLength, fx[i], fy[i], fz[i]);
+        c[i] = springDampingCoefficient(qx[i] - px[i], qy[i] - py[i], qz[i] - pz[i], wx[i] - ux[i],
+                                        wy[i] - uy[i], wz[i] - uz[i], dampingK, restLength);
 }
 template <typename T>
-void springDamping(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, ConstRow3<T> vp, ConstRow3<T> vq,
-                   T dampingK, T restLength, int n) {
-    dampingLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, vp.x, vp.y, vp.z, vq.x, vq.y, vq.z,
-                dampingK, restLength, n);
+void dampingCoefficients(ConstRow3<T> p, ConstRow3<T> q, ConstRow3<T> vp, ConstRow3<T> vq,
+                         T dampingK, T restLength, T* c, int n) {
+    dampingLoop(p.x, p.y, p.z, q.x, q.y, q.z, vp.x, vp.y, vp.z, vq.x, vq.y, vq.z, dampingK,
+                restLength, c, n);
 }
 
 template <typename T, int kFamilies>
@@ -254,7 +255,7 @@ const RowKernels<T>& rowKernels() {
                                        &anyBad<T>,
                                        &contact<T, false>,
                                        &contact<T, true>,
-                                       &springDamping<T>};
+                                       &dampingCoefficients<T>};
     return kernels;
 }
 template const RowKernels<float>& rowKernels();
