@@ -1,6 +1,7 @@
 // implicit_euler's conjugate gradient, one iteration's matrix-vector product (docs/integrators.md):
-// A p = m_k (1 + hc) p + h² H p, a gather over the stencil at x_n (no atomics), plus the grab's
-// h² K p, and the work groups' partial sums of p·A p. Pinned rows are 0.
+// A p = m_k (1 + hc) p + h² H p (+ h D p with spring damping, D = −∂F/∂v), a gather over the
+// stencil at x_n (no atomics), plus the grab's h² K p, and the work groups' partial sums of p·A p.
+// Pinned rows are 0.
 #include "layout.glsl"
 #include "common.glsl"
 #include "grab.glsl"
@@ -24,6 +25,9 @@ void main() {
             float h = params.dt, h2 = h * h;
             float drag = 1.0 + h * params.dampingRate;
             ap = (drag / inverseMass) * p + h2 * stiffnessProduct(ij, k);
+#ifdef HAS_SPRING_DAMPING
+            ap += h * springDampingProduct(ij, k);
+#endif
             if (grabbed(k)) ap += h2 * uGrab.w * p;
         }
         cgProduct[k] = vec4(ap, 0.0);

@@ -22,7 +22,8 @@ float windStrengthAt(ivec2 ij) {
 }
 #endif
 
-// The springs of the up to 12 neighbours, a material's bending, the wind and the grab on vertex ij
+// The springs of the up to 12 neighbours, a material's bending, the damping along the springs,
+// the wind and the grab on vertex ij
 // (index k), and its normal.
 void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
     vec3 p = positionAt(ij);
@@ -38,6 +39,18 @@ void gatherForces(ivec2 ij, uint k, out vec3 f, out vec3 n) {
 #endif
 #ifdef HAS_BENDING
     f += bendingForce(ij, params.bending.xyz);
+#endif
+#ifdef HAS_SPRING_DAMPING
+    // After the bending, spring by spring, as the CPU (cpu_forces.cpp); the velocities come
+    // straight from the SSBO (no pass writes them while the forces are gathered).
+    vec3 vk = velocities[k].xyz;
+    for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
+        ivec4 s = kSpringOffsets[o];
+        ivec2 q = ij + s.xy;
+        if (!insideGrid(q)) continue;
+        f += springDampingForce(positionAt(q) - p, velocities[vertexIndex(q)].xyz - vk,
+                                springDampingAt(s, ij), springRestLength(s));
+    }
 #endif
     int i = ij.x, j = ij.y;
     n = vertexNormal(positionAt(ivec2(min(i + 1, gridU() - 1), j)),

@@ -40,6 +40,8 @@ layout(std140, binding = 0) uniform Params {
     vec4 restLength[3];
     // w_u, w_v, t of a material's bending energy [N/m] (bending.glsl; read under HAS_BENDING).
     vec4 bending;
+    // β [s] of the damping along the springs (springs.glsl; read under HAS_SPRING_DAMPING).
+    float springDamping;
 } params;
 
 #ifdef HAS_COLLIDERS

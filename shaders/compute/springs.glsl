@@ -22,3 +22,17 @@ float springStiffnessAt(ivec4 s, ivec2 ij) {
     return springStiffness(s);
 }
 float springRestLength(ivec4 s) { return params.restLength[s.w / 4][s.w % 4]; }  // L [m]
+
+#ifdef HAS_SPRING_DAMPING
+// βK [N·s/m] of spring s at vertex ij: its damping along the spring (docs/physics.md "Spring
+// damping"), with the K of springStiffnessAt (half on a material's border line).
+float springDampingAt(ivec4 s, ivec2 ij) { return params.springDamping * springStiffnessAt(s, ij); }
+
+// Damping along a spring, src/model/spring_math.h addSpringDamping: βK ((w·d)/|d|²) d with
+// d = x_q − x_k and w = w_q − w_k (velocities: the force; any field: −(∂F/∂v) w). Nothing for a
+// spring squeezed below 1e-12 L.
+vec3 springDampingForce(vec3 d, vec3 w, float dampingK, float restLength) {
+    float d2 = dot(d, d), floorLength = 1e-12 * restLength;
+    return d2 >= floorLength * floorLength ? (dampingK * dot(w, d) / d2) * d : vec3(0.0);
+}
+#endif

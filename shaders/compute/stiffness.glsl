@@ -31,3 +31,23 @@ vec3 stiffnessProduct(ivec2 ij, uint k) {
 #endif
     return y;
 }
+
+#ifdef HAS_SPRING_DAMPING
+// (D w)_k with D = −∂F/∂v = Σ_s βK d̂d̂ᵀ the spring damping's (docs/integrators.md): minus the
+// damping force of the field w at the positions x. 0 on a pinned vertex's row.
+vec3 springDampingProduct(ivec2 ij, uint k) {
+    vec3 y = vec3(0.0);
+    if (positions[k].w == 0.0) return y;
+    vec3 xk = positions[k].xyz;
+    vec3 wk = STIFFNESS_VECTOR[k].xyz;
+    for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
+        ivec4 s = kSpringOffsets[o];
+        ivec2 q = ij + s.xy;
+        if (!insideGrid(q)) continue;
+        uint kq = vertexIndex(q);
+        y -= springDampingForce(positions[kq].xyz - xk, STIFFNESS_VECTOR[kq].xyz - wk,
+                                springDampingAt(s, ij), springRestLength(s));
+    }
+    return y;
+}
+#endif

@@ -137,6 +137,13 @@ void printModel(const Scene& s) {
         std::printf("forces       gravity %s m/s^2\n", vec(s.gravity).c_str());
         std::printf("             air drag c = %g 1/s%s\n", m->airDamping,
                     m->airDamping > 0 ? "" : " (not modelled)");
+        if (Features::of(s).springDamping)  // docs/physics.md "Spring damping"
+            std::printf(
+                "             spring damping beta = %g s: a mode of omega decays at "
+                "beta*omega^2/2\n",
+                m->springDamping);
+        else
+            std::printf("             spring damping not modelled\n");
     } else {
         std::printf("mass         %g kg per vertex\n", s.cloth.mass);
         for (Family f : {Family::Structural, Family::Shear, Family::Bend}) {
@@ -208,6 +215,11 @@ void printStability(const Scene& s) {
     std::printf("stability    lambda_max <= %.6g N/m (Gershgorin, DESIGN.md §2)\n", b.lambdaMax);
     std::printf("             lambda_max ~= %.6g N/m (%d power iterations at the initial state)\n",
                 b.lambdaPower, kPowerIterations);
+    if (b.springDamping > 0)  // docs/stability.md "Spring damping"
+        std::printf(
+            "             spring damping adds beta*omega_max^2 = %.4g 1/s to the stiffest "
+            "mode's damping rate c = %g 1/s\n",
+            b.springDamping * b.omega2Max, b.dampingRate);
     std::printf(
         "             largest stable dt   safe (Gershgorin)      tight (power)    steps per "
         "1/60 s frame\n");

@@ -19,7 +19,8 @@ namespace cloth {
 
 // The coefficients of row j's upward springs into ring slot j % 3; with gatherLater, those of
 // the springs to the rows above only at the two border columns on each side: forceRow's gather
-// computes the others.
+// computes the others. With spring damping, every column's damping coefficient too, into the
+// damping ring: like the spring's, computed once for both ends of the spring.
 template <typename T>
 void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
     const int nu = grid_.nu, nv = grid_.nv;
@@ -36,19 +37,31 @@ void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
         // A material's structural spring on a border line has half the stiffness
         // (model/grid.h onBorderLine): along u the whole first and last row, along v the first
         // and last column. 0.5·K times the rest is the bits of 0.5 times K times the rest.
-        const T half = T(0.5) * s.stiffness;
-        auto columns = [&](int a, int b) {
-            if (!s.halvedOnBorder) return run(a, b, s.stiffness);
-            if (s.dj == 0) return run(a, b, j == 0 || j == nv - 1 ? half : s.stiffness);
-            if (a == 0) run(0, 1, half);
-            if (b == nu) run(std::max(a, nu - 1), nu, half);
-            run(std::max(a, 1), std::min(b, nu - 1), s.stiffness);
+        // (The spring's damping βK likewise.)
+        auto byBorder = [&](int a, int b, T full, const auto& each) {
+            const T half = T(0.5) * full;
+            if (b <= a) return;
+            if (!s.halvedOnBorder) return each(a, b, full);
+            if (s.dj == 0) return each(a, b, j == 0 || j == nv - 1 ? half : full);
+            if (a == 0) each(0, 1, half);
+            if (b == nu) each(std::max(a, nu - 1), nu, half);
+            if (std::max(a, 1) < std::min(b, nu - 1)) each(std::max(a, 1), std::min(b, nu - 1), full);
         };
+        auto columns = [&](int a, int b) { byBorder(a, b, s.stiffness, run); };
         if (gatherLater && kComputedInGather[s.table]) {
             columns(i0, 2);
             columns(nu - 2, i1);
         } else {
             columns(i0, i1);
+        }
+        if (features_.springDamping) {
+            byBorder(i0, i1, s.damping, [&](int a, int b, T damping) {
+                T* out = band.dampingCoefficients.data() +
+                         (std::size_t(j % 3) * upwardSprings_ + s.slot) * nu + a;
+                const std::int64_t q = k + s.dj * nu + a + s.di;
+                kernels_->dampingCoefficients(x_.row(k + a), x_.row(q), v_.row(k + a), v_.row(q),
+                                              damping, s.restLength, out, b - a);
+            });
         }
     }
 }
@@ -56,10 +69,12 @@ void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
 // The coefficient of spring s for the vertex at column i of row j: an upward spring's is at its
 // own vertex, a downward one's at its far end (row j + dj, column i + di).
 template <typename T>
-const T* CpuSolver<T>::coefficientAt(const Band& band, const RowSpring& s, int j, int i) const {
+const T* CpuSolver<T>::coefficientAt(const Band& band, const RowSpring& s, int j, int i,
+                                     bool damping) const {
     const int nu = grid_.nu;
     const int cj = s.upward ? j : j + s.dj, ci = s.upward ? i : i + s.di;
-    return band.coefficients.data() + (std::size_t(cj % 3) * upwardSprings_ + s.slot) * nu + ci;
+    const T* ring = damping ? band.dampingCoefficients.data() : band.coefficients.data();
+    return ring + (std::size_t(cj % 3) * upwardSprings_ + s.slot) * nu + ci;
 }
 
 // Row j's forces into f: the springs in table order, then the wind, then the grab. Columns two
@@ -106,6 +121,14 @@ void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
             f.z[i] += b.z;
         }
     }
+    if (features_.springDamping) {  // after the bending, spring by spring as the scalar path
+        for (const RowSpring& s : rowSprings_) {
+            const int qj = j + s.dj, i0 = std::max(0, -s.di), i1 = std::min(nu, nu - s.di);
+            if (qj < 0 || qj >= nv || i1 <= i0) continue;
+            kernels_->accumulate(f + i0, x_.row(k + i0), x_.row(std::int64_t(qj) * nu + i0 + s.di),
+                                 coefficientAt(band, s, j, i0, true), i1 - i0);
+        }
+    }
     if (features_.wind) {  // central differences, clamped at the border (DESIGN.md §2)
         const ConstRow3<T> row = x_.row(k), down = x_.row(std::int64_t(std::max(j - 1, 0)) * nu),
                            up = x_.row(std::int64_t(std::min(j + 1, nv - 1)) * nu);
@@ -147,26 +170,36 @@ void CpuSolver<T>::gatherForces(Band& band) {
 // One sweep does the whole step: row j's forces, from the old positions x_, are used at once to
 // update row j into xNext_ and v_ (no force array goes to memory and back), then pins, colliders
 // and the instability check on that row. Neighbouring bands only read x_, so one barrier per
-// step suffices, and the sweep always completes the step, even past an unstable vertex.
+// step suffices, and the sweep always completes the step, even past an unstable vertex. With
+// spring damping the gather reads the neighbours' velocities too, so the new ones go to vNext_
+// (the row copied, then updated in place), which swaps with v_ at the end of the step.
 template <typename T>
 bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
     const int nu = grid_.nu;
     const auto update = symplectic ? kernels_->symplecticEuler : kernels_->explicitEuler;
     const Row3<T> f = band.force.row(0);
     auto pin = std::lower_bound(pinList_.begin(), pinList_.end(), band.begin);
+    Soa3<T>& vOut = features_.springDamping ? vNext_ : v_;
     bool ok = true;
     sweepRows(band, [&](int j) {
         const std::int64_t k = std::int64_t(j) * nu;
         forceRow(band, j, f);
-        update({x_.row(k), f, v_.row(k), xNext_.row(k), inverseMass_.data() + k, dt_t_,
-                dampingRate_, gravity_.x, gravity_.y, gravity_.z},
+        const Row3<T> v = vOut.row(k);
+        if (&vOut != &v_) {
+            const ConstRow3<T> old = v_.row(k);
+            std::copy_n(old.x, nu, v.x);
+            std::copy_n(old.y, nu, v.y);
+            std::copy_n(old.z, nu, v.z);
+        }
+        update({x_.row(k), f, v, xNext_.row(k), inverseMass_.data() + k, dt_t_, dampingRate_,
+                gravity_.x, gravity_.y, gravity_.z},
                nu);
         for (; pin != pinList_.end() && *pin < k + nu; ++pin) {  // pins, then colliders (§2)
             xNext_.set(*pin, pinPosition_[*pin]);
-            v_.set(*pin, pinVelocity(*pin));
+            vOut.set(*pin, pinVelocity(*pin));
         }
-        if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v_.row(k), nu, *kernels_);
-        if (ok && kernels_->anyBad(xNext_.row(k), v_.row(k), maxSpeed2_, nu))
+        if (!colliders_.empty()) colliders_.applyRow(xNext_.row(k), v, nu, *kernels_);
+        if (ok && kernels_->anyBad(xNext_.row(k), v, maxSpeed2_, nu))
             ok = reportFirstBad(band, k, k + nu);
     });
     return ok;
@@ -176,8 +209,9 @@ bool CpuSolver<T>::stepEulerFused(Band& band, bool symplectic) {
 template <typename T>
 bool CpuSolver<T>::reportFirstBad(Band& band, std::int64_t begin, std::int64_t end) {
     const Soa3<T>& x = fused() ? xNext_ : x_;
+    const Soa3<T>& vel = fused() && features_.springDamping ? vNext_ : v_;
     for (std::int64_t k = begin; k < end; ++k) {
-        const Vec3<T> p = x.get(k), v = v_.get(k);
+        const Vec3<T> p = x.get(k), v = vel.get(k);
         if (!badVertex(p.x, p.y, p.z, v.x, v.y, v.z, maxSpeed2_)) continue;
         reportBad(band, k, p, glm::dot(v, v));
         return false;
@@ -203,6 +237,7 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
                              s.restLength);
         }
         if (bending_.active()) f += bendingForce<T>(bending_, i, j, at);
+        if (features_.springDamping) addSpringDampingAt(nu, nv, springs_, x_, v_, k, i, j, f);
         if (features_.wind) {
             const Vec3<T> n = vertexNormal<T>(nu, nv, i, j, at), w = windDirection_;
             addWind(n.x, n.y, n.z, w.x, w.y, w.z, windStrengthAt(i, j), f.x, f.y, f.z);
@@ -220,13 +255,14 @@ void CpuSolver<T>::gatherForcesScalar(std::int64_t begin, std::int64_t end) {
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
-#define CLOTH_INSTANTIATE(T)                                                                      \
-    template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                 \
-    template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int) const; \
-    template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                    \
-    template void CpuSolver<T>::gatherForces(Band&);                                              \
-    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                   \
-    template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                      \
+#define CLOTH_INSTANTIATE(T)                                                                     \
+    template void CpuSolver<T>::coefficientRow(Band&, int, bool);                                \
+    template const T* CpuSolver<T>::coefficientAt(const Band&, const RowSpring&, int, int, bool) \
+        const;                                                                                   \
+    template void CpuSolver<T>::forceRow(Band&, int, Row3<T>);                                   \
+    template void CpuSolver<T>::gatherForces(Band&);                                             \
+    template void CpuSolver<T>::gatherForcesScalar(std::int64_t, std::int64_t);                  \
+    template bool CpuSolver<T>::stepEulerFused(Band&, bool);                                     \
     template bool CpuSolver<T>::reportFirstBad(Band&, std::int64_t, std::int64_t);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

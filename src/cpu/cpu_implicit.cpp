@@ -28,8 +28,9 @@ double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value
     return total;
 }
 
-// out = A p = m_k (1 + hc) p + h² H p on this band (pinned rows 0), H the clamped stiffness of
-// the state x_ the step linearises at, plus the grab spring's K I.
+// out = A p = m_k (1 + hc) p + h D p + h² H p on this band (pinned rows 0), H the clamped
+// stiffness of the state x_ the step linearises at, D = −∂F/∂v the spring damping's (0 without
+// it), plus the grab spring's K I.
 template <typename T>
 void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
                                  std::vector<Vec3<T>>& out) {
@@ -39,12 +40,18 @@ void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         if (pinned_[k]) continue;
         out[k] = (drag / inverseMass_[std::size_t(k)]) * p[k] + h2 * out[k];
+        if (features_.springDamping) {  // + h D p, D = −∂F/∂v = Σ βK d̂d̂ᵀ (docs/integrators.md)
+            Vec3<T> damped(0);
+            addSpringDampingAt(grid_.nu, grid_.nv, springs_, x_, p.data(), k, int(k % grid_.nu),
+                               int(k / grid_.nu), damped);
+            out[k] -= dt_t_ * damped;
+        }
     }
     if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
         out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
 }
 
-// Backward Euler linearised once (Baraff & Witkin): (m_k (1 + hc) I + h² H) Δv =
+// Backward Euler linearised once (Baraff & Witkin): (m_k (1 + hc) I + h D + h² H) Δv =
 // h (F + m_k (g − c v) − h H v), by conjugate gradient with pins as constraints (rows held 0).
 template <typename T>
 bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {

@@ -110,6 +110,11 @@ struct RowKernels {
     // collide() of model/collider_contact.h for a plane or a sphere, branch-free: the same bits.
     void (*planeContact)(const ContactRow<T>& row, int n);
     void (*sphereContact)(const ContactRow<T>& row, int n);
+    // c_i = springDampingCoefficient (model/spring_math.h) of one spring per element, from p_i
+    // to q_i with velocities vp_i, vq_i, dampingK = βK [N·s/m]: shared by its two ends, which
+    // add c_i (q_i − p_i) with accumulate.
+    void (*dampingCoefficients)(ConstRow3<T> p, ConstRow3<T> q, ConstRow3<T> vp, ConstRow3<T> vq,
+                                T dampingK, T restLength, T* c, int n);
 };
 
 template <typename T>

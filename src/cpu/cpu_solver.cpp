@@ -43,9 +43,10 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     takeFollowPins(scene);
     method_ = scene.integrator.method;
     takeParameters(scene);
-    if (fused())
+    if (fused()) {
         xNext_ = x_;
-    else
+        if (features_.springDamping) vNext_ = v_;
+    } else
         f_.assign(n, Vec3<T>(0));
     if (method_ == Method::Rk4)
         for (auto* a : {&x0_, &v0_, &sumX_, &sumV_}) a->assign(n, Vec3<T>(0));
@@ -66,6 +67,7 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
         band.end = std::int64_t(band.rowEnd) * nu;
         if (kernels_) {
             band.coefficients.assign(std::size_t(3) * upwardSprings_ * std::size_t(nu), T(0));
+            if (features_.springDamping) band.dampingCoefficients = band.coefficients;
             if (fused()) band.force.assign(nu, Vec3<T>(0));
         }
     }
@@ -91,7 +93,8 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
         while (kSpringOffsets[table].di != sp.di || kSpringOffsets[table].dj != sp.dj) ++table;
         families_ |= 1 << int(kSpringOffsets[table].family);
         rowSprings_.push_back({sp.di, sp.dj, sp.stiffness, sp.restLength, upward,
-                               upward ? upwardSprings_++ : -1, table, sp.halvedOnBorder});
+                               upward ? upwardSprings_++ : -1, table, sp.halvedOnBorder,
+                               sp.damping});
     }
     for (RowSpring& r : rowSprings_)  // a family's springs come in pairs ±(di, dj)
         for (const RowSpring& u : rowSprings_)
@@ -230,6 +233,8 @@ bool CpuSolver<T>::stepVerlet(Band& band, const Team& team, bool& haveForces) {
     }
     team.sync();
     gatherForces(band);  // F(x_{n+1}); the kick reads only its own vertex
+    // ... but spring damping's gather reads the neighbours' v_half, which the kick overwrites.
+    if (features_.springDamping) team.sync();
     haveForces = true;
     bool ok = true;
     const T denominator = T(1) + half * dampingRate_;
@@ -295,7 +300,7 @@ StepResult CpuSolver<T>::step(long n) {
             ++result.stepsTaken;
             poseColliders(steps_ + s + 1);
             const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
-            if (fused()) std::swap(x_, xNext_);  // the fused sweep always completes its step
+            if (fused()) swapFused();  // the fused sweep always completes its step
             if (!ok) break;
         }
     } else {
@@ -326,7 +331,7 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     long posed = steps_ + 1;
     poseColliders(posed);
     auto swapPositions = [this, &posed]() noexcept {
-        if (fused()) std::swap(x_, xNext_);
+        if (fused()) swapFused();
         poseColliders(++posed);
     };
     std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
@@ -369,7 +374,7 @@ SimState CpuSolver<T>::read() const {
 template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
-    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_}) vectors += std::size_t(a->size());
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_}) vectors += std::size_t(a->size());
     for (const auto* a :
          {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
         vectors += a->size();
@@ -380,7 +385,9 @@ template <typename T>
 std::size_t CpuSolver<T>::scratchBytes() const {
     std::size_t bytes = 0;
     for (const Band& b : bands_)
-        bytes += (b.coefficients.size() + 3 * std::size_t(b.force.size())) * sizeof(T);
+        bytes += (b.coefficients.size() + b.dampingCoefficients.size() +
+                  3 * std::size_t(b.force.size())) *
+                 sizeof(T);
     return bytes;
 }
 

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <barrier>
 #include <memory>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -63,7 +64,8 @@ private:
         // Spring coefficients of the last 3 rows (row j in slot j % 3), one array of nu per
         // upward spring: each spring's sqrt and division are done once for its two ends.
         AlignedVector<T> coefficients;
-        Soa3<T> force;  // one row of forces (the fused Euler sweep)
+        AlignedVector<T> dampingCoefficients;  // the same for the spring damping (when modelled)
+        Soa3<T> force;                         // one row of forces (the fused Euler sweep)
     };
     // A spring of the offset table as the row pass sees it: "upward" springs (dj > 0, or dj = 0
     // and di > 0) have their coefficients computed; the others read those of their reverse.
@@ -74,6 +76,7 @@ private:
         int slot;             // the coefficient array of this spring's upward direction
         int table;            // its index in kSpringOffsets
         bool halvedOnBorder;  // model/stiffness.h StencilSpring
+        T damping;            // βK [N·s/m] (StencilSpring::damping)
     };
     // The threads of one step(n) call: sync() is a barrier between passes (none when serial).
     struct Team {
@@ -100,7 +103,10 @@ private:
     // Rows two or more from the border, wide enough to have columns that are too: one gather.
     bool interiorRow(int j) const { return j >= 2 && j < grid_.nv - 2 && grid_.nu >= 5; }
     void forceRow(Band& band, int j, Row3<T> f);
-    const T* coefficientAt(const Band& band, const RowSpring& s, int j, int i) const;
+    // The spring's coefficient (or, with `damping`, its damping coefficient) for the vertex at
+    // column i of row j, in the band's ring.
+    const T* coefficientAt(const Band& band, const RowSpring& s, int j, int i,
+                           bool damping = false) const;
     bool stepEulerFused(Band& band, bool symplectic);
     bool reportFirstBad(Band& band, std::int64_t begin, std::int64_t end);
     // One step of the scene's integrator over this band's vertices; false if it went unstable.
@@ -124,6 +130,12 @@ private:
     double reduce(Band& band, const Team& team, const PerVertex& value);
     void systemProduct(const Band& band, const std::vector<Vec3<T>>& p, std::vector<Vec3<T>>& out);
     bool fused() const;  // explicit/symplectic Euler on row kernels: forces and update in one sweep
+    // The end of a fused step: the new positions (and, with spring damping, velocities) become
+    // the state.
+    void swapFused() noexcept {
+        std::swap(x_, xNext_);
+        if (features_.springDamping) std::swap(v_, vNext_);
+    }
     void recordSolve(long stepNumber, int iterations, double residual, bool converged);
     StepResult stepThreaded(long n);
 
@@ -138,7 +150,9 @@ private:
     const RowKernels<T>* kernels_ = nullptr;  // null on the scalar path
     // x_, v_: the state. The fused Euler sweep writes the new positions into xNext_ (neighbours
     // still read the old ones) and the two swap at the end of the step; it needs no f_.
-    Soa3<T> x_, v_, f_, xNext_;
+    // With spring damping the forces read the neighbours' velocities too: the sweep writes the
+    // new ones into vNext_, which swaps with v_ likewise.
+    Soa3<T> x_, v_, f_, xNext_, vNext_;
     std::vector<Vec3<T>> pinPosition_;
     std::vector<std::int64_t> pinList_;  // the pinned vertices, ascending
     // Pins that follow a collider (model/pin_follow.h), posed with the colliders; their velocity

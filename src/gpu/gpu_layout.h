@@ -71,8 +71,12 @@ struct Params {
     // A material's bending energy (model/bending.h): w_u, w_v, t inside the sheet [N/m], and 0;
     // all 0 when the scene has none (then no kernel reads it: HAS_BENDING is not defined).
     float bending[4];
+    // β [s] of the damping along the springs (Scene::springDamping): spring s adds
+    // β K_s ((v_q − v_k)·d̂) d̂; 0 when the scene has none (HAS_SPRING_DAMPING not defined).
+    float springDamping;
+    float unused[3];  // std140 rounds the block to 16 bytes
 };
-static_assert(sizeof(Params) == 176);
+static_assert(sizeof(Params) == 192);
 static_assert(offsetof(Params, grid) == 0);
 static_assert(offsetof(Params, dt) == 8);
 static_assert(offsetof(Params, dampingRate) == 12);
@@ -84,6 +88,7 @@ static_assert(offsetof(Params, cgTolerance) == 48);
 static_assert(offsetof(Params, stiffness) == 64);
 static_assert(offsetof(Params, restLength) == 112);
 static_assert(offsetof(Params, bending) == 160);
+static_assert(offsetof(Params, springDamping) == 176);
 // GL guarantees every device at least this many bytes per uniform block
 // (GL_MAX_UNIFORM_BLOCK_SIZE); GpuSolver still checks the device's own value.
 inline constexpr std::size_t kMinUniformBlockSize = 16384;

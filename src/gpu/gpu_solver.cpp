@@ -242,6 +242,7 @@ void GpuSolver::uploadParams(const Scene& scene) {
     p.bending[0] = float(bending.alongU);
     p.bending[1] = float(bending.alongV);
     p.bending[2] = float(bending.twist);
+    p.springDamping = float(scene.springDamping());
     glBindBuffer(GL_UNIFORM_BUFFER, paramsBuffer_);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof p, &p);
 }

@@ -111,6 +111,7 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
     if (f.wind) d.push_back({"HAS_WIND", ""});
     if (f.bending) d.push_back({"HAS_BENDING", ""});
     if (f.borderShares) d.push_back({"HAS_BORDER_SHARES", ""});
+    if (f.springDamping) d.push_back({"HAS_SPRING_DAMPING", ""});
     d.push_back({"NUM_PLANES", std::to_string(f.planes)});
     d.push_back({"NUM_SPHERES", std::to_string(f.spheres)});
     gpu::ColliderTable(scene, dragged).appendDefines(d);

@@ -18,6 +18,15 @@ Vec3<T> springForce(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLen
     return springCoefficient(d.x, d.y, d.z, stiffness, restLength) * d;
 }
 
+// Damping of the spring from k to q added to f (spring_math.h addSpringDamping): w = v_q − v_k,
+// dampingK = βK [N·s/m].
+template <typename T>
+void addSpringDamping(const Vec3<T>& pk, const Vec3<T>& pq, const Vec3<T>& w, T dampingK,
+                      T restLength, Vec3<T>& f) {
+    const Vec3<T> d = pq - pk;
+    addSpringDamping(d.x, d.y, d.z, w.x, w.y, w.z, dampingK, restLength, f.x, f.y, f.z);
+}
+
 // J_s w for the spring from k to q, J_s = ∂F_k/∂x_q its 3×3 Jacobian with the compressive part
 // clamped (docs/integrators.md, implicit_euler): J_s = K (d̂d̂ᵀ + max(0, 1 − L/l)(I − d̂d̂ᵀ)).
 // Positive semi-definite; 0 where the spring force is (a spring squeezed to a point).

@@ -130,6 +130,10 @@ double Scene::bendingStiffness() const {
     return material ? material->bend : 0.0;
 }
 
+double Scene::springDamping() const {
+    return material ? material->springDamping : 0.0;
+}
+
 long Scene::defaultSteps() const {
     return std::max(1L, std::lround(duration / integrator.dt));
 }

@@ -195,6 +195,9 @@ struct Scene {
     double dampingRate() const;
     // B of the quadratic bending energy [N·m]; 0 (the per-vertex form): not modelled.
     double bendingStiffness() const;
+    // β [s] of the damping along each spring, F = β K ((v_q − v_k)·d̂) d̂ (docs/physics.md
+    // "Spring damping"); 0 (and always in the per-vertex form): not modelled.
+    double springDamping() const;
 
     long defaultSteps() const;  // round(duration / dt), at least 1
     int planeCount() const;

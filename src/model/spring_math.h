@@ -22,6 +22,27 @@ CLOTH_LANE T springCoefficient(T dx, T dy, T dz, T stiffness, T restLength) {
     return len >= T(1e-12) * restLength ? stiffness * (len - restLength) / len : T(0);
 }
 
+// Damping along a spring (docs/physics.md "Spring damping"): f += c d with
+// c = βK (w·d)/|d|², i.e. βK ((v_q − v_k)·d̂) d̂, d = p_q − p_k, w = v_q − v_k and
+// dampingK = βK [N·s/m]. A spring squeezed below 1e-12 L adds nothing, as in springCoefficient.
+// c is the same bits for (d, w) and (−d, −w): a spring's two ends share it, like the spring's.
+// Linear in w: with w the difference of any vector field it is −(∂F/∂v) w, implicit Euler's
+// damping product.
+template <typename T>
+CLOTH_LANE T springDampingCoefficient(T dx, T dy, T dz, T wx, T wy, T wz, T dampingK,
+                                      T restLength) {
+    const T d2 = dx * dx + dy * dy + dz * dz, floor = T(1e-12) * restLength;
+    return d2 >= floor * floor ? dampingK * (wx * dx + wy * dy + wz * dz) / d2 : T(0);
+}
+template <typename T>
+CLOTH_LANE void addSpringDamping(T dx, T dy, T dz, T wx, T wy, T wz, T dampingK, T restLength,
+                                 T& fx, T& fy, T& fz) {
+    const T c = springDampingCoefficient(dx, dy, dz, wx, wy, wz, dampingK, restLength);
+    fx += c * dx;
+    fy += c * dy;
+    fz += c * dz;
+}
+
 // Unit normal n = (a × b)/|a × b| from the two central differences a, b (DESIGN.md §2), 0 where
 // |a × b| < 1e-12.
 template <typename T>

@@ -28,11 +28,14 @@ bool rk4ModeStable(double h, double w2, double c) {
 
 // Largest h with every mode ω² in [0, w2max] stable, by bisection (RK4's region is an interval
 // along each ray; 64 sampled ω² cover the modes between the rigid and the stiffest one).
-double rk4Dt(double w2max, double c) {
+// With spring damping β each sampled mode ω² is damped at c + βω².
+double rk4Dt(double w2max, double c, double beta) {
     if (w2max <= 0 && c <= 0) return kInf;
     auto stable = [&](double h) {
-        for (int s = 0; s <= 64; ++s)
-            if (!rk4ModeStable(h, w2max * s / 64.0, c)) return false;
+        for (int s = 0; s <= 64; ++s) {
+            const double w2 = w2max * s / 64.0;
+            if (!rk4ModeStable(h, w2, beta > 0 ? c + beta * w2 : c)) return false;
+        }
         return true;
     };
     double lo = 0, hi = 1;
@@ -97,6 +100,19 @@ StiffMode stiffestMode(const Scene& scene, int iterations) {
 }
 
 double methodDt(Method method, double omega2, double c) {
+    return dampedMethodDt(method, omega2, c, 0);
+}
+
+double dampedMethodDt(Method method, double omega2, double c, double beta) {
+    if (beta > 0 && omega2 > 0) {
+        if (method == Method::Verlet) {  // leapfrog with the drag βω² at v_half
+            const double b = beta * omega2;
+            return (-b + std::sqrt(b * b + 4 * omega2)) / omega2;
+        }
+        // The stiffest mode's rate: explicit Euler's Δt < c_ω/ω² = c/ω² + β and c_ω Δt < 2,
+        // symplectic Euler's ω²Δt² + 2c_ω Δt < 4 all bind there.
+        if (method != Method::Rk4) c += beta * omega2;
+    }
     const double drag = c > 0 ? 2 / c : kInf;  // the rigid mode: |1 − cΔt| ≤ 1
     switch (method) {
         case Method::ExplicitEuler:
@@ -108,7 +124,7 @@ double methodDt(Method method, double omega2, double c) {
         case Method::Verlet:
             return omega2 > 0 ? 2 / std::sqrt(omega2) : kInf;
         case Method::Rk4:
-            return rk4Dt(omega2, c);
+            return rk4Dt(omega2, c, beta);
         case Method::ImplicitEuler:
             return kInf;
     }
@@ -120,11 +136,12 @@ double methodDt(Method method, double lambda, double mass, double damping) {
 }
 
 double StabilityBound::safeDt(Method method) const {
-    return methodDt(method, omega2Max, dampingRate);
+    return dampedMethodDt(method, omega2Max, dampingRate, springDamping);
 }
 
 double StabilityBound::tightDt(Method method) const {
-    return methodDt(method, omega2Power > 0 ? omega2Power : omega2Max, dampingRate);
+    return dampedMethodDt(method, omega2Power > 0 ? omega2Power : omega2Max, dampingRate,
+                          springDamping);
 }
 
 StabilityBound estimateStability(const Scene& scene, int powerIterations) {
@@ -152,6 +169,7 @@ StabilityBound estimateStability(const Scene& scene, int powerIterations) {
         }
     }
     b.dampingRate = scene.dampingRate();
+    b.springDamping = scene.springDamping();
     if (powerIterations > 0) {
         const StiffMode mode = stiffestMode(scene, powerIterations);
         b.lambdaPower = mode.lambda;
@@ -169,7 +187,7 @@ double stableDt(const Scene& scene) {
 std::string stabilityAdvice(const Scene& scene) {
     const StabilityBound b = estimateStability(scene);
     const double bound = stableDt(scene), dt = scene.integrator.dt;
-    char buf[300];
+    char buf[400];
     if (std::isinf(bound)) {
         std::snprintf(buf, sizeof buf,
                       "%s is stable at any dt for the linear spring model; an unstable run "
@@ -178,22 +196,22 @@ std::string stabilityAdvice(const Scene& scene) {
     } else if (bound > 0 && scene.material) {
         std::snprintf(buf, sizeof buf,
                       "predicted stable dt < %.3g s for %s (omega_max^2 <= %.4g 1/s^2, "
-                      "air_damping %g 1/s); try --set integrator.dt=%.2g",
+                      "air_damping %g 1/s, spring_damping %g s); try --set integrator.dt=%.2g",
                       bound, methodName(scene.integrator.method), b.omega2Max, b.dampingRate,
-                      0.5 * bound);
+                      b.springDamping, 0.5 * bound);
     } else if (bound > 0) {
         std::snprintf(buf, sizeof buf,
                       "predicted stable dt < %.3g s for %s (lambda_max <= %.4g N/m, damping %g); "
                       "try --set integrator.dt=%.2g",
                       bound, methodName(scene.integrator.method), b.lambdaMax, scene.damping,
                       0.5 * bound);
-    } else if (scene.material) {  // explicit Euler is stable iff c > ω²_max Δt
+    } else if (scene.material) {  // explicit Euler is stable iff c/ω²_max + β > Δt
         std::snprintf(buf, sizeof buf,
                       "explicit Euler has no stable dt without damping (every spring mode grows); "
-                      "at dt = %g s it needs air_damping > omega_max^2*dt = %.3g 1/s: try --set "
-                      "material.air_damping=%.2g, or another integrator (--set "
-                      "integrator.method=\"verlet\")",
-                      dt, b.omega2Max * dt, 2 * b.omega2Max * dt);
+                      "at dt = %g s it needs air_damping > omega_max^2*dt = %.3g 1/s or "
+                      "spring_damping > dt: try --set material.spring_damping=%.2g, or another "
+                      "integrator (--set integrator.method=\"verlet\")",
+                      dt, b.omega2Max * dt, 2 * dt);
     } else {
         std::snprintf(buf, sizeof buf,
                       "explicit Euler has no stable dt without damping (every spring mode grows); "
@@ -207,7 +225,7 @@ std::string stabilityAdvice(const Scene& scene) {
 std::optional<std::string> dtWarning(const Scene& scene) {
     const double bound = stableDt(scene), dt = scene.integrator.dt;
     if (std::isinf(bound) || (bound > 0 && dt < bound)) return std::nullopt;
-    char buf[200];
+    char buf[400];
     if (bound > 0)
         std::snprintf(buf, sizeof buf,
                       "integrator.dt = %.3g s is beyond %s's predicted stability bound %.3g s: the "
@@ -215,9 +233,10 @@ std::optional<std::string> dtWarning(const Scene& scene) {
                       dt, methodName(scene.integrator.method), bound);
     else if (scene.material)
         std::snprintf(buf, sizeof buf,
-                      "explicit_euler has no stable integrator.dt at air_damping %g 1/s: the run "
-                      "may leave physics; raise material.air_damping or change integrator.method",
-                      scene.dampingRate());
+                      "explicit_euler has no stable integrator.dt at air_damping %g 1/s and "
+                      "spring_damping %g s: the run may leave physics; raise "
+                      "material.spring_damping or change integrator.method",
+                      scene.dampingRate(), scene.springDamping());
     else
         std::snprintf(buf, sizeof buf,
                       "explicit_euler has no stable integrator.dt at damping %g: the run may leave "

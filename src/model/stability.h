@@ -22,6 +22,12 @@ namespace cloth {
 //   rk4               |1 + z + z²/2 + z³/6 + z⁴/24| ≤ 1 for z = Δt·(eigenvalues of the mode)
 //   implicit_euler    unconditional (linearised)
 double methodDt(Method method, double omega2, double c);
+// The same with spring damping β [s] (docs/stability.md "Spring damping"): at rest its damping
+// matrix is β times the springs' H, so the mode of ω² is damped at c + βω² (taken at ω² = the
+// bound's, the stiffest mode, where every condition binds); verlet, whose forces take the spring
+// damping at the half-step velocity (docs/integrators.md), needs ω²Δt² + 2βω²Δt < 4. β = 0 gives
+// methodDt's bits.
+double dampedMethodDt(Method method, double omega2, double c, double beta);
 // The same for the per-vertex form's mode of stiffness eigenvalue λ [N/m] on masses m [kg] with
 // damping μ [N·s/m]: ω² = λ/m, c = μ/m.
 double methodDt(Method method, double lambda, double mass, double damping);
@@ -36,6 +42,7 @@ struct StabilityBound {
     double omega2Max = 0;
     double omega2Power = 0;      // power-iteration estimate of ω²_max (≤ the true one); 0: none
     double dampingRate = 0;      // c [1/s] (Scene::dampingRate)
+    double springDamping = 0;    // β [s] (Scene::springDamping): adds βω² to a mode's rate
     double explicitEulerDt = 0;  // methodDt(explicit_euler, omega2Max, c) [s] (0: none)
     double symplecticEulerDt = 0;  // methodDt(symplectic_euler, omega2Max, c) [s]
 

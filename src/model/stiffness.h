@@ -29,6 +29,7 @@ struct StencilSpring {
     std::int64_t indexOffset;  // dj·nu + di
     T stiffness, restLength;
     bool halvedOnBorder = false;  // a material's structural spring (model/grid.h onBorderLine)
+    T damping = 0;  // βK [N·s/m] (Scene::springDamping); 0: no spring damping
 };
 
 // K of spring s at vertex (i, j): halved on a border line where the spring asks for it.
@@ -47,19 +48,44 @@ std::vector<StencilSpring<T>> activeSprings(const Scene& scene) {
         if (!familyModelled(scene, o.family)) continue;
         springs.push_back({o.di, o.dj, std::int64_t(o.dj) * g.nu + o.di,
                            T(scene.slotStiffness(int(s))), T(g.restLength(o.di, o.dj)),
-                           scene.material.has_value() && o.family == Family::Structural});
+                           scene.material.has_value() && o.family == Family::Structural,
+                           T(scene.springDamping() * scene.slotStiffness(int(s)))});
     }
     return springs;
 }
 
-// out_k = (H p)_k = Σ_s J_s(x) (p_k − p_q) for k in [begin, end), with J_s clamped
-// (springJacobianTimes). Rows of pinned vertices are 0: a pin is a constraint, not a DOF; the
-// caller keeps p = 0 there, which removes the pinned columns too.
 template <typename T>
 Vec3<T> positionAt(const Vec3<T>* x, std::int64_t k) {
     return x[k];
 }
 
+// f += Σ_s the damping of spring s at vertex k = (i, j), in the springs' order, w the velocities
+// (or, for implicit Euler's product, any vector field): −(∂F/∂v) w. x and w: anything
+// positionAt(x, k) reads. The CPU's force pass and implicit product and the stability probe
+// share it.
+template <typename T, typename Positions, typename Vectors>
+void addSpringDampingAt(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
+                        const Positions& x, const Vectors& w, std::int64_t k, int i, int j,
+                        Vec3<T>& f) {
+    const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
+    const Vec3<T> pk = positionAt(x, k), wk = positionAt(w, k);
+    for (const StencilSpring<T>& s : springs) {
+        if (!interior) {
+            const int qi = i + s.di, qj = j + s.dj;
+            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+        }
+        const std::int64_t q = k + s.indexOffset;
+        addSpringDamping(pk, positionAt(x, q), positionAt(w, q) - wk,
+                         s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv)
+                             ? T(0.5) * s.damping
+                             : s.damping,
+                         s.restLength, f);
+    }
+}
+
+// out_k = (H p)_k = Σ_s J_s(x) (p_k − p_q) for k in [begin, end), with J_s clamped
+// (springJacobianTimes). Rows of pinned vertices are 0: a pin is a constraint, not a DOF; the
+// caller keeps p = 0 there, which removes the pinned columns too.
 // x and p: a Vec3<T> array or anything positionAt(x, k) reads (the CPU's Soa3). With `bending`
 // active, its Hessian (constant: model/bending.h) is added: H p += −bendingForce(p).
 template <typename T, typename Positions, typename Vectors>

@@ -69,6 +69,13 @@ constexpr ParamSpec kParams[] = {
          return s.material ? std::optional(s.material->airDamping) : std::nullopt;
      },
      [](Scene& s, double v) { if (s.material) s.material->airDamping = v; }},
+    {"material.spring_damping", "s", 0, kInf, false, false, 0, false,
+     "damping along each spring β, in units of its stiffness: F = β·K·((v_q − v_k)·d̂)·d̂",
+     {PanelSection::Forces, SliderScale::Log, 0, 1e-2, "spring damping [s]"},
+     [](const Scene& s) {
+         return s.material ? std::optional(s.material->springDamping) : std::nullopt;
+     },
+     [](Scene& s, double v) { if (s.material) s.material->springDamping = v; }},
     {"integrator.dt", "s", 0, 10, true, false, 1e-3, true, "time step Δt",
      {PanelSection::TimeStep, SliderScale::Log, 1e-6, 1e-1, "dt [s]", "%.3e"},
      [](const Scene& s) -> std::optional<double> { return s.integrator.dt; },

@@ -85,6 +85,7 @@ std::string sceneToJson(const Scene& s) {
         material["shear"] = m->shear;
         material["bend"] = m->bend;
         material["air_damping"] = m->airDamping;
+        material["spring_damping"] = m->springDamping;
         j["material"] = material;
     } else {
         j["cloth"]["mass"] = s.cloth.mass;

@@ -171,7 +171,9 @@ void SceneReader::readSprings(const Json& j, SpringStiffness& springs) const {
 // docs/physics.md "Materials": a preset, each key given overriding it; without a preset,
 // density, stretch and shear are required.
 Material SceneReader::readMaterial(const Json& j) const {
-    expectObject(j, "material", {"preset", "density", "stretch", "shear", "bend", "air_damping"});
+    expectObject(
+        j, "material",
+        {"preset", "density", "stretch", "shear", "bend", "air_damping", "spring_damping"});
     Material m;
     if (j.contains("preset")) {
         const Json& name = j["preset"];
@@ -191,6 +193,7 @@ Material SceneReader::readMaterial(const Json& j) const {
     read("shear", m.shear);
     read("bend", m.bend);
     read("air_damping", m.airDamping);
+    read("spring_damping", m.springDamping);
     return m;
 }
 

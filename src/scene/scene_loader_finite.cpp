@@ -128,6 +128,12 @@ void SceneReader::checkDerivedFinite(const Scene& s) const {
     expect(c, {{dampingKey, c}, {massKey, inverseMass}}, "the damping rate c");
     expect(c * c + 4 * w2, {{dampingKey, c}, {family, std::sqrt(4 * w2)}},
            "the symplectic Euler stability bound's (damping/m)² + 4·lambda_max/m");
+    if (const double beta = s.springDamping(); beta > 0) {  // docs/stability.md "Spring damping"
+        expect(beta * w2, {{"material.spring_damping", beta}, {family, w2}},
+               "the spring damping's rate beta·lambda_max/m");
+        expect(beta * w2 * dt, {{"material.spring_damping", beta * w2}, {"integrator.dt", dt}},
+               "the spring damping per step beta·lambda_max·dt/m");
+    }
     for (Method method : kMethods)
         if (std::isnan(methodDt(method, lambda, m, c * m)))
             fail(family,

@@ -23,6 +23,7 @@ Features Features::of(const Scene& scene) {
     f.wind = scene.wind.has_value() && scene.wind->strength != 0;
     f.bending = bendingWeights(scene.grid(), scene.bendingStiffness()).active();
     f.borderShares = scene.material.has_value() && f.structural;
+    f.springDamping = scene.springDamping() > 0 && (f.structural || f.shear || f.bend);
     f.planes = scene.planeCount();
     f.spheres = scene.sphereCount();
     f.boxes = scene.count<Box>();
@@ -41,6 +42,7 @@ std::string Features::describe() const {
         }
     std::string s = springs.empty() ? "no springs" : springs;
     if (bending) s += ", bending";
+    if (springDamping) s += ", spring damping";
     if (wind) s += ", wind";
     for (auto [n, one, many] : {std::tuple{planes, "plane", "planes"},
                                 {spheres, "sphere", "spheres"},

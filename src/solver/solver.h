@@ -44,6 +44,8 @@ struct Features {
     // A material: its structural springs on a border line have half the stiffness (model/grid.h
     // onBorderLine); the per-vertex form's are uniform.
     bool borderShares = false;
+    // Damping along the springs (Scene::springDamping > 0 and some spring modelled).
+    bool springDamping = false;
     int planes = 0, spheres = 0, boxes = 0, capsules = 0, meshes = 0;
     // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
     int contactExtras = 0;

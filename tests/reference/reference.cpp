@@ -72,6 +72,7 @@ void Simulation::setState(const std::vector<V3>& p, const std::vector<V3>& v) {
     if (p.size() == p_.size() && v.size() == v_.size()) {
         p_ = p;
         v_ = v;
+        verletForces_.clear();
     }
 }
 
@@ -115,6 +116,31 @@ V3 Simulation::springForces(const std::vector<V3>& p, int i, int j) const {
         f = add(f, scale(k * (dist - len) / dist, d));
     }
     return f;
+}
+
+// Each spring a→b once (the offsets that point up the grid, or along +u in a row), with
+// F_a = β K ((w_b − w_a)·d̂) d̂ and F_b = −F_a; nothing for a spring shorter than 1e-12 L.
+void Simulation::addSpringDamping(const std::vector<V3>& x, const std::vector<V3>& w,
+                                  std::vector<V3>& f) const {
+    if (prm_.springDamping == 0) return;
+    for (int j = 0; j < prm_.nv; ++j) {
+        for (int i = 0; i < prm_.nu; ++i) {
+            for (const Offset& o : kOffsets) {
+                if (o.dj < 0 || (o.dj == 0 && o.di < 0)) continue;  // the other end counts it
+                const double k = stiffness(i, j, o.di, o.dj, o.family);
+                const int qi = i + o.di, qj = j + o.dj;
+                if (k == 0 || qi < 0 || qi >= prm_.nu || qj < 0 || qj >= prm_.nv) continue;
+                const int a = j * prm_.nu + i, b = qj * prm_.nu + qi;
+                const V3 d = sub(x[b], x[a]);
+                const double dist = norm(d);
+                if (dist < 1e-12 * restLength(o.di, o.dj)) continue;
+                const V3 dhat = scale(1.0 / dist, d);
+                const V3 fa = scale(prm_.springDamping * k * dot(sub(w[b], w[a]), dhat), dhat);
+                f[a] = add(f[a], fa);
+                f[b] = sub(f[b], fa);
+            }
+        }
+    }
 }
 
 // docs/integrators.md, implicit_euler: per spring J_s = K (d̂ d̂ᵀ + max(0, 1 − L/l) (I − d̂ d̂ᵀ)),
@@ -264,10 +290,12 @@ std::vector<V3> Simulation::forces(const std::vector<V3>& p) const {
     return f;
 }
 
-// docs/integrators.md: a(x, v) = (F(x) − μ_k v)/m_k + g; a pinned vertex's is not used (0 here).
+// docs/integrators.md: a(x, v) = (F(x) + F_β(x, v) − μ_k v)/m_k + g; a pinned vertex's is not
+// used (0 here).
 std::vector<V3> Simulation::accelerations(const std::vector<V3>& x,
                                           const std::vector<V3>& v) const {
-    const std::vector<V3> f = forces(x);
+    std::vector<V3> f = forces(x);
+    addSpringDamping(x, v, f);
     std::vector<V3> a(x.size(), V3{0, 0, 0});
     for (std::size_t k = 0; k < x.size(); ++k) {
         if (pinned_[k]) continue;

@@ -91,6 +91,10 @@ struct Params {
     double bend = 0;
     double damping = 0;      // μ [N·s/m]: the drag −μ v on every vertex
     double dampingRate = 0;  // c [1/s]: a material's air damping, the drag −c·m_k·v on vertex k
+    // β [s]: a material's spring damping; each spring of stiffness K pulls its ends a, b
+    // together along d̂ = (x_b − x_a)/|x_b − x_a| with β K ((v_b − v_a)·d̂) on a, the opposite
+    // on b (docs/physics.md "Spring damping"). 0 = not modelled.
+    double springDamping = 0;
     V3 gravity{0, -9.81, 0};               // [m/s²]
     std::vector<std::array<int, 2>> pins;  // may be negative: -1 = last index
     // Per pin (missing entries: -1): the index in `colliders` of the moving collider the pin
@@ -158,6 +162,11 @@ private:
     double drag(int k) const;  // μ_k of the drag −μ_k v on vertex k [N·s/m]
     double restLength(int di, int dj) const;
     V3 springForces(const std::vector<V3>& p, int i, int j) const;
+    // The spring damping of the field w at positions x, added into f: each spring once, its
+    // force scattered to both ends (the solvers gather per vertex). Pinned entries of w are read
+    // as they are (the caller zeroes them where they must not count).
+    void addSpringDamping(const std::vector<V3>& x, const std::vector<V3>& w,
+                          std::vector<V3>& f) const;
     // The bending force −∂E_b/∂w of the field w, added into f: each stencil scatters its gradient
     // to its members (the solvers gather; this is the same energy written the other way round).
     // Entries of w at pinned vertices read as 0 unless `pinnedColumns`.
@@ -165,7 +174,8 @@ private:
     V3 windForce(const std::vector<V3>& p, int i, int j) const;
     void applyColliders(V3& p, V3& v) const;
     double colliderTime_ = 0;  // the end of the step being taken [s]: where colliders are
-    // a(x, v) = (F(x) − μ_k v)/m_k + g on free vertices, 0 on pinned ones.
+    // a(x, v) = (F(x) + F_β(x, v) − μ_k v)/m_k + g on free vertices, 0 on pinned ones, F_β the
+    // spring damping.
     std::vector<V3> accelerations(const std::vector<V3>& x, const std::vector<V3>& v) const;
     // Pins (x ← x_pin, v ← 0; a follow pin at its pose at colliderTime_, v ← v_c there), then
     // every collider in scene order, on every vertex.
@@ -191,6 +201,9 @@ private:
     std::vector<V3> rest_;     // pinned vertices are held at their rest position (moved by
                                // the followed collider's motion for a follow pin)
     std::vector<V3> p_, v_;
+    // verlet with spring damping: F(x_{n+1}, v_half) of the last step, which the next step's
+    // first kick uses (as the solvers, which evaluate the forces once a step); empty: none yet.
+    std::vector<V3> verletForces_;
     long steps_ = 0;
     CgStats cg_;
 };

@@ -33,17 +33,28 @@ void Simulation::stepSymplecticEuler() {
 // verlet: kick (damping at v_n), drift, pins and colliders on (x_{n+1}, v_half), forces at the
 // projected x_{n+1}, kick with the damping taken at v_{n+1} (solved per vertex), pins. F(x_n) is
 // recomputed here rather than kept from the previous step: the same numbers, since nothing moves
-// x between the two.
+// x between the two. With spring damping the force depends on v too: the second kick's
+// F(x_{n+1}, v_half) is kept and is the next step's first kick's (docs/integrators.md), as the
+// solvers evaluate the forces once a step.
 void Simulation::stepVerlet() {
     const double h = prm_.dt;
-    const std::vector<V3> a = accelerations(p_, v_);
+    std::vector<V3> a = accelerations(p_, v_);
+    if (!verletForces_.empty()) {
+        for (std::size_t k = 0; k < p_.size(); ++k) {
+            if (pinned_[k]) continue;
+            const V3 f = sub(verletForces_[k], scale(drag(int(k)), v_[k]));
+            a[k] = add(scale(1.0 / mass_[k], f), prm_.gravity);
+        }
+    }
     std::vector<V3> vHalf(v_.size());
     for (std::size_t k = 0; k < p_.size(); ++k) {
         vHalf[k] = add(v_[k], scale(h / 2, a[k]));
         p_[k] = add(p_[k], scale(h, vHalf[k]));
     }
     pinAndCollide(p_, vHalf);
-    const std::vector<V3> f = forces(p_);
+    std::vector<V3> f = forces(p_);
+    addSpringDamping(p_, vHalf, f);
+    if (prm_.springDamping != 0) verletForces_ = f;
     for (std::size_t k = 0; k < p_.size(); ++k) {
         const double m = mass_[k], mu = drag(int(k));
         const V3 kick = scale(h / 2, add(scale(1.0 / m, f[k]), prm_.gravity));
@@ -82,10 +93,13 @@ void Simulation::stepRk4() {
 }
 
 // implicit_euler (Baraff & Witkin 1998), linearised once at x_n:
-// ((m_k + hμ_k) I + h² H) Δv = h (F(x_n) − μ_k v_n + m_k g − h H v_n); v += Δv; x += h v_new.
+// ((m_k + hμ_k) I + h D + h² H) Δv = h (F(x_n) + F_β(x_n, v_n) − μ_k v_n + m_k g − h H v_n);
+// v += Δv; x += h v_new. D = −∂F_β/∂v, the spring damping's (its ∂F_β/∂x is left out, as
+// Baraff & Witkin do).
 void Simulation::stepImplicitEuler() {
     const double h = prm_.dt;
-    const std::vector<V3> f = forces(p_);
+    std::vector<V3> f = forces(p_);
+    addSpringDamping(p_, v_, f);
     const std::vector<V3> hv = hessianProduct(p_, v_, true);  // a follow pin's v_n counts
     std::vector<V3> b(p_.size(), V3{0, 0, 0});
     for (std::size_t k = 0; k < p_.size(); ++k) {
@@ -115,11 +129,15 @@ std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x,
         }
         return s;
     };
-    auto apply = [&](const std::vector<V3>& w) {  // A w = (m_k + hμ_k) w + h² H w
+    auto apply = [&](const std::vector<V3>& w) {  // A w = (m_k + hμ_k) w + h D w + h² H w
         std::vector<V3> y = hessianProduct(x, w);
+        std::vector<V3> damping(n, V3{0, 0, 0});  // −D w: w is 0 on pinned vertices
+        addSpringDamping(x, w, damping);
         for (std::size_t k = 0; k < n; ++k) {
             const double diagonal = mass_[k] + h * drag(int(k));
-            y[k] = pinned_[k] ? V3{0, 0, 0} : add(scale(diagonal, w[k]), scale(h * h, y[k]));
+            y[k] = pinned_[k]
+                       ? V3{0, 0, 0}
+                       : sub(add(scale(diagonal, w[k]), scale(h * h, y[k])), scale(h, damping[k]));
         }
         return y;
     };

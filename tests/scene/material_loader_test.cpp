@@ -7,6 +7,7 @@
 #include "scene/params.h"
 #include "scene/scene_json.h"
 #include "scene/scene_loader.h"
+#include "solver/solver.h"
 
 namespace cloth {
 namespace {
@@ -33,6 +34,9 @@ TEST(MaterialLoader, APresetWithAnOverrideKeepsTheRestOfThePreset) {
     EXPECT_EQ(s.slotStiffness(8), 0);
     EXPECT_EQ(s.dampingRate(), denim.airDamping);
     EXPECT_EQ(s.bendingStiffness(), 1e-4);
+    // No preset damps its springs.
+    EXPECT_EQ(s.springDamping(), 0);
+    EXPECT_FALSE(Features::of(s).springDamping);
 }
 
 TEST(MaterialLoader, WithoutAPresetTheValuesAreRequiredAndTheRestDefaultToOff) {
@@ -44,6 +48,26 @@ TEST(MaterialLoader, WithoutAPresetTheValuesAreRequiredAndTheRestDefaultToOff) {
     EXPECT_EQ(s.material->bend, 0);
     EXPECT_EQ(s.material->airDamping, 0);
     EXPECT_EQ(s.dampingRate(), 0);
+    EXPECT_EQ(s.material->springDamping, 0);
+}
+
+TEST(MaterialLoader, SpringDampingIsReadSetAndSaved) {
+    const Scene s = parseScene(R"({"cloth": {"resolution": [9, 5], "size": [1, 0.5]},
+        "material": {"preset": "cotton", "spring_damping": 2e-5}, "integrator": {"dt": 1e-4}})",
+                               "cotton.json");
+    EXPECT_EQ(s.springDamping(), 2e-5);
+    EXPECT_TRUE(Features::of(s).springDamping);
+    EXPECT_EQ(paramSpec("material.spring_damping").get(s), 2e-5);
+    EXPECT_EQ(parseScene(kDenim, "d.json", {"material.spring_damping=3e-4"}).springDamping(), 3e-4);
+    const Scene back = parseScene(sceneToJson(s), "saved");
+    EXPECT_EQ(back.material->springDamping, 2e-5);
+    EXPECT_EQ(sceneToJson(back), sceneToJson(s));
+    try {
+        parseScene(kDenim, "d.json", {"material.spring_damping=-1e-5"});
+        FAIL() << "a negative spring damping was accepted";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "material.spring_damping");
+    }
 }
 
 TEST(MaterialLoader, SetEditsAMaterialKeyAndIsCheckedLikeTheFile) {
@@ -68,6 +92,7 @@ TEST(MaterialLoader, ASavedMaterialSceneLoadsBackTheSame) {
     EXPECT_EQ(b.material->shear, a.material->shear);
     EXPECT_EQ(b.material->bend, a.material->bend);
     EXPECT_EQ(b.material->airDamping, a.material->airDamping);
+    EXPECT_EQ(b.material->springDamping, a.material->springDamping);
     EXPECT_EQ(sceneToJson(a), sceneToJson(b));
     // The per-vertex form's keys are not written: the file would be refused with both.
     EXPECT_EQ(sceneToJson(a).find("\"springs\""), std::string::npos);

@@ -35,7 +35,8 @@ const nlohmann::json kFull = nlohmann::json::parse(R"({
 // damping), each at a value other than its default.
 const nlohmann::json kFullMaterial = nlohmann::json::parse(R"({
   "cloth": {"resolution": [4, 3], "size": [1, 1]},
-  "material": {"density": 0.2, "stretch": 900, "shear": 40, "bend": 1e-5, "air_damping": 0.5},
+  "material": {"density": 0.2, "stretch": 900, "shear": 40, "bend": 1e-5, "air_damping": 0.5,
+               "spring_damping": 1e-4},
   "integrator": {"dt": 0.002}
 })");
 

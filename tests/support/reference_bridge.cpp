@@ -112,6 +112,7 @@ ref::Params toReference(const Scene& scene) {
         p.density = scene.material->density;
         p.damping = 0;
         p.dampingRate = scene.dampingRate();
+        p.springDamping = scene.springDamping();
         p.bend = scene.material->bend;
         p.cellShares = true;
         for (std::size_t s = 0; s < kSpringOffsets.size(); ++s)

@@ -56,6 +56,25 @@ void accumulate(Row3<T> f, ConstRow3<T> p, ConstRow3<T> q, const T* c, int n) {
     accumulateLoop(f.x, f.y, f.z, p.x, p.y, p.z, q.x, q.y, q.z, c, n);
 }
 
+// Spring damping coefficients (spring_math.h springDampingCoefficient): one spring per element,
+// its far end q.
+template <typename T>
+void dampingLoop(const T* __restrict px, const T* __restrict py, const T* __restrict pz,
+                 const T* __restrict qx, const T* __restrict qy, const T* __restrict qz,
+                 const T* __restrict ux, const T* __restrict uy, const T* __restrict uz,
+                 const T* __restrict wx, const T* __restrict wy, const T* __restrict wz, T dampingK,
+                 T restLength, T* __restrict c, int n) {
+    for (int i = 0; i < n; ++i)
+        c[i] = springDampingCoefficient(qx[i] - px[i], qy[i] - py[i], qz[i] - pz[i], wx[i] - ux[i],
+                                        wy[i] - uy[i], wz[i] - uz[i], dampingK, restLength);
+}
+template <typename T>
+void dampingCoefficients(ConstRow3<T> p, ConstRow3<T> q, ConstRow3<T> vp, ConstRow3<T> vq,
+                         T dampingK, T restLength, T* c, int n) {
+    dampingLoop(p.x, p.y, p.z, q.x, q.y, q.z, vp.x, vp.y, vp.z, vq.x, vq.y, vq.z, dampingK,
+                restLength, c, n);
+}
+
 template <typename T, int kFamilies>
 void gather(Row3<T> f, const GatherRow<T>& g, int n) {
     T* __restrict fx = f.x;
@@ -235,7 +254,8 @@ const RowKernels<T>& rowKernels() {
                                        &euler<T, true>,
                                        &anyBad<T>,
                                        &contact<T, false>,
-                                       &contact<T, true>};
+                                       &contact<T, true>,
+                                       &dampingCoefficients<T>};
     return kernels;
 }
 template const RowKernels<float>& rowKernels();
