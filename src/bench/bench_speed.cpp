@@ -10,11 +10,11 @@
 #include <sstream>
 #include <thread>
 
-#include "bench/bench_speed.h"
 #include "bench/bench.h"
 #include "bench/bench_baseline.h"
 #include "bench/bench_features.h"
 #include "bench/bench_peer.h"
+#include "bench/bench_speed.h"
 #include "bench/bench_speed_gpu.h"
 #include "bench/bench_speed_model.h"
 #include "bench/bench_speed_timing.h"
@@ -26,8 +26,6 @@ namespace cloth::app {
 namespace {
 
 using Options = SpeedOptions;
-
-
 
 // What one run of the command shares between sizes.
 struct Sweep {
@@ -236,9 +234,12 @@ int runBenchSpeed(const SpeedOptions& options) {
     const Scene scene = loadScene(o.scenePath, o.sets);
     if (!o.peer.empty() && scene.material)
         throw InputError("command line", "--peer",
-                         "the " + o.peer + " peer maps the per-vertex form (cloth.mass, springs, "
-                         "damping) and " + o.scenePath + " gives a material: use "
-                         "bench/hanging_per_vertex.json");
+                         "the " + o.peer +
+                             " peer maps the per-vertex form (cloth.mass, springs, "
+                             "damping) and " +
+                             o.scenePath +
+                             " gives a material: use "
+                             "bench/hanging_per_vertex.json");
     auto targets = parseTargets("--backend", o.backend, {Precision::Float, Precision::Double});
     targets = availableTargets(targets, scene, o.backend == "gpu", o.base());
     const bool gpu = std::any_of(targets.begin(), targets.end(),

@@ -45,7 +45,8 @@ void CpuSolver<T>::coefficientRow(Band& band, int j, bool gatherLater) {
             if (s.dj == 0) return each(a, b, j == 0 || j == nv - 1 ? half : full);
             if (a == 0) each(0, 1, half);
             if (b == nu) each(std::max(a, nu - 1), nu, half);
-            if (std::max(a, 1) < std::min(b, nu - 1)) each(std::max(a, 1), std::min(b, nu - 1), full);
+            if (std::max(a, 1) < std::min(b, nu - 1))
+                each(std::max(a, 1), std::min(b, nu - 1), full);
         };
         auto columns = [&](int a, int b) { byBorder(a, b, s.stiffness, run); };
         if (gatherLater && kComputedInGather[s.table]) {

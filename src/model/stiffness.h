@@ -29,7 +29,7 @@ struct StencilSpring {
     std::int64_t indexOffset;  // dj·nu + di
     T stiffness, restLength;
     bool halvedOnBorder = false;  // a material's structural spring (model/grid.h onBorderLine)
-    T damping = 0;  // βK [N·s/m] (Scene::springDamping); 0: no spring damping
+    T damping = 0;                // βK [N·s/m] (Scene::springDamping); 0: no spring damping
 };
 
 // K of spring s at vertex (i, j): halved on a border line where the spring asks for it.

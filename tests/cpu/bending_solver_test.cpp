@@ -16,9 +16,13 @@
 #include "solver/diagnostics.h"
 #include "support/material_scene.h"
 #include "support/reference_bridge.h"
+#include "support/same_bits.h"
 
 namespace cloth {
 namespace {
+
+using test::expectSameBits;
+using test::runCpu;
 
 // The material sheet of support/material_scene.h with a bending stiffness that matters: on
 // 0.08 × 0.06 m cells B = 1e-3 N·m gives w ≈ B/h² ≈ 0.2–0.3 N/m against springs of ~5e3 N/m,
@@ -31,36 +35,18 @@ Scene bendingScene(Method method, double bend = 1e-3) {
     return s;
 }
 
-template <typename T>
-SimState run(const Scene& scene, CpuIsa isa, int threads, long steps) {
-    CpuSolver<T> solver(scene, threads, isa);
-    const StepResult r = solver.step(steps);
-    EXPECT_FALSE(r.unstable) << r.reason;
-    return solver.read();
-}
-
-void expectSameBits(const SimState& a, const SimState& b, const std::string& what) {
-    ASSERT_EQ(a.positions.size(), b.positions.size());
-    EXPECT_EQ(0, std::memcmp(a.positions.data(), b.positions.data(),
-                             a.positions.size() * sizeof(glm::dvec3)))
-        << what;
-    EXPECT_EQ(0, std::memcmp(a.velocities.data(), b.velocities.data(),
-                             a.velocities.size() * sizeof(glm::dvec3)))
-        << what;
-}
-
 TEST(BendingSolver, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
     for (Method method : {Method::SymplecticEuler, Method::Verlet, Method::ImplicitEuler}) {
         const Scene scene = bendingScene(method);
-        const SimState scalarF = run<float>(scene, CpuIsa::Scalar, 1, 60);
-        const SimState scalarD = run<double>(scene, CpuIsa::Scalar, 1, 60);
+        const SimState scalarF = runCpu<float>(scene, CpuIsa::Scalar, 1, 60);
+        const SimState scalarD = runCpu<double>(scene, CpuIsa::Scalar, 1, 60);
         for (CpuIsa isa : {CpuIsa::Generic, CpuIsa::Avx2, CpuIsa::Avx512}) {
             if (!cpuIsaSupported(isa)) continue;
             for (int threads : {1, 3}) {
                 const std::string what = std::string(methodName(method)) + " " + cpuIsaName(isa) +
                                          " " + std::to_string(threads) + " threads";
-                expectSameBits(run<float>(scene, isa, threads, 60), scalarF, what + " float");
-                expectSameBits(run<double>(scene, isa, threads, 60), scalarD, what + " double");
+                expectSameBits(runCpu<float>(scene, isa, threads, 60), scalarF, what + " float");
+                expectSameBits(runCpu<double>(scene, isa, threads, 60), scalarD, what + " double");
             }
         }
     }

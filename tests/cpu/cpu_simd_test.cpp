@@ -14,9 +14,12 @@
 #include "model/errors.h"
 #include "scene/scene_loader.h"
 #include "support/integrator_scenes.h"
+#include "support/same_bits.h"
 
 namespace cloth {
 namespace {
+
+using test::expectSameBits;
 
 // everythingScene (springs of all families, wind, pins, a plane and a sphere) resized; `plain`
 // drops wind, colliders and pins, `families` keeps only the spring families whose bit is set.
@@ -52,23 +55,8 @@ SimState jostled(const Scene& scene) {
 
 template <typename T>
 SimState run(const Scene& scene, CpuIsa isa, int threads, long steps) {
-    CpuSolver<T> solver(scene, threads, isa);
-    solver.write(jostled(scene));
-    const StepResult r = solver.step(steps);
-    EXPECT_FALSE(r.unstable) << r.reason;
-    return solver.read();
-}
-
-// Bitwise: the doubles read back are exact conversions of T, so equal bits here are equal bits
-// in the solver.
-void expectSameBits(const SimState& a, const SimState& b, const std::string& what) {
-    ASSERT_EQ(a.positions.size(), b.positions.size());
-    EXPECT_EQ(0, std::memcmp(a.positions.data(), b.positions.data(),
-                             a.positions.size() * sizeof(glm::dvec3)))
-        << what << ": positions differ";
-    EXPECT_EQ(0, std::memcmp(a.velocities.data(), b.velocities.data(),
-                             a.velocities.size() * sizeof(glm::dvec3)))
-        << what << ": velocities differ";
+    const SimState start = jostled(scene);
+    return test::runCpu<T>(scene, isa, threads, steps, &start);
 }
 
 constexpr CpuIsa kVectorIsas[] = {CpuIsa::Generic, CpuIsa::Avx2, CpuIsa::Avx512};

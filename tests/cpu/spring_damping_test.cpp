@@ -20,9 +20,13 @@
 #include "solver/diagnostics.h"
 #include "support/material_scene.h"
 #include "support/reference_bridge.h"
+#include "support/same_bits.h"
 
 namespace cloth {
 namespace {
+
+using test::expectSameBits;
+using test::runCpu;
 
 // β = 2e-5 s on the material sheet of support/material_scene.h (ω_max ≈ 1.05e4 1/s): the
 // stiffest mode decays at βω²/2 ≈ 1.1e3 1/s, a tenth of its ω, while the swing of the sheet
@@ -36,24 +40,6 @@ Scene dampedScene(Method method, double beta = kBeta, double dt = 1e-4) {
     s.integrator.tolerance = 1e-12;
     s.integrator.maxIterations = 1000;
     return s;
-}
-
-template <typename T>
-SimState run(const Scene& scene, CpuIsa isa, int threads, long steps) {
-    CpuSolver<T> solver(scene, threads, isa);
-    const StepResult r = solver.step(steps);
-    EXPECT_FALSE(r.unstable) << r.reason;
-    return solver.read();
-}
-
-void expectSameBits(const SimState& a, const SimState& b, const std::string& what) {
-    ASSERT_EQ(a.positions.size(), b.positions.size());
-    EXPECT_EQ(0, std::memcmp(a.positions.data(), b.positions.data(),
-                             a.positions.size() * sizeof(glm::dvec3)))
-        << what;
-    EXPECT_EQ(0, std::memcmp(a.velocities.data(), b.velocities.data(),
-                             a.velocities.size() * sizeof(glm::dvec3)))
-        << what;
 }
 
 // A 2×2 sheet pinned along its i = 0 side, with shear 0 so that only the structural springs are
@@ -224,8 +210,8 @@ TEST(SpringDamping, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
                 scene.cloth.size = {47 * 0.08, 79 * 0.06};
             }
             const long steps = large ? 20 : 60;
-            const SimState scalarF = run<float>(scene, CpuIsa::Scalar, 1, steps);
-            const SimState scalarD = run<double>(scene, CpuIsa::Scalar, 1, steps);
+            const SimState scalarF = runCpu<float>(scene, CpuIsa::Scalar, 1, steps);
+            const SimState scalarD = runCpu<double>(scene, CpuIsa::Scalar, 1, steps);
             for (CpuIsa isa : {CpuIsa::Scalar, CpuIsa::Generic, CpuIsa::Avx2, CpuIsa::Avx512}) {
                 if (!cpuIsaSupported(isa)) continue;
                 for (int threads : {1, 3}) {
@@ -233,9 +219,9 @@ TEST(SpringDamping, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
                     const std::string what = std::string(methodName(method)) + " " +
                                              cpuIsaName(isa) + " " + std::to_string(threads) +
                                              " threads" + (large ? " 48x80" : " 16x12");
-                    expectSameBits(run<float>(scene, isa, threads, steps), scalarF,
+                    expectSameBits(runCpu<float>(scene, isa, threads, steps), scalarF,
                                    what + " float");
-                    expectSameBits(run<double>(scene, isa, threads, steps), scalarD,
+                    expectSameBits(runCpu<double>(scene, isa, threads, steps), scalarD,
                                    what + " double");
                 }
             }

@@ -35,8 +35,8 @@ std::vector<double> structuralStrains(const Scene& scene, const SimState& s) {
     const Grid g = scene.grid();
     std::vector<double> strains;
     auto add = [&](int i, int j, int di, int dj, double rest) {
-        const glm::dvec3 d = s.positions[size_t(g.index(i + di, j + dj))] -
-                             s.positions[size_t(g.index(i, j))];
+        const glm::dvec3 d =
+            s.positions[size_t(g.index(i + di, j + dj))] - s.positions[size_t(g.index(i, j))];
         strains.push_back(std::abs(glm::length(d) / rest - 1));
     };
     for (int j = 0; j < g.nv; ++j)
@@ -71,8 +71,8 @@ TEST_P(ShippedScene, StaysStableForItsWholeDuration) {
         // none by 25%. Sampled every 0.1 s over each run in double, the 95th percentile
         // reached 1.9–5.0% (cape), the median 0.3–1.4%; the largest, at a point pin or a
         // flag's whipping edge, 5.5–21% (a pin's stress is singular: that spring stretches
-        // more the finer the grid). At the end of the run all hold. The per-vertex scenes of before stretched
-        // by up to 50% (hanging) and 27% (flag).
+        // more the finer the grid). At the end of the run all hold. The per-vertex scenes of before
+        // stretched by up to 50% (hanging) and 27% (flag).
         if (scene.material) {
             const std::vector<double> strains = structuralStrains(scene, s);
             EXPECT_LT(strains[strains.size() * 95 / 100], 0.05) << precisionName(p);
