@@ -115,11 +115,27 @@ void CpuSolver<T>::forceRow(Band& band, int j, Row3<T> f) {
     }
     if (bending_.active()) {  // after the springs, as in the vertex-by-vertex path
         auto at = [&](int qi, int qj) { return x_.get(std::int64_t(qj) * nu + qi); };
-        for (int i = 0; i < nu; ++i) {
-            const Vec3<T> b = bendingForce<T>(bending_, i, j, at);
-            f.x[i] += b.x;
-            f.y[i] += b.y;
-            f.z[i] += b.z;
+        auto scalar = [&](int a, int b) {
+            for (int i = a; i < b; ++i) {
+                const Vec3<T> force = bendingForce<T>(bending_, i, j, at);
+                f.x[i] += force.x;
+                f.y[i] += force.y;
+                f.z[i] += force.z;
+            }
+        };
+        // Rows and columns two or more from the border have every stencil of bendingForce: one
+        // vectorised loop; the rest vertex by vertex.
+        if (j >= 2 && j < nv - 2 && nu > 4) {
+            BendingRow<T> g;
+            for (int r = 0; r < 5; ++r) g.rows[r] = x_.row(std::int64_t(j - 2 + r) * nu + 2);
+            g.wu = T(bending_.alongU * BendingWeights::share(j, nv));
+            g.wv = T(bending_.alongV * BendingWeights::share(2, nu));
+            g.t = T(bending_.twist);
+            scalar(0, 2);
+            kernels_->bending(f + 2, g, nu - 4);
+            scalar(nu - 2, nu);
+        } else {
+            scalar(0, nu);
         }
     }
     if (features_.springDamping) {  // after the bending, spring by spring as the scalar path

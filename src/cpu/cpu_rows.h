@@ -71,6 +71,17 @@ struct GatherRow {
     T* out[12]{};
     T stiffness[12]{}, restLength[12]{};
 };
+// A material's bending force (model/bending.h) on a run of interior vertices (two or more from
+// every border), all rows at the run's first column: rows[r] is row j − 2 + r, read from two
+// columns before the run to two after. wu, wv, t: bendingForce's weights for row j's vertices.
+template <typename T>
+struct BendingRow {
+    ConstRow3<T> rows[5]{{nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+                         {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+                         {nullptr, nullptr, nullptr}};
+    T wu{}, wv{}, t{};
+};
+
 // (0, 1), (1, 1), (−1, 1), (0, 2): the upward springs that are not within the row.
 inline constexpr bool kComputedInGather[12] = {false, false, true,  false, true, true,
                                                false, false, false, false, true, false};
@@ -110,6 +121,9 @@ struct RowKernels {
     // collide() of model/collider_contact.h for a plane or a sphere, branch-free: the same bits.
     void (*planeContact)(const ContactRow<T>& row, int n);
     void (*sphereContact)(const ContactRow<T>& row, int n);
+    // f_i += bendingForce at each interior vertex of the run, in its order of operations: the
+    // scalar path's bits.
+    void (*bending)(Row3<T> f, const BendingRow<T>& row, int n);
     // c_i = springDampingCoefficient (model/spring_math.h) of one spring per element, from p_i
     // to q_i with velocities vp_i, vq_i, dampingK = βK [N·s/m]: shared by its two ends, which
     // add c_i (q_i − p_i) with accumulate.

@@ -241,6 +241,39 @@ void contact(const ContactRow<T>& r, int n) {
     run(No{}, No{});
 }
 
+// model/bending.h bendingForce at an interior vertex, one component: the same operations in the
+// same order (the second differences along u and v centred at i − 1, i, i + 1 and at j − 1, j,
+// j + 1 with coefficients 1, −2, 1, then the twists of the cells (i − 1, j − 1), (i − 1, j),
+// (i, j − 1), (i, j) with signs +, −, −, +), added to f at the end as forceRow does.
+template <typename T>
+void bendingLoop(T* __restrict f, const T* __restrict r0, const T* __restrict r1,
+                 const T* __restrict r2, const T* __restrict r3, const T* __restrict r4, T wu,
+                 T wv, T t, int n) {
+    const T two = T(2), u1 = wu * T(1), u0 = wu * T(-2), v1 = wv * T(1), v0 = wv * T(-2);
+    const T plus = t * T(1), minus = t * T(-1);
+    for (int i = 0; i < n; ++i) {
+        T b = T(0);
+        b -= u1 * ((r2[i - 2] - two * r2[i - 1]) + r2[i]);
+        b -= v1 * ((r0[i] - two * r1[i]) + r2[i]);
+        b -= u0 * ((r2[i - 1] - two * r2[i]) + r2[i + 1]);
+        b -= v0 * ((r1[i] - two * r2[i]) + r3[i]);
+        b -= u1 * ((r2[i] - two * r2[i + 1]) + r2[i + 2]);
+        b -= v1 * ((r2[i] - two * r3[i]) + r4[i]);
+        b -= plus * (((r1[i - 1] - r1[i]) - r2[i - 1]) + r2[i]);
+        b -= minus * (((r2[i - 1] - r2[i]) - r3[i - 1]) + r3[i]);
+        b -= minus * (((r1[i] - r1[i + 1]) - r2[i]) + r2[i + 1]);
+        b -= plus * (((r2[i] - r2[i + 1]) - r3[i]) + r3[i + 1]);
+        f[i] += b;
+    }
+}
+template <typename T>
+void bending(Row3<T> f, const BendingRow<T>& g, int n) {
+    const ConstRow3<T>* r = g.rows;
+    bendingLoop(f.x, r[0].x, r[1].x, r[2].x, r[3].x, r[4].x, g.wu, g.wv, g.t, n);
+    bendingLoop(f.y, r[0].y, r[1].y, r[2].y, r[3].y, r[4].y, g.wu, g.wv, g.t, n);
+    bendingLoop(f.z, r[0].z, r[1].z, r[2].z, r[3].z, r[4].z, g.wu, g.wv, g.t, n);
+}
+
 }  // namespace
 
 template <typename T>
@@ -255,6 +288,7 @@ const RowKernels<T>& rowKernels() {
                                        &anyBad<T>,
                                        &contact<T, false>,
                                        &contact<T, true>,
+                                       &bending<T>,
                                        &dampingCoefficients<T>};
     return kernels;
 }
