@@ -162,7 +162,10 @@ void printModel(const Scene& s) {
                     s.wind->strength);
     else
         std::printf("             wind not modelled\n");
-    std::printf("pins         %zu:", s.pins.size());
+    if (s.pins.empty())
+        std::printf("pins         none");
+    else
+        std::printf("pins         %zu:", s.pins.size());
     for (const Pin& p : s.pins) {
         std::printf(" (%d, %d)", p.i, p.j);
         if (p.follow >= 0) std::printf(" following colliders[%d]", p.follow);
