@@ -24,10 +24,8 @@ void main() {
         if (inverseMass != 0.0) {
             float h = params.dt, h2 = h * h;
             float drag = 1.0 + h * params.dampingRate;
-            ap = (drag / inverseMass) * p + h2 * stiffnessProduct(ij, k);
-#ifdef HAS_SPRING_DAMPING
-            ap += h * springDampingProduct(ij, k);
-#endif
+            // h² H p + h D p in one gather: h² (H p + D p / h).
+            ap = (drag / inverseMass) * p + h2 * stiffnessProduct(ij, k, 1.0 / h);
             if (grabbed(k)) ap += h2 * uGrab.w * p;
         }
         cgProduct[k] = vec4(ap, 0.0);

@@ -8,10 +8,12 @@
 #include "bending.glsl"
 #endif
 
-// (H w)_k = Σ_s J_s(x) (w_k − w_q) over the springs of vertex k, J_s clamped
-// (springJacobianTimes) at the positions x. The row of a pinned vertex is 0: a pin is a
-// constraint, not a degree of freedom; the solve keeps w = 0 there, which removes its column.
-vec3 stiffnessProduct(ivec2 ij, uint k) {
+// (H w)_k + c (D w)_k: H the stiffness, Σ_s J_s(x) (w_k − w_q) over the springs of vertex k,
+// J_s clamped (springJacobianTimes) at the positions x; D = −∂F/∂v = Σ_s βK d̂d̂ᵀ the spring
+// damping's (docs/integrators.md), read in the same gather under HAS_SPRING_DAMPING, weighted by
+// c = dampingWeight. The row of a pinned vertex is 0: a pin is a constraint, not a degree of
+// freedom; the solve keeps w = 0 there, which removes its column.
+vec3 stiffnessProduct(ivec2 ij, uint k, float dampingWeight) {
     vec3 y = vec3(0.0);
     if (positions[k].w == 0.0) return y;
 #if NUM_SPRING_OFFSETS > 0
@@ -22,8 +24,12 @@ vec3 stiffnessProduct(ivec2 ij, uint k) {
         ivec2 q = ij + s.xy;
         if (!insideGrid(q)) continue;
         uint kq = vertexIndex(q);
-        y += springJacobianTimes(xk, positions[kq].xyz, springStiffnessAt(s, ij),
-                                 springRestLength(s), wk - STIFFNESS_VECTOR[kq].xyz);
+        vec3 xq = positions[kq].xyz, wq = STIFFNESS_VECTOR[kq].xyz;
+        y += springJacobianTimes(xk, xq, springStiffnessAt(s, ij), springRestLength(s), wk - wq);
+#ifdef HAS_SPRING_DAMPING
+        y -= dampingWeight *
+             springDampingForce(xq - xk, wq - wk, springDampingAt(s, ij), springRestLength(s));
+#endif
     }
 #endif
 #ifdef HAS_BENDING
@@ -32,22 +38,5 @@ vec3 stiffnessProduct(ivec2 ij, uint k) {
     return y;
 }
 
-#ifdef HAS_SPRING_DAMPING
-// (D w)_k with D = −∂F/∂v = Σ_s βK d̂d̂ᵀ the spring damping's (docs/integrators.md): minus the
-// damping force of the field w at the positions x. 0 on a pinned vertex's row.
-vec3 springDampingProduct(ivec2 ij, uint k) {
-    vec3 y = vec3(0.0);
-    if (positions[k].w == 0.0) return y;
-    vec3 xk = positions[k].xyz;
-    vec3 wk = STIFFNESS_VECTOR[k].xyz;
-    for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
-        ivec4 s = kSpringOffsets[o];
-        ivec2 q = ij + s.xy;
-        if (!insideGrid(q)) continue;
-        uint kq = vertexIndex(q);
-        y -= springDampingForce(positions[kq].xyz - xk, STIFFNESS_VECTOR[kq].xyz - wk,
-                                springDampingAt(s, ij), springRestLength(s));
-    }
-    return y;
-}
-#endif
+// (H w)_k alone.
+vec3 stiffnessProduct(ivec2 ij, uint k) { return stiffnessProduct(ij, k, 0.0); }
