@@ -1,6 +1,7 @@
 // The per-vertex end of every integrator's update in the CPU backend: the acceleration, then
-// pins and colliders (DESIGN.md §2), then the instability check. Shared by cpu_solver.cpp and
-// cpu_implicit.cpp; included only by them.
+// pins and colliders (DESIGN.md §2), then the instability check. Shared by the CPU backend's
+// step files (cpu_steps.cpp, cpu_implicit.cpp, cpu_forces.cpp, cpu_solver.cpp); included only
+// by them.
 #pragma once
 
 #include <cmath>
