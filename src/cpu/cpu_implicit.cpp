@@ -1,6 +1,7 @@
 // implicit_euler on the CPU (docs/integrators.md): backward Euler linearised once per step,
-// solved by a matrix-free conjugate gradient with pins as constraints and dot products that sum
-// fixed chunks in order, so the result does not depend on the thread count.
+// solved by a matrix-free preconditioned conjugate gradient warm-started from the last step's
+// solution, with pins as constraints and dot products that sum fixed chunks in order, so the
+// result does not depend on the thread count.
 #include <algorithm>
 #include <cmath>
 
@@ -8,55 +9,73 @@
 #include "cpu/cpu_solver_vertex.h"
 
 namespace cloth {
+namespace {
 
-// Σ over all vertices of value(k) (see cpu_solver.h).
+double dot(const auto& a, const auto& b) {
+    return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
+}
+
+}  // namespace
+
+// Σ over all vertices of value(k) (see cpu_solver.h), N sums at once.
 template <typename T>
-template <typename PerVertex>
-double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value) {
+template <int N, typename PerVertex>
+std::array<double, N> CpuSolver<T>::reduceN(Band& band, const Team& team, const PerVertex& value) {
     std::vector<double>& partial = partials_[band.reductions++ & 1];
     for (std::int64_t c = band.begin / chunk_; c * chunk_ < band.end; ++c) {
-        double sum = 0;
-        for (std::int64_t k = c * chunk_; k < std::min(band.end, (c + 1) * chunk_); ++k)
-            sum += value(k);
-        partial[std::size_t(c)] = sum;
+        std::array<double, N> sum{};
+        for (std::int64_t k = c * chunk_; k < std::min(band.end, (c + 1) * chunk_); ++k) {
+            const std::array<double, N> v = value(k);
+            for (int s = 0; s < N; ++s) sum[s] += v[s];
+        }
+        for (int s = 0; s < N; ++s) partial[std::size_t(N * c + s)] = sum[s];
     }
     // Every thread sums the same chunks in the same order. The other slot lets a fast thread
     // write its next partial sums while a slow one still reads these.
     team.sync();
-    double total = 0;
-    for (double x : partial) total += x;
+    std::array<double, N> total{};
+    const std::size_t chunks = partial.size() / 2;
+    for (std::size_t c = 0; c < chunks; ++c)
+        for (int s = 0; s < N; ++s) total[s] += partial[N * c + s];
     return total;
 }
 
-// out = A p = m_k (1 + hc) p + h D p + h² H p on this band (pinned rows 0), H the clamped
-// stiffness of the state x_ the step linearises at, D = −∂F/∂v the spring damping's (0 without
-// it), plus the grab spring's K I.
 template <typename T>
-void CpuSolver<T>::systemProduct(const Band& band, const std::vector<Vec3<T>>& p,
-                                 std::vector<Vec3<T>>& out) {
-    stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, p.data(), pinned_.data(), out.data(),
-                     band.begin, band.end, bending_);
-    const T h2 = dt_t_ * dt_t_, drag = T(1) + dt_t_ * dampingRate_;
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        if (pinned_[k]) continue;
-        out[k] = (drag / inverseMass_[std::size_t(k)]) * p[k] + h2 * out[k];
-        if (features_.springDamping) {  // + h D p, D = −∂F/∂v = Σ βK d̂d̂ᵀ (docs/integrators.md)
-            Vec3<T> damped(0);
-            addSpringDampingAt(grid_.nu, grid_.nv, springs_, x_, p.data(), k, int(k % grid_.nu),
-                               int(k / grid_.nu), damped);
-            out[k] -= dt_t_ * damped;
-        }
+template <typename PerVertex>
+double CpuSolver<T>::reduce(Band& band, const Team& team, const PerVertex& value) {
+    return reduceN<1>(band, team,
+                      [&](std::int64_t k) { return std::array<double, 1>{value(k)}; })[0];
+}
+
+template <typename T>
+ImplicitSystem<T, Soa3<T>> CpuSolver<T>::system() const {
+    ImplicitSystem<T, Soa3<T>> a;
+    a.nu = grid_.nu;
+    a.nv = grid_.nv;
+    a.springs = &springs_;
+    a.bending = bending_;
+    a.x = &x_;
+    a.inverseMass = inverseMass_.data();
+    a.pinned = pinned_.data();
+    a.h = dt_t_;
+    a.drag = T(1) + dt_t_ * dampingRate_;
+    a.springDamping = features_.springDamping;
+    if (grab_) {
+        a.grabVertex = grab_->vertex;
+        a.grabStiffness = grab_->stiffness;
     }
-    if (grab_ && grab_->vertex >= band.begin && grab_->vertex < band.end && !pinned_[grab_->vertex])
-        out[grab_->vertex] += h2 * grab_->stiffness * p[grab_->vertex];
+    return a;
 }
 
 // Backward Euler linearised once (Baraff & Witkin): (m_k (1 + hc) I + h D + h² H) Δv =
-// h (F + m_k (g − c v) − h H v), by conjugate gradient with pins as constraints (rows held 0).
+// h (F + m_k (g − c v) − h H v), by preconditioned conjugate gradient from the last step's Δv,
+// with pins as constraints (rows held 0).
 template <typename T>
 bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     gatherForces(band);
     const T h = dt_t_;
+    const ImplicitSystem<T, Soa3<T>> a = system();
+    const bool preconditioned = preconditioner_ != Preconditioner::None;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
                      band.end, bending_);
@@ -67,31 +86,53 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         const Vec3<T> b =
             pinned_[k] ? Vec3<T>(0)
                        : h * (f_.get(k) + m * (gravity_ - dampingRate_ * v_.get(k)) - h * ap_[k]);
-        dv_[k] = Vec3<T>(0);
+        if (pinned_[k]) dv_[k] = Vec3<T>(0);  // a new pin: the last solution moved it
         r_[k] = b;
-        p_[k] = b;
+        if (preconditioned) blockInverse_[k] = pinned_[k] ? Sym3<T>{} : a.diagonal(k).inverse();
     }
-    auto dot = [](const Vec3<T>& a, const Vec3<T>& b) {
-        return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
-    };
     const double bb = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
+    // The warm start: r = b − A Δv₀ with Δv₀ the last step's solution. Where it is no better a
+    // guess than 0 (|r| ≥ |b|: a state just written, a jolt), the solve starts from 0.
+    a.apply(dv_.data(), ap_.data(), band.begin, band.end);
+    const double warm = reduce(band, team, [&](std::int64_t k) {
+        const Vec3<T> r = r_[k] - ap_[k];
+        return dot(r, r);
+    });
+    const bool fromZero = !(warm < bb);
+    for (std::int64_t k = band.begin; k < band.end; ++k) {
+        if (fromZero)
+            dv_[k] = Vec3<T>(0);
+        else
+            r_[k] -= ap_[k];
+    }
+    // z = M⁻¹ r: the block-Jacobi step is local, so it fuses with the sums r·r and r·z.
+    const std::vector<Vec3<T>>& z = preconditioned ? z_ : r_;
+    auto residualSums = [&](std::int64_t k) {
+        if (preconditioned) z_[k] = blockInverse_[k] * r_[k];
+        return std::array<double, 2>{dot(r_[k], r_[k]), dot(r_[k], z[k])};
+    };
+    std::array<double, 2> sums = reduceN<2>(band, team, residualSums);
+    double rr = sums[0], rz = sums[1];
+    for (std::int64_t k = band.begin; k < band.end; ++k) p_[k] = z[k];
+    team.sync();  // the product reads the neighbours' p
     const double goal = tolerance_ * tolerance_ * bb;
-    double rr = bb;
     int it = 0;
     while (rr > goal && it < maxIterations_) {
-        systemProduct(band, p_, ap_);
+        a.apply(p_.data(), ap_.data(), band.begin, band.end);
         const double pap = reduce(band, team, [&](std::int64_t k) { return dot(p_[k], ap_[k]); });
         if (!(pap > 0)) break;  // A is positive definite: only a non-finite state gets here
-        const T alpha = T(rr / pap);
+        const T alpha = T(rz / pap);
         for (std::int64_t k = band.begin; k < band.end; ++k) {
             dv_[k] += alpha * p_[k];
             r_[k] -= alpha * ap_[k];
         }
-        const double next = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
-        const T beta = T(next / rr);
-        for (std::int64_t k = band.begin; k < band.end; ++k) p_[k] = r_[k] + beta * p_[k];
-        rr = next;
         ++it;
+        sums = reduceN<2>(band, team, residualSums);
+        rr = sums[0];
+        if (rr <= goal) break;
+        const T beta = T(sums[1] / rz);
+        for (std::int64_t k = band.begin; k < band.end; ++k) p_[k] = z[k] + beta * p_[k];
+        rz = sums[1];
         team.sync();  // the next product reads the neighbours' p
     }
     if (&band == &bands_[0])
@@ -116,10 +157,9 @@ void CpuSolver<T>::recordSolve(long stepNumber, int iterations, double residual,
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here, the rest in cpu_solver.cpp.
-#define CLOTH_INSTANTIATE(T)                                                            \
-    template bool CpuSolver<T>::stepImplicit(Band&, const Team&, long);                 \
-    template void CpuSolver<T>::systemProduct(const Band&, const std::vector<Vec3<T>>&, \
-                                              std::vector<Vec3<T>>&);                   \
+#define CLOTH_INSTANTIATE(T)                                            \
+    template bool CpuSolver<T>::stepImplicit(Band&, const Team&, long); \
+    template ImplicitSystem<T, Soa3<T>> CpuSolver<T>::system() const;   \
     template void CpuSolver<T>::recordSolve(long, int, double, bool);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

@@ -56,7 +56,7 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     const int chunkRows = int(std::max<std::int64_t>(1, kChunk / nu));
     chunk_ = std::int64_t(chunkRows) * nu;
     const int chunks = (nv + chunkRows - 1) / chunkRows;
-    for (auto& p : partials_) p.assign(std::size_t(chunks), 0.0);
+    for (auto& p : partials_) p.assign(2 * std::size_t(chunks), 0.0);
     const int t = int(std::min<std::int64_t>(chooseThreads(threads, n), chunks));
     bands_.resize(std::size_t(t));
     for (int b = 0; b < t; ++b) {
@@ -99,6 +99,14 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     for (RowSpring& r : rowSprings_)  // a family's springs come in pairs ±(di, dj)
         for (const RowSpring& u : rowSprings_)
             if (!r.upward && u.upward && u.di == -r.di && u.dj == -r.dj) r.slot = u.slot;
+    if (method_ == Method::ImplicitEuler) {  // the preconditioner's storage, once it is chosen
+        preconditioner_ = scene.integrator.preconditioner;
+        const std::size_t n = std::size_t(grid_.count());
+        if (preconditioner_ != Preconditioner::None && z_.size() != n) {
+            z_.assign(n, Vec3<T>(0));
+            blockInverse_.assign(n, Sym3<T>{});
+        }
+    }
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;
     forcesValid_ = false;
@@ -149,7 +157,8 @@ void CpuSolver<T>::write(const SimState& state) {
     }
     Solver::setTime(state.time);
     forcesValid_ = false;
-    for (Band& b : bands_) {  // a written state starts afresh, as on the GPU
+    std::fill(dv_.begin(), dv_.end(), Vec3<T>(0));  // no last solution to start from
+    for (Band& b : bands_) {                        // a written state starts afresh, as on the GPU
         b.badVertex = -1;
         b.reason.clear();
     }

@@ -5,6 +5,7 @@
 // (docs/performance.md, "CPU: SIMD layout, vectorised gather, fused passes").
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <barrier>
 #include <memory>
@@ -17,6 +18,7 @@
 #include "cpu/cpu_soa.h"
 #include "cpu/worker_pool.h"
 #include "model/bending.h"
+#include "model/implicit_system.h"
 #include "model/pin_follow.h"
 #include "model/stiffness.h"
 #include "solver/solver.h"
@@ -128,7 +130,12 @@ private:
     // fixed chunks summed in order.
     template <typename PerVertex>
     double reduce(Band& band, const Team& team, const PerVertex& value);
-    void systemProduct(const Band& band, const std::vector<Vec3<T>>& p, std::vector<Vec3<T>>& out);
+    // The same for N sums at once: value(k) returns a std::array<double, N>.
+    template <int N, typename PerVertex>
+    std::array<double, N> reduceN(Band& band, const Team& team, const PerVertex& value);
+    // implicit_euler's system A at the current state (model/implicit_system.h).
+    ImplicitSystem<T, Soa3<T>> system() const;
+
     bool fused() const;  // explicit/symplectic Euler on row kernels: forces and update in one sweep
     // The end of a fused step: the new positions (and, with spring damping, velocities) become
     // the state.
@@ -166,9 +173,13 @@ private:
     bool samePins(const Scene& scene) const;      // the grid's pins and follows equal the scene's
     void poseFollowPins(double t) noexcept;       // at time t [s]; allocates nothing
     std::vector<Vec3<T>> x0_, v0_, sumX_, sumV_;  // rk4: the step's start and Σ k_i
-    std::vector<Vec3<T>> dv_, r_, p_, ap_;        // implicit_euler: CG vectors
-    std::vector<double> partials_[2];             // per chunk, for reduce()
-    std::int64_t chunk_ = kChunk;                 // vertices per chunk: whole rows
+    // implicit_euler: the CG's vectors (dv_ the last solution, the next one's first guess), the
+    // preconditioner's output z_ and its inverted diagonal blocks.
+    std::vector<Vec3<T>> dv_, r_, p_, ap_, z_;
+    Preconditioner preconditioner_ = Preconditioner::None;
+    std::vector<Sym3<T>> blockInverse_;
+    std::vector<double> partials_[2];  // per chunk and sum, for reduce()
+    std::int64_t chunk_ = kChunk;      // vertices per chunk: whole rows
     double tolerance_ = 0;
     int maxIterations_ = 0;
     bool forcesValid_ = false;  // verlet: f_ holds F(x) of the current state

@@ -7,6 +7,7 @@
 
 #include "model/grid.h"
 #include "model/spring_math.h"
+#include "model/sym3.h"
 
 namespace cloth {
 
@@ -39,6 +40,26 @@ Vec3<T> springJacobianTimes(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T
     const Vec3<T> n = d / len;
     const T transverse = stiffness * std::max(T(0), T(1) - restLength / len);
     return transverse * w + ((stiffness - transverse) * glm::dot(n, w)) * n;
+}
+
+// J_s itself, the block springJacobianTimes applies: the diagonal blocks of implicit Euler's
+// system (its preconditioners) sum them.
+template <typename T>
+Sym3<T> springJacobian(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLength) {
+    const Vec3<T> d = pq - pk;
+    const T len = glm::length(d);
+    if (!(len >= T(1e-12) * restLength)) return {};
+    const T transverse = stiffness * std::max(T(0), T(1) - restLength / len);
+    return Sym3<T>::identity(transverse) += Sym3<T>::outer(d / len, stiffness - transverse);
+}
+
+// −∂F_β/∂v_k of the damping of the spring from k to q (addSpringDamping): βK d̂d̂ᵀ, 0 where
+// the spring is squeezed below 1e-12 L.
+template <typename T>
+Sym3<T> springDampingBlock(const Vec3<T>& pk, const Vec3<T>& pq, T dampingK, T restLength) {
+    const Vec3<T> d = pq - pk;
+    const T d2 = glm::dot(d, d), floor = T(1e-12) * restLength;
+    return d2 >= floor * floor ? Sym3<T>::outer(d, dampingK / d2) : Sym3<T>{};
 }
 
 // Unit vertex normal from central differences clamped at the border (DESIGN.md §2);

@@ -47,6 +47,22 @@ int forceEvaluationsPerStep(Method m) {
     return 1;
 }
 
+const char* preconditionerName(Preconditioner p) {
+    switch (p) {
+        case Preconditioner::None:
+            return "none";
+        case Preconditioner::Jacobi:
+            return "jacobi";
+    }
+    return "?";
+}
+
+std::optional<Preconditioner> preconditionerFromName(const std::string& name) {
+    for (Preconditioner p : kPreconditioners)
+        if (name == preconditionerName(p)) return p;
+    return std::nullopt;
+}
+
 double SpringStiffness::of(Family f) const {
     switch (f) {
         case Family::Structural:

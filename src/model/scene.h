@@ -27,6 +27,13 @@ std::optional<Method> methodFromName(const std::string& name);
 std::string methodList();               // "explicit_euler, symplectic_euler, ..."
 int forceEvaluationsPerStep(Method m);  // spring-force passes one step costs (implicit: + CG)
 
+// implicit_euler's preconditioner of the conjugate gradient (docs/integrators.md,
+// "Preconditioners"): none, or the inverted 3×3 diagonal blocks of the system.
+enum class Preconditioner { None, Jacobi };
+inline constexpr Preconditioner kPreconditioners[] = {Preconditioner::None, Preconditioner::Jacobi};
+const char* preconditionerName(Preconditioner p);  // "none", "jacobi"
+std::optional<Preconditioner> preconditionerFromName(const std::string& name);
+
 struct ClothSpec {
     int nu = 2, nv = 2;                         // vertices along u and v
     glm::dvec2 size{1, 1};                      // extent along û and v̂ [m]
@@ -68,6 +75,7 @@ struct IntegratorSpec {
     // maxIterations (then the step goes on with the last iterate and the miss is reported).
     double tolerance = 1e-5;
     int maxIterations = 200;
+    Preconditioner preconditioner = Preconditioner::None;
 };
 
 struct Plane {

@@ -58,6 +58,10 @@ template <typename T>
 Vec3<T> positionAt(const Vec3<T>* x, std::int64_t k) {
     return x[k];
 }
+template <typename T>
+Vec3<T> positionAt(const std::vector<Vec3<T>>& x, std::int64_t k) {
+    return x[std::size_t(k)];
+}
 
 // f += Σ_s the damping of spring s at vertex k = (i, j), in the springs' order, w the velocities
 // (or, for implicit Euler's product, any vector field): −(∂F/∂v) w. x and w: anything

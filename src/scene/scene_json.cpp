@@ -110,6 +110,7 @@ std::string sceneToJson(const Scene& s) {
     if (s.integrator.method == Method::ImplicitEuler) {
         j["integrator"]["tolerance"] = s.integrator.tolerance;
         j["integrator"]["max_iterations"] = s.integrator.maxIterations;
+        j["integrator"]["preconditioner"] = preconditionerName(s.integrator.preconditioner);
     }
     Json colliders = Json::array();
     for (const Collider& c : s.colliders) colliders.push_back(collider(c));

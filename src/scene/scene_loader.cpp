@@ -198,7 +198,8 @@ Material SceneReader::readMaterial(const Json& j) const {
 }
 
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
-    expectObject(j, "integrator", {"method", "dt", "substeps", "tolerance", "max_iterations"});
+    expectObject(j, "integrator",
+                 {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner"});
     if (j.contains("method")) {
         const Json& m = j["method"];
         if (!m.is_string()) fail("integrator.method", "expected a string, got " + describe(m));
@@ -207,6 +208,17 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
             fail("integrator.method",
                  "unknown method \"" + m.get<std::string>() + "\"; known: " + methodList());
         integrator.method = *method;
+    }
+    if (j.contains("preconditioner")) {
+        const Json& p = j["preconditioner"];
+        if (!p.is_string())
+            fail("integrator.preconditioner", "expected a string, got " + describe(p));
+        const std::optional<Preconditioner> preconditioner =
+            preconditionerFromName(p.get<std::string>());
+        if (!preconditioner)
+            fail("integrator.preconditioner",
+                 "unknown preconditioner \"" + p.get<std::string>() + "\"; known: none, jacobi");
+        integrator.preconditioner = *preconditioner;
     }
     integrator.tolerance = param(j, "tolerance", "integrator.tolerance", "integrator.tolerance");
     integrator.maxIterations =
