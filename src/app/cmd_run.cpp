@@ -119,8 +119,11 @@ void printSummary(const RunOptions& o, const Scene& scene, const Solver& solver,
                     vertexSteps / t.device);
     const SolveStats& cg = solver.solveStats();
     if (cg.solves > 0)
-        std::printf("implicit solve: %ld CG solves, %.1f iterations on average, at most %d\n",
-                    cg.solves, double(cg.iterations) / double(cg.solves), cg.mostIterations);
+        std::printf(
+            "implicit solve: %ld CG solves (preconditioner %s), %.1f iterations on average, at "
+            "most %d\n",
+            cg.solves, preconditionerName(scene.integrator.preconditioner),
+            double(cg.iterations) / double(cg.solves), cg.mostIterations);
     for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
         if (!f->empty()) std::printf("wrote %s\n", f->c_str());
     if (!o.framesDir.empty())

@@ -99,6 +99,12 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     workGroup_ =
         chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
     checkGridFits(scene, workGroup_, info);
+    if (scene.integrator.method == Method::ImplicitEuler &&
+        scene.integrator.preconditioner != Preconditioner::None)
+        throw InputError(scene.source, "integrator.preconditioner",
+                         std::string("\"") + preconditionerName(scene.integrator.preconditioner) +
+                             "\" runs on the CPU backend only so far; the GPU backend's "
+                             "conjugate gradient is unpreconditioned (\"none\")");
     if (info.maxUniformBlockSize < static_cast<long long>(sizeof(gpu::Params)))
         throw GpuUnavailable(info.renderer + " allows " + std::to_string(info.maxUniformBlockSize) +
                              "-byte uniform blocks; the parameters need " +

@@ -5,8 +5,8 @@
 #include <fstream>
 
 #include "cpu/cpu_backend.h"
-#include "model/errors.h"
 #include "gpu/gpu_test_support.h"
+#include "model/errors.h"
 
 namespace cloth::test {
 namespace {
@@ -109,6 +109,18 @@ TEST_F(GpuErrors, ImpossibleGridIsAnInputError) {
             messageOf<InputError>([] { makeGpuSolver(smallScene(4096, 4096)); });
         EXPECT_NE(big.find("bytes per SSBO"), std::string::npos) << big;
     }
+}
+
+// implicit_euler's preconditioners are on the CPU so far: the GPU refuses one by its key rather
+// than solve without it.
+TEST_F(GpuErrors, PreconditionerItLacksIsAnInputError) {
+    Scene s = smallScene();
+    s.integrator.method = Method::ImplicitEuler;
+    s.integrator.preconditioner = Preconditioner::Jacobi;
+    const std::string m = messageOf<InputError>([&] { makeGpuSolver(s); });
+    EXPECT_NE(m.find("integrator.preconditioner"), std::string::npos) << m;
+    s.integrator.preconditioner = Preconditioner::None;
+    EXPECT_NE(makeGpuSolver(s), nullptr);
 }
 
 // A stiff spring with a large Δt (far outside Δt < μ/λ_max) blows up within a few steps.
