@@ -10,6 +10,7 @@
 #include "backends/solver_factory.h"
 #include "model/collider_mesh.h"
 #include "model/errors.h"
+#include "model/output_file.h"
 #include "model/stability.h"
 #include "scene/scene_loader.h"
 #include "solver/output.h"
@@ -34,6 +35,8 @@ options:
                             SCENE_<step>.obj with the step zero-padded so the names sort
   --out-colliders FILE      the colliders as their own OBJ, one object each (a plane as a
                             square of side 8× the cloth's extent, at least 20 m)
+  --out-solves FILE         implicit_euler: one row per step, step,iterations,residual,converged
+                            (the final |r|/|b| of its conjugate gradient)
   --quiet                   print nothing but errors
   --help                    this text
 
@@ -46,7 +49,7 @@ struct RunOptions {
     BackendChoice backend = backendChoiceFromEnvironment();
     long steps = 0;  // 0: the scene's duration
     std::vector<std::string> sets;
-    std::string csv, obj, framesDir, colliders;
+    std::string csv, obj, framesDir, colliders, solves;
     long every = 0;
     bool quiet = false;
 };
@@ -69,6 +72,8 @@ bool parse(Args& args, RunOptions& o) {
             o.framesDir = args.value(f);
         else if (f == "--out-colliders")
             o.colliders = args.value(f);
+        else if (f == "--out-solves")
+            o.solves = args.value(f);
         else if (f == "--every")
             o.every = args.positiveInt(f);
         else if (f == "--quiet")
@@ -91,6 +96,22 @@ std::string framePath(const RunOptions& o, const Scene& scene, long step, long t
     std::snprintf(name, sizeof name, "_%0*ld.obj", digits, step);
     return (std::filesystem::path(o.framesDir) / (scene.name + name)).string();
 }
+
+// --out-solves: the rows of each step's conjugate-gradient solve, written when the run ends (an
+// unstable run's too, up to its last step).
+struct SolveLog {
+    std::string path, rows = "step,iterations,residual,converged\n";
+    bool wanted() const { return !path.empty(); }
+    void add(long step, const SolveStats& s) {
+        char row[96];
+        std::snprintf(row, sizeof row, "%ld,%d,%.9g,%d\n", step, s.lastIterations, s.lastResidual,
+                      s.lastConverged ? 1 : 0);
+        rows += row;
+    }
+    void write() const {
+        if (wanted()) writeWholeFile(path, rows);
+    }
+};
 
 // Seconds a run spent [s]: in all, stepping alone (frames not written), and on the device.
 struct RunTimes {
@@ -126,6 +147,7 @@ void printSummary(const RunOptions& o, const Scene& scene, const Solver& solver,
             double(cg.iterations) / double(cg.solves), cg.mostIterations);
     for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
         if (!f->empty()) std::printf("wrote %s\n", f->c_str());
+    if (!o.solves.empty()) std::printf("wrote %s\n", o.solves.c_str());
     if (!o.framesDir.empty())
         std::printf("wrote %ld frames to %s\n", total / o.every + 1, o.framesDir.c_str());
 }
@@ -142,6 +164,13 @@ int runCommand(Args& args) {
     checkOutputFile("--out-csv", o.csv);
     checkOutputFile("--out-obj", o.obj);
     checkOutputFile("--out-colliders", o.colliders);
+    checkOutputFile("--out-solves", o.solves);
+    if (!o.solves.empty() && scene.integrator.method != Method::ImplicitEuler)
+        throw InputError("command line", "--out-solves",
+                         std::string("the scene's integrator ") +
+                             methodName(scene.integrator.method) +
+                             " solves no linear system; --out-solves needs implicit_euler");
+    SolveLog solveLog{o.solves};
     if (!o.framesDir.empty()) prepareFramesDir("--frames", o.framesDir);
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
@@ -157,6 +186,7 @@ int runCommand(Args& args) {
     while (solver->stepsDone() < total) {
         long n = std::min(chunk, total - solver->stepsDone());
         if (o.every > 0) n = std::min(n, o.every - solver->stepsDone() % o.every);
+        if (solveLog.wanted()) n = 1;  // a row per step
         const auto t0 = Clock::now();
         StepResult r = solver->step(n);
         times.stepping += std::chrono::duration<double>(Clock::now() - t0).count();
@@ -167,9 +197,11 @@ int runCommand(Args& args) {
         }
         if (r.unstable) {
             progress.finish();
+            solveLog.write();
             reportUnstable(scene, *solver, r, "nothing was written for the unstable state");
             return kUnstable;
         }
+        if (solveLog.wanted()) solveLog.add(solver->stepsDone(), solver->solveStats());
         if (o.every > 0 && solver->stepsDone() % o.every == 0)
             writeObj(framePath(o, scene, solver->stepsDone(), total), solver->read(), scene.name);
         progress.update(solver->stepsDone());
@@ -179,6 +211,7 @@ int runCommand(Args& args) {
 
     reportSolveMisses(scene, *solver);
     writeFinalFiles(o, scene, solver->read());
+    solveLog.write();
     if (!o.quiet) printSummary(o, scene, *solver, total, times);
     return kOk;
 }

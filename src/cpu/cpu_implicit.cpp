@@ -136,7 +136,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         team.sync();  // the next product reads the neighbours' p
     }
     if (&band == &bands_[0])
-        recordSolve(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal);
+        solveStats_.record(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal);
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const Vec3<T> v = v_.get(k) + dv_[k];
         if (!finishStep(band, k, x_.get(k) + h * v, v)) return false;
@@ -144,23 +144,11 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     return true;
 }
 
-template <typename T>
-void CpuSolver<T>::recordSolve(long stepNumber, int iterations, double residual, bool converged) {
-    SolveStats& s = solveStats_;
-    ++s.solves;
-    s.iterations += iterations;
-    s.mostIterations = std::max(s.mostIterations, iterations);
-    if (converged) return;
-    if (s.misses++ == 0) s.firstMissStep = stepNumber;
-    s.worstResidual = std::max(s.worstResidual, residual);
-}
-
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here, the rest in cpu_solver.cpp.
 #define CLOTH_INSTANTIATE(T)                                            \
     template bool CpuSolver<T>::stepImplicit(Band&, const Team&, long); \
-    template ImplicitSystem<T, Soa3<T>> CpuSolver<T>::system() const;   \
-    template void CpuSolver<T>::recordSolve(long, int, double, bool);
+    template ImplicitSystem<T, Soa3<T>> CpuSolver<T>::system() const;
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)
 #undef CLOTH_INSTANTIATE

@@ -143,7 +143,6 @@ private:
         std::swap(x_, xNext_);
         if (features_.springDamping) std::swap(v_, vNext_);
     }
-    void recordSolve(long stepNumber, int iterations, double residual, bool converged);
     StepResult stepThreaded(long n);
 
     Grid grid_;

@@ -156,15 +156,8 @@ gpu::CgState GpuSolver::readCgState() const {
 // A solve that did not converge (max_iterations reached, or stopped) is a miss: the step went on
 // with the last iterate, and callers report it (docs/integrators.md: never silent).
 void GpuSolver::recordSolve(long stepNumber, const gpu::CgState& cg) {
-    SolveStats& s = solveStats_;
-    const int iterations = int(cg.iterations);
-    ++s.solves;
-    s.iterations += iterations;
-    s.mostIterations = std::max(s.mostIterations, iterations);
-    if (cg.done == gpu::kCgConverged) return;
-    if (s.misses++ == 0) s.firstMissStep = stepNumber;
     const double residual = cg.bb > 0 ? std::sqrt(double(cg.rr) / double(cg.bb)) : 0.0;
-    s.worstResidual = std::max(s.worstResidual, residual);
+    solveStats_.record(stepNumber, int(cg.iterations), residual, cg.done == gpu::kCgConverged);
 }
 
 }  // namespace cloth

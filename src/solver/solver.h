@@ -1,6 +1,7 @@
 // The one interface both backends implement (DESIGN.md §1): step(n), read(), features().
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <glm/glm.hpp>
 #include <memory>
@@ -71,6 +72,24 @@ struct SolveStats {
     long misses = 0;           // solves that stopped at max_iterations
     long firstMissStep = 0;    // 1-based step of the first miss
     double worstResidual = 0;  // largest final |r|/|b| of a miss
+    // The last solve's (run --out-solves writes them step by step).
+    int lastIterations = 0;
+    double lastResidual = 0;  // final |r|/|b|
+    bool lastConverged = true;
+
+    // One solve of step `step` (1-based): its iterations, final |r|/|b|, and whether it reached
+    // the tolerance.
+    void record(long step, int taken, double residual, bool converged) {
+        ++solves;
+        iterations += taken;
+        mostIterations = std::max(mostIterations, taken);
+        lastIterations = taken;
+        lastResidual = residual;
+        lastConverged = converged;
+        if (converged) return;
+        if (misses++ == 0) firstMissStep = step;
+        worstResidual = std::max(worstResidual, residual);
+    }
 };
 
 // GL buffer names of a backend that keeps its state in GL buffers (vec4 per vertex, k = j·nu + i):

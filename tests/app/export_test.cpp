@@ -170,5 +170,45 @@ TEST(Export, RunFramesWithoutEveryIsAnInputError) {
     EXPECT_EQ(r.exitCode, 2) << test::describe(r);
 }
 
+// --out-solves writes one row per implicit step: its CG iterations, final |r|/|b| (at most the
+// tolerance where it converged) and the flag; the rows add up to run's summary. An integrator
+// without a linear system refuses the flag as invalid input.
+TEST(Export, OutSolvesHasARowPerImplicitStepThatSumsToTheSummary) {
+    const fs::path csv = fs::temp_directory_path() / "clothsim_solves_test.csv";
+    fs::remove(csv);
+    const auto r =
+        runProcess({kExe, "run", kDrape, "--steps", "300", "--set",
+                    "integrator.method=\"implicit_euler\"", "--set", "integrator.dt=0.016667",
+                    "--set", "integrator.preconditioner=\"jacobi\"", "--out-solves", csv.string()},
+                   60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "step,iterations,residual,converged");
+    long rows = 0, iterations = 0;
+    while (std::getline(in, line)) {
+        long step = 0;
+        int it = 0, converged = 0;
+        double residual = 0;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%ld,%d,%lf,%d", &step, &it, &residual, &converged), 4)
+            << line;
+        EXPECT_EQ(step, ++rows);
+        EXPECT_EQ(converged, 1) << line;
+        EXPECT_LE(residual, 1e-5) << line;
+        iterations += it;
+    }
+    EXPECT_EQ(rows, 300);  // run steps in chunks of total/100 without --out-solves
+    char average[64];
+    std::snprintf(average, sizeof average, "%.1f iterations on average", double(iterations) / 300);
+    EXPECT_NE(r.out.find(average), std::string::npos) << r.out;
+    fs::remove(csv);
+
+    const auto refused = runProcess({kExe, "run", kDrape, "--out-solves", csv.string()}, 30);
+    EXPECT_EQ(refused.exitCode, 2) << test::describe(refused);
+    EXPECT_NE(refused.err.find("--out-solves"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(csv));
+}
+
 }  // namespace
 }  // namespace cloth
