@@ -7,6 +7,23 @@
 
 float bendingShare(int n, int count) { return n == 0 || n == count - 1 ? 0.5 : 1.0; }
 
+// The bending Hessian's diagonal coefficient at ij: each second difference and twist that holds
+// the vertex, weighted by the square of its coefficient there (−bendingForce of a field that is
+// 1 at ij alone; src/model/implicit_system.h takes it that way).
+float bendingDiagonal(ivec2 ij, vec3 weights) {
+    int i = ij.x, j = ij.y, nu = gridU(), nv = gridV();
+    float h = 0.0;
+    for (int c = -1; c <= 1; ++c) {
+        float squared = c == 0 ? 4.0 : 1.0;
+        if (i + c >= 1 && i + c <= nu - 2) h += weights.x * bendingShare(j, nv) * squared;
+        if (j + c >= 1 && j + c <= nv - 2) h += weights.y * bendingShare(i, nu) * squared;
+    }
+    for (int a = i - 1; a <= i; ++a)
+        for (int b = j - 1; b <= j; ++b)
+            if (a >= 0 && a <= nu - 2 && b >= 0 && b <= nv - 2) h += weights.z;
+    return h;
+}
+
 // weights = (w_u, w_v, t) of bending.h inside the sheet: B·dv/du³, B·du/dv³, 2B/(du·dv) [N/m].
 vec3 bendingForce(ivec2 ij, vec3 weights) {
     int i = ij.x, j = ij.y, nu = gridU(), nv = gridV();

@@ -1,7 +1,8 @@
-// implicit_euler's conjugate gradient: the next search direction p = r + β p
+// implicit_euler's conjugate gradient: the next search direction p = z + β p, z = M⁻¹ r
 // (docs/integrators.md). Its own pass: the next product gathers p from the neighbours.
 #include "layout.glsl"
 #include "common.glsl"
+#include "preconditioner.glsl"
 
 layout(local_size_x = WX, local_size_y = WY) in;
 
@@ -10,5 +11,5 @@ void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (ij.x >= gridU() || ij.y >= gridV()) return;
     uint k = vertexIndex(ij);
-    cgDirection[k].xyz = cgResidual[k].xyz + cg.beta * cgDirection[k].xyz;
+    cgDirection[k].xyz = precondition(k, cgResidual[k].xyz) + cg.beta * cgDirection[k].xyz;
 }

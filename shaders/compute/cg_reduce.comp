@@ -8,12 +8,13 @@ layout(local_size_x = 256) in;
 
 #include "reduction.glsl"
 
-// Which sum this is (gpu::CgReduction): b·b at the start, p·A p (→ α), or the new r·r (→ β).
+// Which sum this is (gpu::CgReduction): b·b at the start, |b − A Δv₀|² of the warm start, r·z of
+// the start, p·A p (→ α), or the new r·r and r·z (→ β, two sums).
 layout(location = 0) uniform int uReduction;
-const int kStart = 0, kAlpha = 1, kBeta = 2;
+const int kStart = 0, kAlpha = 1, kBeta = 2, kWarm = 3, kStartDirection = 4;
 const uint kRunning = 0u, kConverged = 1u, kStopped = 2u;
 
-// The grid dispatch's work groups, one partial sum each.
+// The grid dispatch's work groups, one partial sum each (per sum).
 uint partialCount() {
     return uint((gridU() + WX - 1) / WX) * uint((gridV() + WY - 1) / WY);
 }
@@ -26,26 +27,45 @@ uint judge(float rr) {
     return rr > goal ? kRunning : kStopped;
 }
 
-void main() {
-    if (uReduction != kStart && cg.done != kRunning) return;
+// Σ of sum `which` (0 or 1) over the partials, in invocation 0.
+float total(uint which) {
     float sum = 0.0;
-    for (uint g = gl_LocalInvocationIndex; g < partialCount(); g += gl_WorkGroupSize.x)
-        sum += cgPartials[g];
-    sum = workGroupSum(sum);
+    uint groups = partialCount();
+    for (uint g = gl_LocalInvocationIndex; g < groups; g += gl_WorkGroupSize.x)
+        sum += cgPartials[which * groups + g];
+    return workGroupSum(sum);
+}
+
+void main() {
+    bool starting = uReduction == kStart || uReduction == kWarm || uReduction == kStartDirection;
+    if (!starting && cg.done != kRunning) return;
+    float sum = total(0u);
+    float second = 0.0;
+    if (uReduction == kBeta) {
+        barrier();  // groupSums is reused
+        second = total(1u);
+    }
     if (gl_LocalInvocationIndex != 0u) return;
     if (uReduction == kStart) {
-        cg.rr = sum;
         cg.bb = sum;
         cg.iterations = 0u;
-        cg.done = judge(sum);
+        cg.done = kRunning;
+    } else if (uReduction == kWarm) {
+        // The last solution is kept only where it beats Δv = 0 (docs/integrators.md).
+        cg.fromZero = sum < cg.bb ? 0u : 1u;
+        cg.rr = sum < cg.bb ? sum : cg.bb;
+    } else if (uReduction == kStartDirection) {
+        cg.rz = sum;
+        cg.done = judge(cg.rr);
     } else if (uReduction == kAlpha) {
         // A is positive definite: only a non-finite state gets p·A p ≤ 0 (or NaN).
-        if (sum > 0.0) cg.alpha = cg.rr / sum;
+        if (sum > 0.0) cg.alpha = cg.rz / sum;
         else cg.done = kStopped;
     } else {
-        cg.beta = sum / cg.rr;
         cg.rr = sum;
         cg.iterations += 1u;
         cg.done = judge(sum);
+        cg.beta = second / cg.rz;
+        cg.rz = second;
     }
 }

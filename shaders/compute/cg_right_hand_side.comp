@@ -1,7 +1,8 @@
 // implicit_euler, after the forces pass (docs/integrators.md): the right-hand side
-// b = h (F(x_n) + m_k (g − c v_n) − h H v_n) of (m_k (1 + hc) I + h² H) Δv = b, and the conjugate
-// gradient's start Δv = 0, r = b, p = r, with the work groups' partial sums of r·r.
-// Pinned rows are 0.
+// b = h (F(x_n) + m_k (g − c v_n) − h H v_n) of (m_k (1 + hc) I + h D + h² H) Δv = b into
+// cgResidual, the work groups' partial sums of b·b, the last solution Δv₀ held 0 on pinned rows
+// (the warm start's product reads it next), and with PRECONDITIONER_JACOBI the inverted diagonal
+// blocks of A. Pinned rows are 0.
 #include "layout.glsl"
 #include "common.glsl"
 #include "grab.glsl"
@@ -12,9 +13,27 @@ layout(local_size_x = WX, local_size_y = WY) in;
 
 #include "reduction.glsl"
 
+#ifdef PRECONDITIONER_JACOBI
+// A_kk⁻¹ of a vertex of mass m (ImplicitSystem::diagonal), or 0 for a pinned one.
+void storeInverse(ivec2 ij, uint k, float inverseMass) {
+    vec4 d = vec4(0.0), o = vec4(0.0);
+    if (inverseMass != 0.0) {
+        float h = params.dt;
+        mat3 a = mat3((1.0 + h * params.dampingRate) / inverseMass) +
+                 (h * h) * stiffnessDiagonal(ij, k, 1.0 / h);
+        if (grabbed(k)) a += mat3(h * h * uGrab.w);
+        mat3 inv = inverse(a);
+        d = vec4(inv[0][0], inv[1][1], inv[2][2], 0.0);
+        o = vec4(inv[1][0], inv[2][0], inv[2][1], 0.0);
+    }
+    cgInverse[2u * k] = d;
+    cgInverse[2u * k + 1u] = o;
+}
+#endif
+
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
-    float rr = 0.0;
+    float bb = 0.0;
     if (ij.x < gridU() && ij.y < gridV()) {  // no early return: every invocation sums below
         uint k = vertexIndex(ij);
         vec4 x = positions[k];
@@ -26,11 +45,14 @@ void main() {
         if (x.w != 0.0) {
             float m = 1.0 / x.w;  // m_k [kg]
             b = h * (forces[k].xyz + m * (params.gravity - params.dampingRate * v) - h * hv);
+        } else {
+            cgVelocityChange[k] = vec4(0.0);  // a new pin: the last solution moved it
         }
-        cgVelocityChange[k] = vec4(0.0);
         cgResidual[k] = vec4(b, 0.0);
-        cgDirection[k] = vec4(b, 0.0);
-        rr = dot(b, b);
+        bb = dot(b, b);
+#ifdef PRECONDITIONER_JACOBI
+        storeInverse(ij, k, x.w);
+#endif
     }
-    storeGroupSum(rr);
+    storeGroupSum(bb);
 }

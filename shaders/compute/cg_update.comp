@@ -1,7 +1,8 @@
 // implicit_euler's conjugate gradient: Δv += α p, r −= α A p, and the work groups' partial sums
-// of the new r·r (docs/integrators.md).
+// of the new r·r and r·z, z = M⁻¹ r (docs/integrators.md).
 #include "layout.glsl"
 #include "common.glsl"
+#include "preconditioner.glsl"
 
 layout(local_size_x = WX, local_size_y = WY) in;
 
@@ -10,7 +11,7 @@ layout(local_size_x = WX, local_size_y = WY) in;
 void main() {
     if (cg.done != 0u) return;
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
-    float rr = 0.0;
+    float rr = 0.0, rz = 0.0;
     if (ij.x < gridU() && ij.y < gridV()) {
         uint k = vertexIndex(ij);
         float alpha = cg.alpha;
@@ -18,6 +19,7 @@ void main() {
         vec3 r = cgResidual[k].xyz - alpha * cgProduct[k].xyz;
         cgResidual[k] = vec4(r, 0.0);
         rr = dot(r, r);
+        rz = dot(r, precondition(k, r));
     }
-    storeGroupSum(rr);
+    storeGroupSums(rr, rz);
 }

@@ -89,7 +89,8 @@ layout(std430, binding = 10) buffer CgDirection {
 layout(std430, binding = 11) buffer CgProduct {
     vec4 cgProduct[];  // A p [N·s]
 };
-// One partial sum per work group of the grid dispatch (gl_WorkGroupID.y · groupsX + .x).
+// Partial sums per work group of the grid dispatch (gl_WorkGroupID.y · groupsX + .x): the first
+// sum of a pass at [group], a second one (r·z beside r·r) at [groups + group].
 layout(std430, binding = 12) buffer CgPartials {
     float cgPartials[];
 };
@@ -99,10 +100,19 @@ layout(std430, binding = 13) buffer CgState {
     float rr;         // r·r of the current residual
     float bb;         // b·b
     float alpha;      // α = r·r / p·A p of the current iteration
-    float beta;       // β = r_new·r_new / r·r
+    float beta;       // β = r_new·z_new / r·z
     uint iterations;  // completed in this solve
     uint done;        // 0 running, 1 converged, 2 stopped (p·A p not positive: a non-finite state)
+    float rz;         // r·z, z = M⁻¹ r (= r·r unpreconditioned)
+    uint fromZero;    // 1: the warm start was no better than Δv = 0, the solve starts from 0
 } cg;
+#ifdef PRECONDITIONER_JACOBI
+// The inverted 3×3 diagonal blocks of A (ImplicitSystem::diagonal), two vec4 per vertex:
+// [2k] = (xx, yy, zz, 0), [2k + 1] = (xy, xz, yz, 0); 0 on pinned rows.
+layout(std430, binding = 14) buffer CgInverse {
+    vec4 cgInverse[];
+};
+#endif
 #endif
 
 int gridU() { return params.grid.x; }

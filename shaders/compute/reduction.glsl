@@ -28,3 +28,13 @@ void storeGroupSum(float value) {
     if (gl_LocalInvocationIndex == 0u)
         cgPartials[gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x] = sum;
 }
+
+// Two sums: the first in the group's slot, the second as many slots further on.
+void storeGroupSums(float first, float second) {
+    storeGroupSum(first);
+    barrier();  // groupSums is reused
+    float sum = workGroupSum(second);
+    if (gl_LocalInvocationIndex == 0u)
+        cgPartials[gl_NumWorkGroups.x * gl_NumWorkGroups.y + gl_WorkGroupID.y * gl_NumWorkGroups.x +
+                   gl_WorkGroupID.x] = sum;
+}

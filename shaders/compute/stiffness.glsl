@@ -40,3 +40,35 @@ vec3 stiffnessProduct(ivec2 ij, uint k, float dampingWeight) {
 
 // (H w)_k alone.
 vec3 stiffnessProduct(ivec2 ij, uint k) { return stiffnessProduct(ij, k, 0.0); }
+
+#ifdef PRECONDITIONER_JACOBI
+// The diagonal block H_kk + c D_kk of vertex k (not pinned), src/model/implicit_system.h
+// ImplicitSystem::diagonal: each spring's clamped J_s = tI + (K − t) d̂d̂ᵀ, its damping βK d̂d̂ᵀ
+// weighted by c = dampingWeight, and the bending Hessian's diagonal coefficient.
+mat3 stiffnessDiagonal(ivec2 ij, uint k, float dampingWeight) {
+    mat3 a = mat3(0.0);
+#if NUM_SPRING_OFFSETS > 0
+    vec3 xk = positions[k].xyz;
+    for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
+        ivec4 s = kSpringOffsets[o];
+        ivec2 q = ij + s.xy;
+        if (!insideGrid(q)) continue;
+        vec3 d = positions[vertexIndex(q)].xyz - xk;
+        float len = length(d), restLength = springRestLength(s);
+        if (!(len >= 1e-12 * restLength)) continue;
+        vec3 n = d / len;
+        float stiffness = springStiffnessAt(s, ij);
+        float transverse = stiffness * max(0.0, 1.0 - restLength / len);
+        float along = stiffness - transverse;
+#ifdef HAS_SPRING_DAMPING
+        along += dampingWeight * springDampingAt(s, ij);
+#endif
+        a += mat3(transverse) + along * outerProduct(n, n);
+    }
+#endif
+#ifdef HAS_BENDING
+    a += mat3(bendingDiagonal(ij, params.bending.xyz));
+#endif
+    return a;
+}
+#endif

@@ -39,22 +39,26 @@ inline constexpr const char* kTrafficModel =
 // positions, velocities and pin positions (3 vec3 in structure-of-arrays) plus either a second
 // position buffer (explicit and symplectic Euler: the fused sweep writes the new positions there
 // and keeps no forces) or the forces (the other integrators), and the pinned flag (1 byte); rk4
-// adds x0, v0, ΣX, ΣV and implicit Euler its CG vectors dv, r, p, Ap (4 vec3 each), and the
+// adds x0, v0, ΣX, ΣV and implicit Euler its CG vectors dv, r, p, Ap (4 vec3 each; with the
+// block-Jacobi preconditioner z and the inverted diagonal block, a vec3 and 6 scalars), and the
 // inverse mass 1/m_k (one scalar per vertex); the threads' scratch rows are O(side), not counted.
-inline std::size_t cpuBytesPerVertex(Precision precision, Method method) {
+inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
+                                     Preconditioner preconditioner = Preconditioner::Jacobi) {
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
     std::size_t vectors = 4;
     if (method == Method::Rk4 || method == Method::ImplicitEuler) vectors += 4;
-    return (vectors * 3 + 1) * scalar + 1;
+    std::size_t scalars = vectors * 3 + 1;
+    if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
+    return scalars * scalar + 1;
 }
 
 // The baseline (bench_baseline.h): x, v and their next values, 4 vec3 of double.
 inline constexpr std::size_t kBaselineBytesPerVertex = 4 * 3 * sizeof(double);
 
 // A size is refused when the largest of its runs would not fit in `availableBytes`: the most
-// any backend allocates per vertex (taken as 256 B, over the CPU's 201 B for rk4 in double, the
-// GPU's vec4 buffers and the baseline's 96 B) times the vertex count.
-inline constexpr std::size_t kWorstBytesPerVertex = 256;
+// any backend allocates per vertex (taken as 288 B, over the CPU's 273 B for block-Jacobi implicit
+// Euler in double, the GPU's vec4 buffers and the baseline's 96 B) times the vertex count.
+inline constexpr std::size_t kWorstBytesPerVertex = 288;
 inline std::optional<std::string> sizeRefusal(std::int64_t side, std::uint64_t availableBytes) {
     const std::uint64_t need = std::uint64_t(side) * std::uint64_t(side) * kWorstBytesPerVertex;
     if (need <= availableBytes) return std::nullopt;

@@ -275,9 +275,10 @@ std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
     for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_}) vectors += std::size_t(a->size());
     for (const auto* a :
-         {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_})
+         {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_, &z_})
         vectors += a->size();
-    return vectors * sizeof(Vec3<T>) + inverseMass_.size() * sizeof(T) + pinned_.size();
+    return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
+           inverseMass_.size() * sizeof(T) + pinned_.size();
 }
 
 template <typename T>

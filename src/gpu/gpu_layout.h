@@ -25,15 +25,17 @@ enum Binding : unsigned {
     kRk4StartVelocities = 9,
     kRk4SumPositions = 10,
     kRk4SumVelocities = 11,
-    // implicit_euler's conjugate gradient: Δv, r, p, A p (vec4 per vertex), one float partial
-    // sum per work group of the grid dispatch, one CgState.
+    // implicit_euler's conjugate gradient: Δv, r, p, A p (vec4 per vertex), two float partial
+    // sums per work group of the grid dispatch, one CgState, and with the block-Jacobi
+    // preconditioner the inverted diagonal blocks (two vec4 per vertex).
     kCgVelocityChange = 8,
     kCgResidual = 9,
     kCgDirection = 10,
     kCgProduct = 11,
     kCgPartials = 12,
     kCgState = 13,
-    kBindingCount = 14
+    kCgInverse = 14,
+    kBindingCount = 15
 };
 
 // Uniform locations. The kernels that end a step (step_end.glsl): the 1-based global step
@@ -44,7 +46,13 @@ enum Binding : unsigned {
 inline constexpr int kStepLocation = 2, kStageLocation = 1, kStepCountLocation = 3;
 inline constexpr int kGrabVertexLocation = 0, kGrabLocation = 1;
 inline constexpr int kReductionLocation = 0;
-enum CgReduction : int { kReduceStart = 0, kReduceAlpha = 1, kReduceBeta = 2 };
+enum CgReduction : int {
+    kReduceStart = 0,
+    kReduceAlpha = 1,
+    kReduceBeta = 2,
+    kReduceWarm = 3,
+    kReduceStartDirection = 4
+};
 
 // The uniform-block binding point of Params (its own namespace, apart from the storage blocks').
 inline constexpr unsigned kParamsBlock = 0;
@@ -116,14 +124,18 @@ struct CgState {
     float alpha, beta;         // of the current iteration
     std::uint32_t iterations;  // completed in this solve
     std::uint32_t done;        // kCgRunning, kCgConverged or kCgStopped
+    float rz;                  // r·z, z = M⁻¹ r
+    std::uint32_t fromZero;    // 1: the solve started from Δv = 0, not the warm start
 };
-static_assert(sizeof(CgState) == 24);
+static_assert(sizeof(CgState) == 32);
 static_assert(offsetof(CgState, rr) == 0);
 static_assert(offsetof(CgState, bb) == 4);
 static_assert(offsetof(CgState, alpha) == 8);
 static_assert(offsetof(CgState, beta) == 12);
 static_assert(offsetof(CgState, iterations) == 16);
 static_assert(offsetof(CgState, done) == 20);
+static_assert(offsetof(CgState, rz) == 24);
+static_assert(offsetof(CgState, fromZero) == 28);
 inline constexpr std::uint32_t kCgRunning = 0, kCgConverged = 1, kCgStopped = 2;
 
 // The records of the Colliders block (shaders/compute/scene_colliders.glsl, docs/colliders.md

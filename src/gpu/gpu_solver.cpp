@@ -63,7 +63,10 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
 }
 
 // The buffers of docs/integrators.md's stage or solver state, beyond the core eight.
-std::vector<gpu::Binding> integratorBindings(Method m) {
+std::vector<gpu::Binding> integratorBindings(Method m, Preconditioner p) {
+    if (m == Method::ImplicitEuler && p == Preconditioner::Jacobi)
+        return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection, gpu::kCgProduct,
+                gpu::kCgPartials,       gpu::kCgState,    gpu::kCgInverse};
     switch (m) {
         case Method::Rk4:
             return {gpu::kRk4StartPositions, gpu::kRk4StartVelocities, gpu::kRk4SumPositions,
@@ -82,6 +85,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     : context_(GlContext::instance()),
       features_(Features::of(scene)),
       method_(scene.integrator.method),
+      preconditioner_(scene.integrator.preconditioner),
       maxIterations_(scene.integrator.maxIterations),
       forces_(options.forces),
       nu_(scene.cloth.nu),
@@ -99,12 +103,6 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     workGroup_ =
         chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
     checkGridFits(scene, workGroup_, info);
-    if (scene.integrator.method == Method::ImplicitEuler &&
-        scene.integrator.preconditioner != Preconditioner::None)
-        throw InputError(scene.source, "integrator.preconditioner",
-                         std::string("\"") + preconditionerName(scene.integrator.preconditioner) +
-                             "\" runs on the CPU backend only so far; the GPU backend's "
-                             "conjugate gradient is unpreconditioned (\"none\")");
     if (info.maxUniformBlockSize < static_cast<long long>(sizeof(gpu::Params)))
         throw GpuUnavailable(info.renderer + " allows " + std::to_string(info.maxUniformBlockSize) +
                              "-byte uniform blocks; the parameters need " +
@@ -122,7 +120,8 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
                            gpu::kColliders, gpu::kPins, gpu::kStatus})
         glGenBuffers(1, &buffers_[b]);
     glGenBuffers(1, &paramsBuffer_);
-    for (gpu::Binding b : integratorBindings(method_)) glGenBuffers(1, &buffers_[b]);
+    for (gpu::Binding b : integratorBindings(method_, preconditioner_))
+        glGenBuffers(1, &buffers_[b]);
     upload(scene);
     setGrabUniforms(std::nullopt);
     // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
@@ -211,11 +210,15 @@ void GpuSolver::upload(const Scene& scene) {
 // Stage or solver state, as zeros: written by the step before it is read.
 void GpuSolver::allocateIntegratorBuffers() {
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
-    for (gpu::Binding b : integratorBindings(method_)) {
+    for (gpu::Binding b : integratorBindings(method_, preconditioner_)) {
         if (b == gpu::kCgPartials) {
-            // One float per work group, rounded up to whole vec4s (the clear's element).
+            // Two floats per work group, rounded up to whole vec4s.
             const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
-            bufferData(buffers_[b], nullptr, (groups + 3) / 4 * kVec4);
+            bufferData(buffers_[b], nullptr, (2 * groups + 3) / 4 * kVec4);
+        } else if (b == gpu::kCgInverse) {
+            bufferData(buffers_[b], nullptr, 2 * n * kVec4);
+        } else if (b == gpu::kCgVelocityChange) {  // the warm start's first guess: 0
+            bufferData(buffers_[b], std::vector<glm::vec4>(n, glm::vec4(0)));
         } else if (b == gpu::kCgState) {
             const gpu::CgState zero{};
             bufferData(buffers_[b], &zero, sizeof zero);
@@ -266,10 +269,10 @@ void GpuSolver::bindBuffers() const {
 }
 
 // The grab's two uniforms in every kernel that includes grab.glsl: the forces pass, many steps
-// per dispatch and, for implicit_euler, the two stiffness products.
+// per dispatch and, for implicit_euler, its right-hand side, the warm start's product and A p.
 void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
-    for (Kernel k :
-         {Kernel::Forces, Kernel::ManySteps, Kernel::CgRightHandSide, Kernel::CgProduct}) {
+    for (Kernel k : {Kernel::Forces, Kernel::ManySteps, Kernel::CgRightHandSide,
+                     Kernel::CgWarmStart, Kernel::CgProduct}) {
         const unsigned program = programs_[int(k)];
         if (program == 0) continue;
         glProgramUniform1i(program, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);

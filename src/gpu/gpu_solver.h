@@ -113,7 +113,8 @@ private:
     const GlContext& context_;
     Features features_;
     Method method_;
-    int maxIterations_;  // implicit_euler's cap on CG iterations per step
+    Preconditioner preconditioner_;  // implicit_euler's (a kernel variant: fixed per solver)
+    int maxIterations_;              // implicit_euler's cap on CG iterations per step
     // verlet: the forces buffer holds F(x_n) of the coming step (F(x_{n+1}) of the last one).
     // Anything that changes the state or the forces from outside discards it.
     bool forcesKept_ = false;

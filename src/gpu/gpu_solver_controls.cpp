@@ -44,6 +44,10 @@ void GpuSolver::write(const SimState& state) {
     subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
     subData(buffers_[gpu::kVelocities], 0, v.data(), n * kVec4);
     subData(buffers_[gpu::kPins], 0, pins_.data(), pins_.size() * kVec4);
+    if (method_ == Method::ImplicitEuler) {  // no last solution to start from, as on the CPU
+        const std::vector<glm::vec4> zero(n, glm::vec4(0));
+        subData(buffers_[gpu::kCgVelocityChange], 0, zero.data(), n * kVec4);
+    }
     // A written state starts afresh: an earlier instability no longer freezes the kernels.
     const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
     subData(buffers_[gpu::kStatus], 0, &status, sizeof status);

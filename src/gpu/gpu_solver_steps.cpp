@@ -102,12 +102,16 @@ void GpuSolver::stepRk4(long stepNumber) const {
     }
 }
 
-// Backward Euler linearised at x_n: forces, the right-hand side and the CG's start, the solve,
-// then the update of v and x.
+// Backward Euler linearised at x_n: forces, the right-hand side, the warm start from the last
+// step's Δv (or 0 where it is no better), the CG's start, the solve, then the update of v and x.
 void GpuSolver::stepImplicit(long stepNumber) {
     runPass(Kernel::Forces);
     runPass(Kernel::CgRightHandSide);
     runReduction(gpu::kReduceStart);
+    runPass(Kernel::CgWarmStart);
+    runReduction(gpu::kReduceWarm);
+    runPass(Kernel::CgStart);
+    runReduction(gpu::kReduceStartDirection);
     recordSolve(stepNumber, solve());
     runStepPass(Kernel::ImplicitFinish, stepNumber);
 }
@@ -127,8 +131,8 @@ gpu::CgState GpuSolver::solve() const {
     return cg;
 }
 
-// One CG iteration (docs/integrators.md): α = r·r / p·A p; Δv += α p; r −= α A p;
-// β = r_new·r_new / r·r; p = r + β p. The dot products never leave the GPU.
+// One CG iteration (docs/integrators.md): α = r·z / p·A p; Δv += α p; r −= α A p;
+// z = M⁻¹ r; β = r_new·z_new / r·z; p = z + β p. The dot products never leave the GPU.
 void GpuSolver::iterate() const {
     runPass(Kernel::CgProduct);
     runReduction(gpu::kReduceAlpha);

@@ -116,6 +116,9 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
     d.push_back({"NUM_SPHERES", std::to_string(f.spheres)});
     gpu::ColliderTable(scene, dragged).appendDefines(d);
     d.push_back({integratorDefine(scene.integrator.method), ""});
+    if (scene.integrator.method == Method::ImplicitEuler &&
+        scene.integrator.preconditioner == Preconditioner::Jacobi)
+        d.push_back({"PRECONDITIONER_JACOBI", ""});
     d.push_back({"WX", std::to_string(wg.x)});
     d.push_back({"WY", std::to_string(wg.y)});
     const auto [count, rows] = springTable(scene);
@@ -126,11 +129,10 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
 
 const char* kernelFile(Kernel k) {
     static constexpr const char* kFiles[kKernelCount] = {
-        "compute/forces.comp",          "compute/integrate.comp",
-        "compute/verlet_drift.comp",    "compute/verlet_kick.comp",
-        "compute/rk4_stage.comp",       "compute/cg_right_hand_side.comp",
-        "compute/cg_product.comp",      "compute/cg_reduce.comp",
-        "compute/cg_update.comp",       "compute/cg_direction.comp",
+        "compute/forces.comp",          "compute/integrate.comp", "compute/verlet_drift.comp",
+        "compute/verlet_kick.comp",     "compute/rk4_stage.comp", "compute/cg_right_hand_side.comp",
+        "compute/cg_warm_start.comp",   "compute/cg_start.comp",  "compute/cg_product.comp",
+        "compute/cg_reduce.comp",       "compute/cg_update.comp", "compute/cg_direction.comp",
         "compute/implicit_finish.comp", "compute/many_steps.comp"};
     return kFiles[int(k)];
 }
@@ -145,9 +147,9 @@ std::vector<Kernel> kernelsOf(Method m) {
         case Method::Rk4:
             return {Kernel::Forces, Kernel::Rk4Stage};
         case Method::ImplicitEuler:
-            return {Kernel::Forces,        Kernel::CgRightHandSide, Kernel::CgProduct,
-                    Kernel::CgReduce,      Kernel::CgUpdate,        Kernel::CgDirection,
-                    Kernel::ImplicitFinish};
+            return {Kernel::Forces,   Kernel::CgRightHandSide, Kernel::CgWarmStart,
+                    Kernel::CgStart,  Kernel::CgProduct,       Kernel::CgReduce,
+                    Kernel::CgUpdate, Kernel::CgDirection,     Kernel::ImplicitFinish};
     }
     return {};
 }

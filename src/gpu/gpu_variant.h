@@ -44,7 +44,9 @@ enum class Kernel {
     VerletDrift,      // verlet: kick and drift, pins, colliders
     VerletKick,       // verlet: kick with F(x_{n+1}), pins, check
     Rk4Stage,         // rk4: one per stage, after its forces pass
-    CgRightHandSide,  // implicit_euler: b and the CG's start
+    CgRightHandSide,  // implicit_euler: b (and the block-Jacobi preconditioner)
+    CgWarmStart,      // implicit_euler: A Δv₀ of the last step's solution
+    CgStart,          // implicit_euler: r, z, p of the CG's start
     CgProduct,        // implicit_euler: A p
     CgReduce,         // implicit_euler: the partial sums to α, β, the residual
     CgUpdate,         // implicit_euler: Δv, r

@@ -75,7 +75,7 @@ struct IntegratorSpec {
     // maxIterations (then the step goes on with the last iterate and the miss is reported).
     double tolerance = 1e-5;
     int maxIterations = 200;
-    Preconditioner preconditioner = Preconditioner::None;
+    Preconditioner preconditioner = Preconditioner::Jacobi;
 };
 
 struct Plane {

@@ -111,18 +111,6 @@ TEST_F(GpuErrors, ImpossibleGridIsAnInputError) {
     }
 }
 
-// implicit_euler's preconditioners are on the CPU so far: the GPU refuses one by its key rather
-// than solve without it.
-TEST_F(GpuErrors, PreconditionerItLacksIsAnInputError) {
-    Scene s = smallScene();
-    s.integrator.method = Method::ImplicitEuler;
-    s.integrator.preconditioner = Preconditioner::Jacobi;
-    const std::string m = messageOf<InputError>([&] { makeGpuSolver(s); });
-    EXPECT_NE(m.find("integrator.preconditioner"), std::string::npos) << m;
-    s.integrator.preconditioner = Preconditioner::None;
-    EXPECT_NE(makeGpuSolver(s), nullptr);
-}
-
 // A stiff spring with a large Δt (far outside Δt < μ/λ_max) blows up within a few steps.
 Scene unstableScene() {
     Scene s = loadShippedScene("spring");

@@ -96,6 +96,17 @@ TEST_P(GpuIntegratorControls, RunGoesOnAsAFreshSolverWithTheSameState) {
     ASSERT_FALSE(running->step(40).unstable);
     ASSERT_FALSE(fresh->step(40).unstable);
     const SimState a = running->read(), b = fresh->read();
+    if (method == Method::ImplicitEuler) {
+        // The running solve starts from its last solution, the fresh one from 0 (the warm start,
+        // docs/integrators.md): the two agree to the solves' tolerance (1e-5 of |b|), not bit for
+        // bit. A control not taken (the grab, a stiffness) moves vertices by centimetres.
+        double most = 0;
+        for (std::size_t k = 0; k < a.positions.size(); ++k)
+            most = std::max(most, glm::length(a.positions[k] - b.positions[k]));
+        std::printf("%s: largest |x_running − x_fresh| %.3g m\n", control.name.c_str(), most);
+        EXPECT_LT(most, 1e-5);
+        return;
+    }
     EXPECT_EQ(a.positions, b.positions);  // the same kernels on the same data: bit for bit
     EXPECT_EQ(a.velocities, b.velocities);
 }

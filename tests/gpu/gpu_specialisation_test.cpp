@@ -188,8 +188,12 @@ TEST_F(GpuCompiles, OnlyTheScenesIntegratorAllocatesBuffers) {
     EXPECT_EQ(bytes(Method::SymplecticEuler), base);
     EXPECT_EQ(bytes(Method::Verlet), base);
     EXPECT_EQ(bytes(Method::Rk4), base + 4 * vertexBuffer);
-    EXPECT_EQ(bytes(Method::ImplicitEuler),
-              base + 4 * vertexBuffer + sizeof(glm::vec4) + sizeof(gpu::CgState));
+    // Δv, r, p, A p; two partial sums of the one work group in a vec4; the solve's state; and
+    // for the block-Jacobi preconditioner its inverted blocks, two vec4 per vertex.
+    const std::size_t cg = base + 4 * vertexBuffer + sizeof(glm::vec4) + sizeof(gpu::CgState);
+    EXPECT_EQ(bytes(Method::ImplicitEuler), cg + 2 * vertexBuffer);  // jacobi, the default
+    scene.integrator.preconditioner = Preconditioner::None;
+    EXPECT_EQ(bytes(Method::ImplicitEuler), cg);
 }
 
 }  // namespace

@@ -1,0 +1,28 @@
+// implicit_euler's conjugate gradient, its start (docs/integrators.md): from the warm start
+// r = b − A Δv₀, or, where that was no better a guess (cg.fromZero), from Δv = 0 with r = b;
+// then z = M⁻¹ r, p = z and the work groups' partial sums of r·z.
+#include "layout.glsl"
+#include "common.glsl"
+#include "preconditioner.glsl"
+
+layout(local_size_x = WX, local_size_y = WY) in;
+
+#include "reduction.glsl"
+
+void main() {
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    float rz = 0.0;
+    if (ij.x < gridU() && ij.y < gridV()) {
+        uint k = vertexIndex(ij);
+        vec3 r = cgResidual[k].xyz;  // b
+        if (cg.fromZero != 0u)
+            cgVelocityChange[k] = vec4(0.0);
+        else
+            r -= cgProduct[k].xyz;
+        vec3 z = precondition(k, r);
+        cgResidual[k] = vec4(r, 0.0);
+        cgDirection[k] = vec4(z, 0.0);
+        rz = dot(r, z);
+    }
+    storeGroupSum(rz);
+}
