@@ -115,6 +115,14 @@ private:
     bool stepVerlet(Band& band, const Team& team, bool& haveForces);
     bool stepRk4(Band& band, const Team& team);
     bool stepImplicit(Band& band, const Team& team, long stepNumber);
+    // vbd (cpu_vbd.cpp): the step's start and initial guess, one colour's Newton steps, the
+    // Chebyshev extrapolation after a sweep, each over this band's vertices.
+    bool stepVbd(Band& band, const Team& team, long stepNumber);
+    void vbdStart(const Band& band, const Team& team, long stepNumber);
+    void vbdSweep(const Band& band, int colour);
+    void vbdVertex(std::int64_t k, int i, int j);
+    void vbdCollide(std::int64_t k, Vec3<T>& x) const;
+    void vbdAccelerate(const Band& band, double omega);
     // The end of every step: pins, colliders in scene order, then the instability check.
     bool finishStep(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
     void applyPin(std::int64_t k, Vec3<T>& p, Vec3<T>& v) const;
@@ -167,8 +175,15 @@ private:
     void poseFollowPins(double t) noexcept;       // at time t [s]; allocates nothing
     std::vector<Vec3<T>> x0_, v0_, sumX_, sumV_;  // rk4: the step's start and Σ k_i
     std::vector<Vec3<T>> dv_, r_, p_, ap_;        // implicit_euler: CG vectors
-    std::vector<double> partials_[2];             // per chunk, for reduce()
-    std::int64_t chunk_ = kChunk;                 // vertices per chunk: whole rows
+    // vbd: the step's start x_n, the inertial target y, the previous step's velocity v_{n−1}
+    // (the adaptive initial guess), and with Chebyshev acceleration the iterates n − 1, n − 2.
+    Soa3<T> xStart_;
+    std::vector<Vec3<T>> inertial_, vPrevious_, xBefore_, xBeforeLast_;
+    int vbdIterations_ = 0;
+    double chebyshevRho_ = 0;
+    long vbdHistoryFrom_ = 2;          // the first step whose v_{n−1} is in vPrevious_ (1-based)
+    std::vector<double> partials_[2];  // per chunk, for reduce()
+    std::int64_t chunk_ = kChunk;      // vertices per chunk: whole rows
     double tolerance_ = 0;
     int maxIterations_ = 0;
     bool forcesValid_ = false;  // verlet: f_ holds F(x) of the current state

@@ -80,6 +80,8 @@ void GpuSolver::dispatchStep(long stepNumber) {
             return stepRk4(stepNumber);
         case Method::ImplicitEuler:
             return stepImplicit(stepNumber);
+        case Method::Vbd:  // refused when the solver is made (gpu_variant.cpp integratorDefine)
+            return;
     }
 }
 

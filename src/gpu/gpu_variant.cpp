@@ -35,9 +35,12 @@ std::string integratorDefine(Method m) {
             return "INTEGRATOR_RK4";
         case Method::ImplicitEuler:
             return "INTEGRATOR_IMPLICIT_EULER";
+        case Method::Vbd:
+            break;
     }
-    throw InputError("", "integrator.method",
-                     std::string("'") + methodName(m) + "' has no GPU kernel");
+    throw InputError(
+        "", "integrator.method",
+        std::string("'") + methodName(m) + "' has no GPU kernel yet; run it with --backend cpu");
 }
 
 // The rows of kSpringOffsets whose family the scene models, as GLSL ivec4(di, dj, family,
@@ -148,6 +151,8 @@ std::vector<Kernel> kernelsOf(Method m) {
             return {Kernel::Forces,        Kernel::CgRightHandSide, Kernel::CgProduct,
                     Kernel::CgReduce,      Kernel::CgUpdate,        Kernel::CgDirection,
                     Kernel::ImplicitFinish};
+        case Method::Vbd:
+            return {};
     }
     return {};
 }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu/gpu_test_support.h"
+#include "support/gpu_methods.h"
 
 namespace cloth::test {
 namespace {
@@ -102,7 +103,7 @@ TEST_P(GpuIntegratorControls, RunGoesOnAsAFreshSolverWithTheSameState) {
 
 std::vector<Case> cases() {
     std::vector<Case> all;
-    for (Method m : kMethods)
+    for (Method m : gpuMethods())
         for (const Control& c : controls()) all.push_back({m, c});
     return all;
 }

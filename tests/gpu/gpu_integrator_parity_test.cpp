@@ -7,6 +7,7 @@
 
 #include "cpu/cpu_backend.h"
 #include "gpu/gpu_test_support.h"
+#include "support/gpu_methods.h"
 #include "support/integrator_scenes.h"
 
 namespace cloth::test {
@@ -81,7 +82,7 @@ TEST_F(GpuIntegratorParity, ImplicitEulerAtALargeStepMatchesTheCpu) {
     EXPECT_GT(runs.gpuSolves.mostIterations, 8);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorParity, ::testing::ValuesIn(kMethods),
+INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorParity, ::testing::ValuesIn(gpuMethods()),
                          [](const ::testing::TestParamInfo<Method>& p) {
                              return std::string(methodName(p.param));
                          });
