@@ -40,8 +40,8 @@ inline constexpr const char* kTrafficModel =
 // position buffer (explicit and symplectic Euler: the fused sweep writes the new positions there
 // and keeps no forces) or the forces (the other integrators), and the pinned flag (1 byte); rk4
 // adds x0, v0, ΣX, ΣV and implicit Euler its CG vectors dv, r, p, Ap (4 vec3 each), vbd the
-// step's start, the inertial target and the previous velocity (Chebyshev's two iterates, when
-// asked for, are not counted), and the
+// step's start, the inertial target and the previous velocity (Chebyshev's two iterates and,
+// with a material's bending, its Hessian diagonal, one scalar, are not counted), and the
 // inverse mass 1/m_k (one scalar per vertex); the threads' scratch rows are O(side), not counted.
 inline std::size_t cpuBytesPerVertex(Precision precision, Method method) {
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);

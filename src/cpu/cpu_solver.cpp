@@ -7,6 +7,7 @@
 
 #include "cpu/cpu_solver_vertex.h"
 #include "model/forces.h"
+#include "model/vbd_local.h"
 
 namespace cloth {
 namespace {
@@ -119,6 +120,11 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     dt_t_ = T(scene.integrator.dt);
     dampingRate_ = T(scene.dampingRate());
     bending_ = bendingWeights(grid_, scene.bendingStiffness());
+    bendingDiagonal_.clear();
+    if (method_ == Method::Vbd && bending_.active())
+        for (int j = 0; j < grid_.nv; ++j)
+            for (int i = 0; i < grid_.nu; ++i)
+                bendingDiagonal_.push_back(bendingDiagonal<T>(bending_, i, j));
     gravity_ = cast<T>(scene.gravity);
     maxSpeed_ = scene.maxSpeed;
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
@@ -279,7 +285,8 @@ std::size_t CpuSolver<T>::allocatedBytes() const {
     for (const auto* a : {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_,
                           &ap_, &inertial_, &vPrevious_, &xBefore_, &xBeforeLast_})
         vectors += a->size();
-    return vectors * sizeof(Vec3<T>) + inverseMass_.size() * sizeof(T) + pinned_.size();
+    return vectors * sizeof(Vec3<T>) + (inverseMass_.size() + bendingDiagonal_.size()) * sizeof(T) +
+           pinned_.size();
 }
 
 template <typename T>

@@ -179,6 +179,7 @@ private:
     // (the adaptive initial guess), and with Chebyshev acceleration the iterates n − 1, n − 2.
     Soa3<T> xStart_;
     std::vector<Vec3<T>> inertial_, vPrevious_, xBefore_, xBeforeLast_;
+    std::vector<T> bendingDiagonal_;  // W_kk per vertex (model/vbd_local.h), with bending only
     int vbdIterations_ = 0;
     double chebyshevRho_ = 0;
     long vbdHistoryFrom_ = 2;          // the first step whose v_{n−1} is in vPrevious_ (1-based)

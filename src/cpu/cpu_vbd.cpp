@@ -95,7 +95,9 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
     Vec3<T> x = x_.get(k);
     VbdLocal<T> local;
     addVbdInertia(x, inertial_[k], xStart_.get(k), mass, h, dampingRate_, local);
-    addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, x_, xStart_, h, k, i, j, local);
+    const T bendDiagonal = bending_.active() ? bendingDiagonal_[std::size_t(k)] : T(0);
+    addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, bendDiagonal, x_, xStart_, h, k, i, j,
+                  local);
     if (grab_ && grab_->vertex == k) addVbdGrab(x, grab_->target, grab_->stiffness, local);
     if (!vbdNewtonStep(local, double(mass) / (double(h) * h), x)) return;
     vbdCollide(k, x);

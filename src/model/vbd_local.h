@@ -95,12 +95,13 @@ void addVbdGrab(const Vec3<T>& x, const Vec3<T>& target, T stiffness, VbdLocal<T
 }
 
 // Everything of G at vertex k = (i, j) that couples it to its neighbours: the springs of the
-// stencil (with their damping when modelled) and the bending energy. x: the current positions,
-// xn: the step's start, both anything positionAt(x, k) reads.
+// stencil (with their damping when modelled) and the bending energy, whose Hessian block
+// bendDiagonal·I (bendingDiagonal, constant: the caller keeps it) is added. x: the current
+// positions, xn: the step's start, both anything positionAt(x, k) reads.
 template <typename T, typename Positions>
 void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
-                   const BendingWeights& bending, const Positions& x, const Positions& xn, T h,
-                   std::int64_t k, int i, int j, VbdLocal<T>& local) {
+                   const BendingWeights& bending, T bendDiagonal, const Positions& x,
+                   const Positions& xn, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
     const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
     const Vec3<T> pk = positionAt(x, k);
     for (const StencilSpring<T>& s : springs) {
@@ -121,7 +122,7 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
     if (bending.active()) {
         const auto at = [&](int a, int b) { return positionAt(x, std::int64_t(b) * nu + a); };
         local.gradient -= bendingForce<T>(bending, i, j, at);
-        local.hessian += Mat3<T>(bendingDiagonal<T>(bending, i, j));
+        local.hessian += Mat3<T>(bendDiagonal);
     }
 }
 
