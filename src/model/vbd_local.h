@@ -22,14 +22,33 @@
 
 namespace cloth {
 
+// A symmetric 3×3 matrix by its six entries: every term of the local Hessian is a multiple of I
+// or of an outer product d dᵀ, so half of a full matrix's sums are never needed.
 template <typename T>
-using Mat3 = glm::mat<3, 3, T, glm::defaultp>;
+struct Sym3 {
+    T xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+    void addDiagonal(T s) {
+        xx += s;
+        yy += s;
+        zz += s;
+    }
+    void addOuter(T c, const Vec3<T>& d) {  // += c d dᵀ
+        const Vec3<T> cd = c * d;
+        xx += cd.x * d.x;
+        xy += cd.x * d.y;
+        xz += cd.x * d.z;
+        yy += cd.y * d.y;
+        yz += cd.y * d.z;
+        zz += cd.z * d.z;
+    }
+    glm::dmat3 matrix() const { return glm::dmat3(xx, xy, xz, xy, yy, yz, xz, yz, zz); }
+};
 
 // g = ∂G/∂x_k and H = ∂²G/∂x_k² (made positive semi-definite term by term) at the current x.
 template <typename T>
 struct VbdLocal {
     Vec3<T> gradient{0};
-    Mat3<T> hessian{T(0)};
+    Sym3<T> hessian;
 };
 
 // Inertia and air drag: m/(2h²)|x − y|² + m c/(2h)|x − x_n|², y the inertial target
@@ -40,7 +59,7 @@ void addVbdInertia(const Vec3<T>& x, const Vec3<T>& y, const Vec3<T>& xn, T mass
                    T dampingRate, VbdLocal<T>& local) {
     const T inertia = mass / (h * h), drag = mass * dampingRate / h;
     local.gradient += inertia * (x - y) + drag * (x - xn);
-    local.hessian += Mat3<T>(inertia + drag);
+    local.hessian.addDiagonal(inertia + drag);
 }
 
 // The spring from k to q, E = ½K(|d| − L)², d = x_q − x_k: ∂E/∂x_k = −K (|d| − L) d/|d| (minus
@@ -55,9 +74,9 @@ void addVbdSpring(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLengt
     const T len = glm::length(d);
     if (!(len >= T(1e-12) * restLength)) return;
     local.gradient -= (stiffness * (len - restLength) / len) * d;
-    const Vec3<T> n = d / len;
     const T transverse = stiffness * std::max(T(0), T(1) - restLength / len);
-    local.hessian += Mat3<T>(transverse) + (stiffness - transverse) * glm::outerProduct(n, n);
+    local.hessian.addDiagonal(transverse);
+    local.hessian.addOuter((stiffness - transverse) / (len * len), d);  // (K − t) d̂d̂ᵀ
 }
 
 // Spring damping as implicit Euler's D (docs/integrators.md): the force −D v_{n+1}, D = Σ βK d̂d̂ᵀ
@@ -73,7 +92,7 @@ void addVbdSpringDamping(const Vec3<T>& pkn, const Vec3<T>& pqn, const Vec3<T>& 
     local.gradient -= f / h;
     const Vec3<T> d = pqn - pkn;
     const T d2 = glm::dot(d, d), floor = T(1e-12) * restLength;
-    if (d2 >= floor * floor) local.hessian += (dampingK / (h * d2)) * glm::outerProduct(d, d);
+    if (d2 >= floor * floor) local.hessian.addOuter(dampingK / (h * d2), d);
 }
 
 // W_kk, the bending Hessian's diagonal coefficient at (i, j) [N/m]: the energy is quadratic,
@@ -91,7 +110,7 @@ T bendingDiagonal(const BendingWeights& w, int i, int j) {
 template <typename T>
 void addVbdGrab(const Vec3<T>& x, const Vec3<T>& target, T stiffness, VbdLocal<T>& local) {
     local.gradient -= grabForce(x, target, stiffness);
-    local.hessian += Mat3<T>(stiffness);
+    local.hessian.addDiagonal(stiffness);
 }
 
 // Everything of G at vertex k = (i, j) that couples it to its neighbours: the springs of the
@@ -122,7 +141,7 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
     if (bending.active()) {
         const auto at = [&](int a, int b) { return positionAt(x, std::int64_t(b) * nu + a); };
         local.gradient -= bendingForce<T>(bending, i, j, at);
-        local.hessian += Mat3<T>(bendDiagonal);
+        local.hessian.addDiagonal(bendDiagonal);
     }
 }
 
@@ -132,7 +151,7 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
 // non-finite state, and the vertex then keeps its position. Returns whether it moved.
 template <typename T>
 bool vbdNewtonStep(const VbdLocal<T>& local, double floor, Vec3<T>& x) {
-    const glm::dmat3 h(local.hessian);
+    const glm::dmat3 h = local.hessian.matrix();
     const double det = glm::determinant(h);
     if (!(std::abs(det) > 1e-12 * floor * floor * floor)) return false;
     x -= Vec3<T>(glm::inverse(h) * glm::dvec3(local.gradient));
