@@ -57,7 +57,7 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     if (method_ == Method::Vbd) {
         xStart_.assign(n, Vec3<T>(0));
         for (auto* a : {&inertial_, &vPrevious_}) a->assign(n, Vec3<T>(0));
-    }  // (the Chebyshev iterates: takeParameters, which a new ρ may ask for them)
+    }  // (its Chebyshev iterates are takeParameters': a new ρ may ask for them)
     // Bands of whole rows, on chunk boundaries (reduce()), so each row's sweep is one thread's.
     const int chunkRows = int(std::max<std::int64_t>(1, kChunk / nu));
     chunk_ = std::int64_t(chunkRows) * nu;

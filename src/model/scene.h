@@ -26,8 +26,8 @@ inline constexpr Method kMethods[] = {Method::ExplicitEuler, Method::SymplecticE
 const char* methodName(Method m);  // "explicit_euler", ...
 std::optional<Method> methodFromName(const std::string& name);
 std::string methodList();  // "explicit_euler, symplectic_euler, ..."
-int forceEvaluationsPerStep(
-    Method m);  // spring-force passes a step costs (implicit: + CG; vbd: per iteration)
+// Spring-force passes one step costs (implicit_euler: + its CG; vbd: one per iteration).
+int forceEvaluationsPerStep(Method m);
 
 struct ClothSpec {
     int nu = 2, nv = 2;                         // vertices along u and v
