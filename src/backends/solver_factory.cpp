@@ -48,17 +48,9 @@ void configureBackends(const GpuSetup& gpu) {
     if (gpuEntry() != nullptr) gpuEntry()->configure(gpu);
 }
 
-bool gpuImplements(Method method) {
-    return method != Method::Vbd;
-}
-
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice) {
     if (choice.backend == Backend::Cpu)
         return makeCpuSolver(scene, CpuOptions{choice.precision, choice.threads, choice.isa});
-    if (!gpuImplements(scene.integrator.method))
-        throw InputError(scene.source, "integrator.method",
-                         std::string(methodName(scene.integrator.method)) +
-                             " is not implemented on the GPU backend yet; use --backend cpu");
     return requireGpu().make(scene, choice.gpu);
 }
 
@@ -88,8 +80,6 @@ Precision effectivePrecision(const BackendChoice& choice) {
 
 std::string gpuVariant(const Scene& scene, const GpuOptions& options) {
     if (gpuEntry() == nullptr) return "none (built without the GPU backend)";
-    if (!gpuImplements(scene.integrator.method))
-        return std::string("none (") + methodName(scene.integrator.method) + " runs on the CPU)";
     return gpuEntry()->variant(scene, options);
 }
 

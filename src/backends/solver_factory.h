@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "solver/solver.h"
 #include "cpu/cpu_rows.h"
 #include "gpu/gpu_options.h"
-#include "solver/solver.h"
 
 namespace cloth {
 
@@ -25,12 +25,8 @@ struct BackendChoice {
 // one; before any solver or context is made.
 void configureBackends(const GpuSetup& gpu);
 
-// Throws GpuUnavailable when the GPU backend is asked for and cannot run, InputError (key
-// integrator.method, exit 2) when it has no kernel for the scene's integrator.
+// Throws GpuUnavailable when the GPU backend is asked for and cannot run.
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice);
-
-// Whether the GPU backend runs `method` (vbd runs on the CPU only so far).
-bool gpuImplements(Method method);
 
 // Why the GPU cannot hold this scene's grid with these options (a limit of the device, named),
 // or nothing. Throws GpuUnavailable.

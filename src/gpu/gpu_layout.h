@@ -33,6 +33,13 @@ enum Binding : unsigned {
     kCgProduct = 11,
     kCgPartials = 12,
     kCgState = 13,
+    // vbd: the step's start, the inertial target, the previous velocity, the Chebyshev iterates
+    // n − 1 and n − 2 (vec4 per vertex).
+    kVbdStart = 8,
+    kVbdInertial = 9,
+    kVbdPrevious = 10,
+    kVbdBefore = 11,
+    kVbdBeforeLast = 12,
     kBindingCount = 14
 };
 
@@ -44,6 +51,9 @@ enum Binding : unsigned {
 inline constexpr int kStepLocation = 2, kStageLocation = 1, kStepCountLocation = 3;
 inline constexpr int kGrabVertexLocation = 0, kGrabLocation = 1;
 inline constexpr int kReductionLocation = 0;
+// vbd's kernels: the guess whether v_{n−1} is there (int), the sweep its colour (int), the
+// Chebyshev extrapolation ω (float).
+inline constexpr int kVbdLocation = 3;
 enum CgReduction : int { kReduceStart = 0, kReduceAlpha = 1, kReduceBeta = 2 };
 
 // The uniform-block binding point of Params (its own namespace, apart from the storage blocks').

@@ -71,6 +71,9 @@ std::vector<gpu::Binding> integratorBindings(Method m) {
         case Method::ImplicitEuler:
             return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection,
                     gpu::kCgProduct,        gpu::kCgPartials, gpu::kCgState};
+        case Method::Vbd:
+            return {gpu::kVbdStart, gpu::kVbdInertial, gpu::kVbdPrevious, gpu::kVbdBefore,
+                    gpu::kVbdBeforeLast};
         default:
             return {};
     }
@@ -83,6 +86,8 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       features_(Features::of(scene)),
       method_(scene.integrator.method),
       maxIterations_(scene.integrator.maxIterations),
+      vbdIterations_(scene.integrator.iterations),
+      chebyshevRho_(scene.integrator.chebyshevRho),
       forces_(options.forces),
       nu_(scene.cloth.nu),
       nv_(scene.cloth.nv),
@@ -262,8 +267,8 @@ void GpuSolver::bindBuffers() const {
 // The grab's two uniforms in every kernel that includes grab.glsl: the forces pass, many steps
 // per dispatch and, for implicit_euler, the two stiffness products.
 void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
-    for (Kernel k :
-         {Kernel::Forces, Kernel::ManySteps, Kernel::CgRightHandSide, Kernel::CgProduct}) {
+    for (Kernel k : {Kernel::Forces, Kernel::ManySteps, Kernel::CgRightHandSide, Kernel::CgProduct,
+                     Kernel::VbdSweep}) {
         const unsigned program = programs_[int(k)];
         if (program == 0) continue;
         glProgramUniform1i(program, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);

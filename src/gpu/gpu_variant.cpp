@@ -36,11 +36,10 @@ std::string integratorDefine(Method m) {
         case Method::ImplicitEuler:
             return "INTEGRATOR_IMPLICIT_EULER";
         case Method::Vbd:
-            break;
+            return "INTEGRATOR_VBD";
     }
-    throw InputError(
-        "", "integrator.method",
-        std::string("'") + methodName(m) + "' has no GPU kernel yet; run it with --backend cpu");
+    throw InputError("", "integrator.method",
+                     std::string("'") + methodName(m) + "' has no GPU kernel");
 }
 
 // The rows of kSpringOffsets whose family the scene models, as GLSL ivec4(di, dj, family,
@@ -134,7 +133,10 @@ const char* kernelFile(Kernel k) {
         "compute/rk4_stage.comp",       "compute/cg_right_hand_side.comp",
         "compute/cg_product.comp",      "compute/cg_reduce.comp",
         "compute/cg_update.comp",       "compute/cg_direction.comp",
-        "compute/implicit_finish.comp", "compute/many_steps.comp"};
+        "compute/implicit_finish.comp", "compute/vbd_start.comp",
+        "compute/vbd_guess.comp",       "compute/vbd_sweep.comp",
+        "compute/vbd_accelerate.comp",  "compute/vbd_finish.comp",
+        "compute/many_steps.comp"};
     return kFiles[int(k)];
 }
 
@@ -152,7 +154,8 @@ std::vector<Kernel> kernelsOf(Method m) {
                     Kernel::CgReduce,      Kernel::CgUpdate,        Kernel::CgDirection,
                     Kernel::ImplicitFinish};
         case Method::Vbd:
-            return {};
+            return {Kernel::VbdStart, Kernel::VbdGuess, Kernel::VbdSweep, Kernel::VbdAccelerate,
+                    Kernel::VbdFinish};
     }
     return {};
 }

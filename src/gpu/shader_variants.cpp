@@ -30,7 +30,6 @@ std::vector<ShaderVariant> computeShaderVariants(const std::string& dir, const S
     // The group sizes manyStepsGroupSize picks: a software rasteriser's, and a hardware GPU's.
     const int manyStepsGroups[] = {32, 1024};
     for (Method method : kMethods) {
-        if (kernelsOf(method).empty()) continue;  // runs on the CPU only (vbd)
         Scene s = scene;
         s.integrator.method = method;
         for (std::size_t d = 0; d < dragSets.size(); ++d) {

@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include "gpu/gpu_test_support.h"
-#include "support/gpu_methods.h"
 
 namespace cloth::test {
 namespace {
@@ -103,7 +102,7 @@ TEST_P(GpuIntegratorControls, RunGoesOnAsAFreshSolverWithTheSameState) {
 
 std::vector<Case> cases() {
     std::vector<Case> all;
-    for (Method m : gpuMethods())
+    for (Method m : kMethods)
         for (const Control& c : controls()) all.push_back({m, c});
     return all;
 }

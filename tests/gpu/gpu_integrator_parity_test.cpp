@@ -7,7 +7,6 @@
 
 #include "cpu/cpu_backend.h"
 #include "gpu/gpu_test_support.h"
-#include "support/gpu_methods.h"
 #include "support/integrator_scenes.h"
 
 namespace cloth::test {
@@ -18,6 +17,10 @@ constexpr long kSteps = 1000;
 // resting on the colliders, where last-bit differences could decide "inside or not"
 // (docs/gpu.md, "Contacts"); seen: at most 8.4e-7.
 constexpr double kTolerance = 1e-5;
+// vbd solves each vertex's 3×3 system in float on the GPU, in double on the CPU (a stiff spring
+// beside a light vertex: model/vbd_local.h): equal to 8e-9 of the extent before the contact, the
+// two then part by the contacts' decisions; seen 1.5e-5 after 1000 steps.
+constexpr double kVbdContactTolerance = 5e-5;
 
 Scene sceneFor(Method method, double dt = 1e-3) {
     Scene s = everythingScene(method, dt);
@@ -61,7 +64,7 @@ TEST_P(GpuIntegratorParity, MatchesTheCpuFloatBackend) {
                     all.cpuSolves.iterations);
     std::printf("\n");
     EXPECT_LT(freeDiff, kTolerance);
-    EXPECT_LT(allDiff, kTolerance);
+    EXPECT_LT(allDiff, method == Method::Vbd ? kVbdContactTolerance : kTolerance);
     EXPECT_EQ(all.gpuSolves.solves, all.cpuSolves.solves);
 }
 
@@ -82,7 +85,7 @@ TEST_F(GpuIntegratorParity, ImplicitEulerAtALargeStepMatchesTheCpu) {
     EXPECT_GT(runs.gpuSolves.mostIterations, 8);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorParity, ::testing::ValuesIn(gpuMethods()),
+INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorParity, ::testing::ValuesIn(kMethods),
                          [](const ::testing::TestParamInfo<Method>& p) {
                              return std::string(methodName(p.param));
                          });

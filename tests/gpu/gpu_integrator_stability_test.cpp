@@ -10,7 +10,6 @@
 #include "gpu/gpu_test_support.h"
 #include "model/stability.h"
 #include "solver/diagnostics.h"
-#include "support/gpu_methods.h"
 
 namespace cloth::test {
 namespace {
@@ -88,7 +87,7 @@ TEST_P(GpuIntegratorStability, EnergyNeverRisesAtFourFifthsOfItsBound) {
     EXPECT_EQ(solver->solveStats().misses, 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorStability, ::testing::ValuesIn(gpuMethods()),
+INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorStability, ::testing::ValuesIn(kMethods),
                          [](const ::testing::TestParamInfo<Method>& p) {
                              return std::string(methodName(p.param));
                          });

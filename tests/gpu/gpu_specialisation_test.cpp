@@ -7,7 +7,6 @@
 #include "gpu/gpu_test_support.h"
 #include "gpu/gpu_variant.h"
 #include "gpu/shader_loader.h"
-#include "support/gpu_methods.h"
 
 namespace cloth::test {
 namespace {
@@ -167,7 +166,7 @@ TEST_F(GpuCompiles, EveryFamilySubsetCompiles) {
 
 // Every integrator with every feature (wind, both colliders, pins) compiles and takes steps.
 TEST_F(GpuCompiles, EveryIntegratorCompilesWithEveryFeature) {
-    for (Method m : gpuMethods()) {
+    for (Method m : kMethods) {
         Scene scene = fullScene();
         scene.integrator.method = m;
         std::unique_ptr<Solver> solver = makeGpuSolver(scene);

@@ -9,7 +9,6 @@
 #include "gpu/gpu_variant.h"
 #include "gpu/shader_loader.h"
 #include "model/errors.h"
-#include "support/gpu_methods.h"
 
 namespace cloth::test {
 namespace {
@@ -45,7 +44,7 @@ TEST_F(GpuStorageBlocks, CountedBlocksAreTheActiveOnesAndTooFewIsRefusedByName) 
     const GpuInfo& info = GlContext::instance().info();
     int most = 0;
     std::string mostKernel;
-    for (Method m : gpuMethods()) {
+    for (Method m : kMethods) {
         for (Kernel k : kernelsOf(m)) {
             const ShaderSource source =
                 assembleKernel(kShaderDir, kernelFile(k), everyFeature(m), {});
@@ -66,7 +65,7 @@ TEST_F(GpuStorageBlocks, CountedBlocksAreTheActiveOnesAndTooFewIsRefusedByName) 
     // What GL guarantees is not enough for the largest kernel: a device with only 8 is told so.
     ASSERT_GT(most, 8) << mostKernel;
     const ShaderSource widest = [&] {
-        for (Method m : gpuMethods())
+        for (Method m : kMethods)
             for (Kernel k : kernelsOf(m)) {
                 ShaderSource s = assembleKernel(kShaderDir, kernelFile(k), everyFeature(m), {});
                 if (s.name == mostKernel) return s;

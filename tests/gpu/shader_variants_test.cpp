@@ -8,7 +8,6 @@
 #include "gpu/gpu_test_support.h"
 #include "gpu/gpu_variant.h"
 #include "scene/scene_loader.h"
-#include "support/gpu_methods.h"
 
 namespace cloth::test {
 namespace {
@@ -24,7 +23,7 @@ TEST(ShaderVariants, EveryKernelOfEveryIntegratorOnceByName) {
         EXPECT_EQ(v.source.text.rfind("#version 430\n", 0), 0u) << v.name;
         EXPECT_EQ(std::filesystem::path(v.name).extension(), ".comp") << v.name;
     }
-    for (Method m : gpuMethods())
+    for (Method m : kMethods)
         for (Kernel k : kernelsOf(m)) {
             const std::string name = std::string(methodName(m)) + "." +
                                      std::filesystem::path(kernelFile(k)).stem().string() + ".comp";
