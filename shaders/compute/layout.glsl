@@ -115,6 +115,27 @@ layout(std430, binding = 14) buffer CgInverse {
 #endif
 #endif
 
+#ifdef INTEGRATOR_VBD
+// vbd's step state (docs/integrators.md "vbd"), one vec4 per vertex: the step's start x_n (w as
+// in positions), the inertial target y, the previous step's velocity v_{n−1} (the adaptive
+// initial guess), and the Chebyshev iterates x^(n−1), x^(n−2).
+layout(std430, binding = 8) buffer VbdStart {
+    vec4 vbdStart[];
+};
+layout(std430, binding = 9) buffer VbdInertial {
+    vec4 vbdInertial[];
+};
+layout(std430, binding = 10) buffer VbdPrevious {
+    vec4 vbdPrevious[];
+};
+layout(std430, binding = 11) buffer VbdBefore {
+    vec4 vbdBefore[];
+};
+layout(std430, binding = 12) buffer VbdBeforeLast {
+    vec4 vbdBeforeLast[];
+};
+#endif
+
 int gridU() { return params.grid.x; }
 int gridV() { return params.grid.y; }
 

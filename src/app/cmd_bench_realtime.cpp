@@ -22,7 +22,7 @@ sphere of radius 0.25 m resting on the ground plane y = 0, no pins.
 
 Time step: explicit methods (explicit and symplectic Euler, Verlet, RK4) take 0.9 x their tight
 predicted bound at that N (power iteration at the rest state, model/stability.h), implicit Euler
-one 1/60 s frame; at most one frame either way, steps per frame = ceil((1/60 s) / dt). A run that
+and vbd one 1/60 s frame; at most one frame either way, steps per frame = ceil((1/60 s) / dt). A run that
 turns unstable (or ends past max_strain) is retried at half the dt, up to 4 times; each row says
 how often. A trial steps against the steady clock in calls of one step, then twice as many while
 a call takes under 5 ms, up to a frame (the GPU finishes its work before the call returns),

@@ -47,7 +47,7 @@ void finish(Trial& t, const Scene& scene, const Solver& solver, double time) {
 }  // namespace
 
 double firstDt(Method method, double tightDt, double safety) {
-    if (method == Method::ImplicitEuler) return kFrame;
+    if (method == Method::ImplicitEuler || method == Method::Vbd) return kFrame;  // no bound
     if (!(tightDt > 0)) return 0;
     return std::min(kFrame, safety * tightDt);
 }

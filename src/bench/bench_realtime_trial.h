@@ -9,8 +9,8 @@ namespace cloth::app {
 
 inline constexpr double kFrame = 1.0 / 60;  // one displayed frame [s]
 
-// The first Δt a trial tries [s]: implicit Euler one frame; the others `safety` × their tight
-// predicted bound `tightDt`, capped at one frame; 0 when no Δt is predicted stable.
+// The first Δt a trial tries [s]: implicit Euler and vbd one frame; the others `safety` × their
+// tight predicted bound `tightDt`, capped at one frame; 0 when no Δt is predicted stable.
 double firstDt(Method method, double tightDt, double safety);
 
 // Steps `scene` (its integrator and Δt = kFrame / stepsPerFrame set) on `choice` for `time`

@@ -40,13 +40,16 @@ inline constexpr const char* kTrafficModel =
 // position buffer (explicit and symplectic Euler: the fused sweep writes the new positions there
 // and keeps no forces) or the forces (the other integrators), and the pinned flag (1 byte); rk4
 // adds x0, v0, ΣX, ΣV and implicit Euler its CG vectors dv, r, p, Ap (4 vec3 each; with the
-// block-Jacobi preconditioner z and the inverted diagonal block, a vec3 and 6 scalars), and the
+// block-Jacobi preconditioner z and the inverted diagonal block, a vec3 and 6 scalars), vbd the
+// step's start, the inertial target and the previous velocity (Chebyshev's two iterates and,
+// with a material's bending, its Hessian diagonal, one scalar, are not counted), and the
 // inverse mass 1/m_k (one scalar per vertex); the threads' scratch rows are O(side), not counted.
 inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
                                      Preconditioner preconditioner = Preconditioner::Jacobi) {
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
     std::size_t vectors = 4;
     if (method == Method::Rk4 || method == Method::ImplicitEuler) vectors += 4;
+    if (method == Method::Vbd) vectors += 2;  // x_n, y, v_{n−1} in place of the forces
     std::size_t scalars = vectors * 3 + 1;
     if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
     return scalars * scalar + 1;

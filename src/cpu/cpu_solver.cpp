@@ -7,6 +7,7 @@
 
 #include "cpu/cpu_solver_vertex.h"
 #include "model/forces.h"
+#include "model/vbd_local.h"
 
 namespace cloth {
 namespace {
@@ -46,12 +47,17 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     if (fused()) {
         xNext_ = x_;
         if (features_.springDamping) vNext_ = v_;
-    } else
+    } else if (method_ != Method::Vbd) {  // vbd gathers no forces
         f_.assign(n, Vec3<T>(0));
+    }
     if (method_ == Method::Rk4)
         for (auto* a : {&x0_, &v0_, &sumX_, &sumV_}) a->assign(n, Vec3<T>(0));
     if (method_ == Method::ImplicitEuler)
         for (auto* a : {&dv_, &r_, &p_, &ap_}) a->assign(n, Vec3<T>(0));
+    if (method_ == Method::Vbd) {
+        xStart_.assign(n, Vec3<T>(0));
+        for (auto* a : {&inertial_, &vPrevious_}) a->assign(n, Vec3<T>(0));
+    }  // (its Chebyshev iterates are takeParameters': a new ρ may ask for them)
     // Bands of whole rows, on chunk boundaries (reduce()), so each row's sweep is one thread's.
     const int chunkRows = int(std::max<std::int64_t>(1, kChunk / nu));
     chunk_ = std::int64_t(chunkRows) * nu;
@@ -109,6 +115,10 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     }
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;
+    vbdIterations_ = scene.integrator.iterations;
+    chebyshevRho_ = scene.integrator.chebyshevRho;
+    if (method_ == Method::Vbd && chebyshevRho_ > 0 && xBefore_.empty())
+        for (auto* a : {&xBefore_, &xBeforeLast_}) a->assign(std::size_t(x_.size()), Vec3<T>(0));
     forcesValid_ = false;
     // The masses of the scene as given: a new mass (the viewer's) rescales every vertex's.
     inverseMass_.resize(std::size_t(grid_.count()));
@@ -118,6 +128,11 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     dt_t_ = T(scene.integrator.dt);
     dampingRate_ = T(scene.dampingRate());
     bending_ = bendingWeights(grid_, scene.bendingStiffness());
+    bendingDiagonal_.clear();
+    if (method_ == Method::Vbd && bending_.active())
+        for (int j = 0; j < grid_.nv; ++j)
+            for (int i = 0; i < grid_.nu; ++i)
+                bendingDiagonal_.push_back(bendingDiagonal<T>(bending_, i, j));
     gravity_ = cast<T>(scene.gravity);
     maxSpeed_ = scene.maxSpeed;
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
@@ -158,6 +173,7 @@ void CpuSolver<T>::write(const SimState& state) {
     Solver::setTime(state.time);
     forcesValid_ = false;
     std::fill(dv_.begin(), dv_.end(), Vec3<T>(0));  // no last solution to start from
+    vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor
     for (Band& b : bands_) {                        // a written state starts afresh, as on the GPU
         b.badVertex = -1;
         b.reason.clear();
@@ -273,12 +289,13 @@ SimState CpuSolver<T>::read() const {
 template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
-    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_}) vectors += std::size_t(a->size());
-    for (const auto* a :
-         {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_, &ap_, &z_})
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_, &xStart_})
+        vectors += std::size_t(a->size());
+    for (const auto* a : {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_,
+                          &ap_, &z_, &inertial_, &vPrevious_, &xBefore_, &xBeforeLast_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
-           inverseMass_.size() * sizeof(T) + pinned_.size();
+           (inverseMass_.size() + bendingDiagonal_.size()) * sizeof(T) + pinned_.size();
 }
 
 template <typename T>

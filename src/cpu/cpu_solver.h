@@ -117,6 +117,14 @@ private:
     bool stepVerlet(Band& band, const Team& team, bool& haveForces);
     bool stepRk4(Band& band, const Team& team);
     bool stepImplicit(Band& band, const Team& team, long stepNumber);
+    // vbd (cpu_vbd.cpp): the step's start and initial guess, one colour's Newton steps, the
+    // Chebyshev extrapolation after a sweep, each over this band's vertices.
+    bool stepVbd(Band& band, const Team& team, long stepNumber);
+    void vbdStart(const Band& band, const Team& team, long stepNumber);
+    void vbdSweep(const Band& band, int colour);
+    void vbdVertex(std::int64_t k, int i, int j);
+    void vbdCollide(std::int64_t k, Vec3<T>& x) const;
+    void vbdAccelerate(const Band& band, double omega);
     // The end of every step: pins, colliders in scene order, then the instability check.
     bool finishStep(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
     void applyPin(std::int64_t k, Vec3<T>& p, Vec3<T>& v) const;
@@ -177,6 +185,14 @@ private:
     std::vector<Vec3<T>> dv_, r_, p_, ap_, z_;
     Preconditioner preconditioner_ = Preconditioner::None;
     std::vector<Sym3<T>> blockInverse_;
+    // vbd: the step's start x_n, the inertial target y, the previous step's velocity v_{n−1}
+    // (the adaptive initial guess), and with Chebyshev acceleration the iterates n − 1, n − 2.
+    Soa3<T> xStart_;
+    std::vector<Vec3<T>> inertial_, vPrevious_, xBefore_, xBeforeLast_;
+    std::vector<T> bendingDiagonal_;  // W_kk per vertex (model/vbd_local.h), with bending only
+    int vbdIterations_ = 0;
+    double chebyshevRho_ = 0;
+    long vbdHistoryFrom_ = 2;          // the first step whose v_{n−1} is in vPrevious_ (1-based)
     std::vector<double> partials_[2];  // per chunk and sum, for reduce()
     std::int64_t chunk_ = kChunk;      // vertices per chunk: whole rows
     double tolerance_ = 0;

@@ -1,7 +1,7 @@
 // One step of the explicit integrators (docs/integrators.md) on a band of rows: explicit and
 // symplectic Euler (fused into the force sweep where they can be), velocity Verlet and RK4, and
-// the dispatch on the method. Implicit Euler is in cpu_implicit.cpp, the force pass in
-// cpu_forces.cpp.
+// the dispatch on the method. Implicit Euler is in cpu_implicit.cpp, Vertex Block Descent in
+// cpu_vbd.cpp, the force pass in cpu_forces.cpp.
 #include <cstddef>
 #include <cstdint>
 
@@ -23,6 +23,8 @@ bool CpuSolver<T>::advance(Band& band, const Team& team, long stepNumber, bool& 
             return stepRk4(band, team);
         case Method::ImplicitEuler:
             return stepImplicit(band, team, stepNumber);
+        case Method::Vbd:
+            return stepVbd(band, team, stepNumber);
     }
     return false;
 }

@@ -35,6 +35,13 @@ enum Binding : unsigned {
     kCgPartials = 12,
     kCgState = 13,
     kCgInverse = 14,
+    // vbd: the step's start, the inertial target, the previous velocity, the Chebyshev iterates
+    // n − 1 and n − 2 (vec4 per vertex).
+    kVbdStart = 8,
+    kVbdInertial = 9,
+    kVbdPrevious = 10,
+    kVbdBefore = 11,
+    kVbdBeforeLast = 12,
     kBindingCount = 15
 };
 
@@ -46,6 +53,9 @@ enum Binding : unsigned {
 inline constexpr int kStepLocation = 2, kStageLocation = 1, kStepCountLocation = 3;
 inline constexpr int kGrabVertexLocation = 0, kGrabLocation = 1;
 inline constexpr int kReductionLocation = 0;
+// vbd's kernels: the guess whether v_{n−1} is there (int), the sweep its colour (int), the
+// Chebyshev extrapolation ω (float).
+inline constexpr int kVbdLocation = 3;
 enum CgReduction : int {
     kReduceStart = 0,
     kReduceAlpha = 1,

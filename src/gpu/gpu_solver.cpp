@@ -74,6 +74,9 @@ std::vector<gpu::Binding> integratorBindings(Method m, Preconditioner p) {
         case Method::ImplicitEuler:
             return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection,
                     gpu::kCgProduct,        gpu::kCgPartials, gpu::kCgState};
+        case Method::Vbd:
+            return {gpu::kVbdStart, gpu::kVbdInertial, gpu::kVbdPrevious, gpu::kVbdBefore,
+                    gpu::kVbdBeforeLast};
         default:
             return {};
     }
@@ -87,6 +90,8 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       method_(scene.integrator.method),
       preconditioner_(scene.integrator.preconditioner),
       maxIterations_(scene.integrator.maxIterations),
+      vbdIterations_(scene.integrator.iterations),
+      chebyshevRho_(scene.integrator.chebyshevRho),
       forces_(options.forces),
       nu_(scene.cloth.nu),
       nv_(scene.cloth.nv),
@@ -272,7 +277,7 @@ void GpuSolver::bindBuffers() const {
 // per dispatch and, for implicit_euler, its right-hand side, the warm start's product and A p.
 void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
     for (Kernel k : {Kernel::Forces, Kernel::ManySteps, Kernel::CgRightHandSide,
-                     Kernel::CgWarmStart, Kernel::CgProduct}) {
+                     Kernel::CgWarmStart, Kernel::CgProduct, Kernel::VbdSweep}) {
         const unsigned program = programs_[int(k)];
         if (program == 0) continue;
         glProgramUniform1i(program, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);

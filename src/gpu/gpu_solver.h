@@ -103,6 +103,7 @@ private:
     void stepVerlet(long stepNumber);
     void stepRk4(long stepNumber) const;
     void stepImplicit(long stepNumber);
+    void stepVbd(long stepNumber) const;
     gpu::CgState solve() const;
     void iterate() const;
     void runReduction(gpu::CgReduction which) const;
@@ -115,6 +116,10 @@ private:
     Method method_;
     Preconditioner preconditioner_;  // implicit_euler's (a kernel variant: fixed per solver)
     int maxIterations_;              // implicit_euler's cap on CG iterations per step
+    // vbd: sweeps per step, Chebyshev's ρ, and the first step whose v_{n−1} is in kVbdPrevious.
+    int vbdIterations_;
+    double chebyshevRho_;
+    long vbdHistoryFrom_ = 2;
     // verlet: the forces buffer holds F(x_n) of the coming step (F(x_{n+1}) of the last one).
     // Anything that changes the state or the forces from outside discards it.
     bool forcesKept_ = false;

@@ -38,7 +38,8 @@ void GpuSolver::write(const SimState& state) {
         pins_[std::size_t(pin.slot)] = glm::vec4(glm::vec3(x[std::size_t(k)]), 0);  // held here
     }
     setTime(state.time);
-    posedFrom_ = posedTo_ = 0;  // posed again at the (new) time
+    vbdHistoryFrom_ = steps_ + 2;  // the written velocities have no predecessor
+    posedFrom_ = posedTo_ = 0;     // posed again at the (new) time
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
@@ -142,6 +143,8 @@ void GpuSolver::setParameters(const Scene& scene) {
     scene_ = scene;
     maxSpeed_ = scene.maxSpeed;
     maxIterations_ = scene.integrator.maxIterations;
+    vbdIterations_ = scene.integrator.iterations;
+    chebyshevRho_ = scene.integrator.chebyshevRho;
     forcesKept_ = false;
     uploadParams(scene);
     uploadColliders(scene);

@@ -9,6 +9,8 @@
 
 #include "gpu/egl_context.h"
 #include "gpu/gpu_solver.h"
+#include "model/vbd_colouring.h"
+#include "model/vbd_local.h"
 
 namespace cloth {
 namespace {
@@ -80,6 +82,8 @@ void GpuSolver::dispatchStep(long stepNumber) {
             return stepRk4(stepNumber);
         case Method::ImplicitEuler:
             return stepImplicit(stepNumber);
+        case Method::Vbd:
+            return stepVbd(stepNumber);
     }
 }
 
@@ -114,6 +118,30 @@ void GpuSolver::stepImplicit(long stepNumber) {
     runReduction(gpu::kReduceStartDirection);
     recordSolve(stepNumber, solve());
     runStepPass(Kernel::ImplicitFinish, stepNumber);
+}
+
+// vbd (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp stepVbd, pass for pass): the start and
+// the initial guess, `iterations` sweeps of one dispatch per colour (each followed, with ρ > 0,
+// by the Chebyshev extrapolation), then the end of the step.
+void GpuSolver::stepVbd(long stepNumber) const {
+    runPass(Kernel::VbdStart);
+    glProgramUniform1i(programs_[int(Kernel::VbdGuess)], gpu::kVbdLocation,
+                       stepNumber >= vbdHistoryFrom_ ? 1 : 0);
+    runStepPass(Kernel::VbdGuess, stepNumber);
+    double omega = 1;
+    for (int n = 1; n <= vbdIterations_; ++n) {
+        for (int colour = 0; colour < kVbdColours; ++colour) {
+            glProgramUniform1i(programs_[int(Kernel::VbdSweep)], gpu::kVbdLocation, colour);
+            runStepPass(Kernel::VbdSweep, stepNumber);
+        }
+        if (chebyshevRho_ > 0) {
+            omega = chebyshevOmega(n, chebyshevRho_, omega);
+            glProgramUniform1f(programs_[int(Kernel::VbdAccelerate)], gpu::kVbdLocation,
+                               float(omega));
+            runStepPass(Kernel::VbdAccelerate, stepNumber);
+        }
+    }
+    runStepPass(Kernel::VbdFinish, stepNumber);
 }
 
 // Iterations in chunks of kIterationsPerRead until the GPU says the solve is done (converged,

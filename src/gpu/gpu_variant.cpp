@@ -35,6 +35,8 @@ std::string integratorDefine(Method m) {
             return "INTEGRATOR_RK4";
         case Method::ImplicitEuler:
             return "INTEGRATOR_IMPLICIT_EULER";
+        case Method::Vbd:
+            return "INTEGRATOR_VBD";
     }
     throw InputError("", "integrator.method",
                      std::string("'") + methodName(m) + "' has no GPU kernel");
@@ -129,11 +131,16 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
 
 const char* kernelFile(Kernel k) {
     static constexpr const char* kFiles[kKernelCount] = {
-        "compute/forces.comp",          "compute/integrate.comp", "compute/verlet_drift.comp",
-        "compute/verlet_kick.comp",     "compute/rk4_stage.comp", "compute/cg_right_hand_side.comp",
-        "compute/cg_warm_start.comp",   "compute/cg_start.comp",  "compute/cg_product.comp",
-        "compute/cg_reduce.comp",       "compute/cg_update.comp", "compute/cg_direction.comp",
-        "compute/implicit_finish.comp", "compute/many_steps.comp"};
+        "compute/forces.comp",          "compute/integrate.comp",
+        "compute/verlet_drift.comp",    "compute/verlet_kick.comp",
+        "compute/rk4_stage.comp",       "compute/cg_right_hand_side.comp",
+        "compute/cg_warm_start.comp",   "compute/cg_start.comp",
+        "compute/cg_product.comp",      "compute/cg_reduce.comp",
+        "compute/cg_update.comp",       "compute/cg_direction.comp",
+        "compute/implicit_finish.comp", "compute/vbd_start.comp",
+        "compute/vbd_guess.comp",       "compute/vbd_sweep.comp",
+        "compute/vbd_accelerate.comp",  "compute/vbd_finish.comp",
+        "compute/many_steps.comp"};
     return kFiles[int(k)];
 }
 
@@ -150,6 +157,9 @@ std::vector<Kernel> kernelsOf(Method m) {
             return {Kernel::Forces,   Kernel::CgRightHandSide, Kernel::CgWarmStart,
                     Kernel::CgStart,  Kernel::CgProduct,       Kernel::CgReduce,
                     Kernel::CgUpdate, Kernel::CgDirection,     Kernel::ImplicitFinish};
+        case Method::Vbd:
+            return {Kernel::VbdStart, Kernel::VbdGuess, Kernel::VbdSweep, Kernel::VbdAccelerate,
+                    Kernel::VbdFinish};
     }
     return {};
 }

@@ -52,6 +52,11 @@ enum class Kernel {
     CgUpdate,         // implicit_euler: Δv, r
     CgDirection,      // implicit_euler: p
     ImplicitFinish,   // implicit_euler: v, x, pins, colliders, check
+    VbdStart,         // vbd: x_n, the inertial target y
+    VbdGuess,         // vbd: the initial guess, pins
+    VbdSweep,         // vbd: one colour's Newton steps and contact
+    VbdAccelerate,    // vbd: the Chebyshev extrapolation
+    VbdFinish,        // vbd: v = (x − x_n)/h, pins, colliders, check
     ManySteps,        // explicit/symplectic Euler, small grids: many steps in one work group
 };
 inline constexpr int kKernelCount = int(Kernel::ManySteps) + 1;

@@ -18,6 +18,8 @@ const char* methodName(Method m) {
             return "rk4";
         case Method::ImplicitEuler:
             return "implicit_euler";
+        case Method::Vbd:
+            return "vbd";
     }
     return "?";
 }
@@ -42,6 +44,8 @@ int forceEvaluationsPerStep(Method m) {
         case Method::SymplecticEuler:
         case Method::Verlet:  // F(x_{n+1}) of one step is F(x_n) of the next
         case Method::ImplicitEuler:
+            return 1;
+        case Method::Vbd:  // per iteration: its sweep gathers every vertex's springs once
             return 1;
     }
     return 1;

@@ -17,15 +17,17 @@
 namespace cloth {
 
 // The integrators of docs/integrators.md. explicit_euler is the seed's scheme (DESIGN.md §2).
-enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler };
+enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler, Vbd };
 
 inline constexpr Method kMethods[] = {Method::ExplicitEuler, Method::SymplecticEuler,
-                                      Method::Verlet, Method::Rk4, Method::ImplicitEuler};
+                                      Method::Verlet,        Method::Rk4,
+                                      Method::ImplicitEuler, Method::Vbd};
 
 const char* methodName(Method m);  // "explicit_euler", ...
 std::optional<Method> methodFromName(const std::string& name);
-std::string methodList();               // "explicit_euler, symplectic_euler, ..."
-int forceEvaluationsPerStep(Method m);  // spring-force passes one step costs (implicit: + CG)
+std::string methodList();  // "explicit_euler, symplectic_euler, ..."
+// Spring-force passes one step costs (implicit_euler: + its CG; vbd: one per iteration).
+int forceEvaluationsPerStep(Method m);
 
 // implicit_euler's preconditioner of the conjugate gradient (docs/integrators.md,
 // "Preconditioners"): none, or the inverted 3×3 diagonal blocks of the system.
@@ -76,6 +78,10 @@ struct IntegratorSpec {
     double tolerance = 1e-5;
     int maxIterations = 200;
     Preconditioner preconditioner = Preconditioner::Jacobi;
+    // vbd only (docs/integrators.md "vbd"): Gauss–Seidel sweeps over the colours per step, and
+    // ρ, the spectral radius estimate of the Chebyshev acceleration; 0 = no acceleration.
+    int iterations = 10;
+    double chebyshevRho = 0;
 };
 
 struct Plane {

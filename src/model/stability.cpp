@@ -127,6 +127,8 @@ double dampedMethodDt(Method method, double omega2, double c, double beta) {
             return rk4Dt(omega2, c, beta);
         case Method::ImplicitEuler:
             return kInf;
+        case Method::Vbd:  // a descent on backward Euler's potential: no Δt bound of its own
+            return kInf;
     }
     return 0;
 }

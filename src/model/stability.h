@@ -21,6 +21,7 @@ namespace cloth {
 //   verlet            Δt < 2/ω (independent of c with the trapezoidal damping)
 //   rk4               |1 + z + z²/2 + z³/6 + z⁴/24| ≤ 1 for z = Δt·(eigenvalues of the mode)
 //   implicit_euler    unconditional (linearised)
+//   vbd               unconditional: each local step lowers backward Euler's potential
 double methodDt(Method method, double omega2, double c);
 // The same with spring damping β [s] (docs/stability.md "Spring damping"): at rest its damping
 // matrix is β times the springs' H, so the mode of ω² is damped at c + βω² (taken at ω² = the

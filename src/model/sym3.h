@@ -1,5 +1,7 @@
-// A symmetric 3×3 matrix: the diagonal blocks of implicit Euler's system (its block-Jacobi
-// preconditioner and multigrid smoother, docs/integrators.md) and sums of spring Jacobians.
+// A symmetric 3×3 matrix by its six entries: the diagonal blocks of implicit Euler's system (its
+// block-Jacobi preconditioner, docs/integrators.md) and VBD's local Hessians (model/vbd_local.h).
+// Every term of either is a multiple of I or of an outer product d dᵀ, so half of a full
+// matrix's sums are never needed.
 #pragma once
 
 #include <cmath>
@@ -18,6 +20,21 @@ struct Sym3 {
         return {a * n.x * n.x, a * n.y * n.y, a * n.z * n.z,
                 a * n.x * n.y, a * n.x * n.z, a * n.y * n.z};
     }
+    void addDiagonal(T s) {
+        xx += s;
+        yy += s;
+        zz += s;
+    }
+    void addOuter(T c, const Vec3<T>& d) {  // += c d dᵀ
+        const Vec3<T> cd = c * d;
+        xx += cd.x * d.x;
+        xy += cd.x * d.y;
+        xz += cd.x * d.z;
+        yy += cd.y * d.y;
+        yz += cd.y * d.z;
+        zz += cd.z * d.z;
+    }
+    glm::dmat3 matrix() const { return glm::dmat3(xx, xy, xz, xy, yy, yz, xz, yz, zz); }
     Sym3& operator+=(const Sym3& o) {
         xx += o.xx, yy += o.yy, zz += o.zz, xy += o.xy, xz += o.xz, yz += o.yz;
         return *this;

@@ -93,6 +93,18 @@ constexpr ParamSpec kParams[] = {
      "implicit_euler: CG iteration cap per step (a miss is reported)", kHidden,
      [](const Scene& s) -> std::optional<double> { return s.integrator.maxIterations; },
      [](Scene& s, double v) { s.integrator.maxIterations = int(std::lround(v)); }},
+    {"integrator.iterations", "", 1, 100000, false, true, 10, false,
+     "vbd: Gauss–Seidel sweeps over the 5 colours per step",
+     {PanelSection::TimeStep, SliderScale::Log, 1, 200, "vbd iterations", "%d"},
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::Vbd ? std::optional<double>(s.integrator.iterations)
+                                                   : std::nullopt;
+     },
+     [](Scene& s, double v) { s.integrator.iterations = int(std::lround(v)); }},
+    {"integrator.chebyshev_rho", "", 0, 0.999, false, false, 0, false,
+     "vbd: spectral radius estimate ρ of the Chebyshev acceleration; 0 = none", kHidden,
+     [](const Scene& s) -> std::optional<double> { return s.integrator.chebyshevRho; },
+     [](Scene& s, double v) { s.integrator.chebyshevRho = v; }},
     {"wind.strength", "N; N/m²", -kInf, kInf, false, false, 0, true,
      "K_w in F = K_w ⟨n, û_w⟩ n per vertex; with a material a pressure, times the vertex's area",
      {PanelSection::Wind, SliderScale::Log, 0, 100, "strength"},

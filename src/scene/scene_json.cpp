@@ -112,6 +112,10 @@ std::string sceneToJson(const Scene& s) {
         j["integrator"]["max_iterations"] = s.integrator.maxIterations;
         j["integrator"]["preconditioner"] = preconditionerName(s.integrator.preconditioner);
     }
+    if (s.integrator.method == Method::Vbd) {
+        j["integrator"]["iterations"] = s.integrator.iterations;
+        j["integrator"]["chebyshev_rho"] = s.integrator.chebyshevRho;
+    }
     Json colliders = Json::array();
     for (const Collider& c : s.colliders) colliders.push_back(collider(c));
     j["colliders"] = colliders;

@@ -199,7 +199,8 @@ Material SceneReader::readMaterial(const Json& j) const {
 
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
     expectObject(j, "integrator",
-                 {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner"});
+                 {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner",
+                  "iterations", "chebyshev_rho"});
     if (j.contains("method")) {
         const Json& m = j["method"];
         if (!m.is_string()) fail("integrator.method", "expected a string, got " + describe(m));
@@ -225,6 +226,10 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
         int(param(j, "max_iterations", "integrator.max_iterations", "integrator.max_iterations"));
     integrator.dt = param(j, "dt", "integrator.dt", "integrator.dt");
     integrator.substeps = int(param(j, "substeps", "integrator.substeps", "integrator.substeps"));
+    integrator.iterations =
+        int(param(j, "iterations", "integrator.iterations", "integrator.iterations"));
+    integrator.chebyshevRho =
+        param(j, "chebyshev_rho", "integrator.chebyshev_rho", "integrator.chebyshev_rho");
 }
 
 // A pin is [i, j], or {"at": [i, j], "follow": n} to follow colliders[n] (checked once the

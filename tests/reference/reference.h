@@ -63,8 +63,9 @@ struct Collider {
     Motion motion{};
 };
 
-// docs/integrators.md; ExplicitEuler is the seed's scheme of DESIGN.md §2.
-enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler };
+// docs/integrators.md; ExplicitEuler is the seed's scheme of DESIGN.md §2. BackwardEuler is the
+// nonlinear step that vbd converges to, solved by Newton's method.
+enum class Method { ExplicitEuler, SymplecticEuler, Verlet, Rk4, ImplicitEuler, BackwardEuler };
 
 struct Params {
     int nu = 2, nv = 1;
@@ -188,6 +189,7 @@ private:
     void stepVerlet();
     void stepRk4();
     void stepImplicitEuler();
+    void stepBackwardEuler();  // (reference_backward_euler.cpp)
     // Conjugate gradient on ((m_k + hμ_k) I + h² H(x)) dv = b from dv = 0; records the solve in
     // cg_.
     std::vector<V3> solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b);

@@ -18,8 +18,9 @@ namespace {
 
 using ref::Method;
 
-constexpr Method kAllMethods[] = {Method::ExplicitEuler, Method::SymplecticEuler, Method::Verlet,
-                                  Method::Rk4, Method::ImplicitEuler};
+constexpr Method kAllMethods[] = {Method::ExplicitEuler, Method::SymplecticEuler,
+                                  Method::Verlet,        Method::Rk4,
+                                  Method::ImplicitEuler, Method::BackwardEuler};
 
 const char* nameOf(Method m) {
     switch (m) {
@@ -33,6 +34,8 @@ const char* nameOf(Method m) {
             return "rk4";
         case Method::ImplicitEuler:
             return "implicit_euler";
+        case Method::BackwardEuler:
+            return "backward_euler";
     }
     return "?";
 }
@@ -93,8 +96,10 @@ void scalarStep(Method method, double w2, double c, double h, double& x, double&
             break;
         }
         case Method::ImplicitEuler:
+        case Method::BackwardEuler:
             // v1 = v0 + h a(x1, v1), x1 = x0 + h v1, solved: exact for a linear spring, which the
-            // linearisation at x_n reproduces (the axial stiffness is K whatever the stretch).
+            // linearisation at x_n reproduces (the axial stiffness is K whatever the stretch);
+            // backward Euler's Newton solves the same linear equation.
             v = (v - h * w2 * x) / (1 + h * c + h * h * w2);
             x += h * v;
             break;

@@ -86,6 +86,8 @@ ref::Method toReference(Method m) {
             return ref::Method::Rk4;
         case Method::ImplicitEuler:
             return ref::Method::ImplicitEuler;
+        case Method::Vbd:  // converged, vbd is backward Euler
+            return ref::Method::BackwardEuler;
     }
     return ref::Method::ExplicitEuler;
 }

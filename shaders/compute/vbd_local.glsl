@@ -1,0 +1,84 @@
+// vbd's local problem (docs/integrators.md "vbd"), mirroring src/model/vbd_local.h function for
+// function: the gradient and Hessian of one vertex's part of backward Euler's incremental
+// potential, and the 3×3 Newton step on it. The Hessian is kept as its six entries (Sym3).
+
+struct VbdLocal {
+    vec3 gradient;
+    vec3 diagonal;   // xx, yy, zz
+    vec3 offDiagonal;  // xy, xz, yz
+};
+
+VbdLocal vbdLocalZero() { return VbdLocal(vec3(0.0), vec3(0.0), vec3(0.0)); }
+
+void addDiagonal(inout VbdLocal l, float s) { l.diagonal += vec3(s); }
+
+void addOuter(inout VbdLocal l, float c, vec3 d) {  // += c d dᵀ
+    vec3 cd = c * d;
+    l.diagonal += cd * d;
+    l.offDiagonal += vec3(cd.x * d.y, cd.x * d.z, cd.y * d.z);
+}
+
+// Inertia and air drag: m/(2h²)|x − y|² + m c/(2h)|x − x_n|² (addVbdInertia).
+void addVbdInertia(inout VbdLocal l, vec3 x, vec3 y, vec3 xn, float mass, float h,
+                   float dampingRate) {
+    float inertia = mass / (h * h), drag = mass * dampingRate / h;
+    l.gradient += inertia * (x - y) + drag * (x - xn);
+    addDiagonal(l, inertia + drag);
+}
+
+// The spring from k to q (addVbdSpring): gradient −springForce, Hessian the clamped J_s.
+void addVbdSpring(inout VbdLocal l, vec3 pk, vec3 pq, float stiffness, float restLength) {
+    vec3 d = pq - pk;
+    float len = length(d);
+    if (!(len >= 1e-12 * restLength)) return;
+    l.gradient -= (stiffness * (len - restLength) / len) * d;
+    float transverse = stiffness * max(0.0, 1.0 - restLength / len);
+    addDiagonal(l, transverse);
+    addOuter(l, (stiffness - transverse) / (len * len), d);
+}
+
+#ifdef HAS_SPRING_DAMPING
+// Implicit Euler's D on the step's displacement (addVbdSpringDamping): w = Δ_q − Δ_k, the ends
+// at x_n.
+void addVbdSpringDamping(inout VbdLocal l, vec3 pkn, vec3 pqn, vec3 w, float dampingK,
+                         float restLength, float h) {
+    vec3 d = pqn - pkn;
+    l.gradient -= springDampingForce(d, w, dampingK, restLength) / h;
+    float d2 = dot(d, d), floorLength = 1e-12 * restLength;
+    if (d2 >= floorLength * floorLength) addOuter(l, dampingK / (h * d2), d);
+}
+#endif
+
+#ifdef HAS_BENDING
+// W_kk (bendingDiagonal): the squares of the vertex's coefficients in every second difference
+// (1, −2, 1) and twist (±1) that holds it, times their weights.
+float vbdBendingDiagonal(ivec2 ij, vec3 weights) {
+    int i = ij.x, j = ij.y, nu = gridU(), nv = gridV();
+    float wu = weights.x * bendingShare(j, nv), wv = weights.y * bendingShare(i, nu);
+    float w = 0.0;
+    for (int c = -1; c <= 1; ++c) {
+        float square = c == 0 ? 4.0 : 1.0;
+        if (i + c >= 1 && i + c <= nu - 2) w += wu * square;
+        if (j + c >= 1 && j + c <= nv - 2) w += wv * square;
+    }
+    for (int a = i - 1; a <= i; ++a)
+        for (int b = j - 1; b <= j; ++b)
+            if (a >= 0 && a <= nu - 2 && b >= 0 && b <= nv - 2) w += weights.z;
+    return w;
+}
+#endif
+
+// x − H⁻¹g by the adjugate (vbdNewtonStep, in float here); a step with det H ≤ 1e-12·floor³
+// (H ⪰ floor·I, floor = m/h²) is skipped. Returns whether it moved.
+bool vbdNewtonStep(VbdLocal l, float floor, inout vec3 x) {
+    vec3 dg = l.diagonal, o = l.offDiagonal;  // o = (xy, xz, yz)
+    float c00 = dg.y * dg.z - o.z * o.z, c01 = o.y * o.z - o.x * dg.z, c02 = o.x * o.z - o.y * dg.y;
+    float det = dg.x * c00 + o.x * c01 + o.y * c02;
+    if (!(abs(det) > 1e-12 * floor * floor * floor)) return false;
+    float c11 = dg.x * dg.z - o.y * o.y, c12 = o.x * o.y - dg.x * o.z;
+    float c22 = dg.x * dg.y - o.x * o.x;
+    vec3 g = l.gradient;
+    x -= vec3(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
+              c02 * g.x + c12 * g.y + c22 * g.z) / det;
+    return true;
+}

@@ -1,0 +1,66 @@
+// vbd, one colour of a sweep (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp vbdVertex): every
+// free vertex with (i + 2j) mod 5 = uVbd takes one Newton step on its local G, then the
+// colliders' projection with the friction law on the step's displacement (vbdCollide). Vertices
+// of one colour share no energy term: one dispatch per colour, no atomics.
+#include "layout.glsl"
+#include "common.glsl"
+#include "springs.glsl"
+#include "grab.glsl"
+#include "step_end.glsl"
+#ifdef HAS_BENDING
+#define BENDING_FIELD(q) positions[vertexIndex(q)].xyz
+#include "bending.glsl"
+#endif
+#include "vbd_local.glsl"
+
+layout(local_size_x = WX, local_size_y = WY) in;
+
+layout(location = 3) uniform int uVbd;  // the colour
+
+void main() {
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    if (ij.x >= gridU() || ij.y >= gridV() || frozen(uStep)) return;
+    if ((ij.x + 2 * ij.y) % 5 != uVbd) return;
+    uint k = vertexIndex(ij);
+    vec4 x4 = positions[k];
+    if (x4.w == 0.0) return;  // pinned
+    float h = params.dt, mass = 1.0 / x4.w;
+    vec3 x = x4.xyz, xn = vbdStart[k].xyz;
+    VbdLocal l = vbdLocalZero();
+    addVbdInertia(l, x, vbdInertial[k].xyz, xn, mass, h, params.dampingRate);
+#if NUM_SPRING_OFFSETS > 0
+    for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
+        ivec4 s = kSpringOffsets[o];
+        ivec2 q = ij + s.xy;
+        if (!insideGrid(q)) continue;
+        uint kq = vertexIndex(q);
+        vec3 xq = positions[kq].xyz;
+        addVbdSpring(l, x, xq, springStiffnessAt(s, ij), springRestLength(s));
+#ifdef HAS_SPRING_DAMPING
+        vec3 xqn = vbdStart[kq].xyz;
+        addVbdSpringDamping(l, xn, xqn, (xq - xqn) - (x - xn), springDampingAt(s, ij),
+                            springRestLength(s), h);
+#endif
+    }
+#endif
+#ifdef HAS_BENDING
+    l.gradient -= bendingForce(ij, params.bending.xyz);
+    addDiagonal(l, vbdBendingDiagonal(ij, params.bending.xyz));
+#endif
+    if (grabbed(k)) {
+        l.gradient -= grabForce(x, uGrab.xyz, uGrab.w);
+        addDiagonal(l, uGrab.w);
+    }
+    if (!vbdNewtonStep(l, mass / (h * h), x)) return;
+#ifdef HAS_COLLIDERS
+    vec3 before = (x - xn) / h, p = x, vel = before;
+    applyColliders(uStep, p, vel);
+    vec3 push = p - x;
+    float pushed = length(push);
+    if (pushed > 0.0) {
+        vec3 n = push / pushed, lost = before - vel;
+        x = p - h * (lost - dot(lost, n) * n);
+    }
+#endif
+    positions[k] = vec4(x, x4.w);
+}

@@ -1,0 +1,165 @@
+// The local problem of Vertex Block Descent (Chen, Macklin et al., SIGGRAPH 2024;
+// docs/integrators.md "vbd"): the gradient and Hessian of one vertex's part of backward Euler's
+// incremental potential
+//
+//   G(x) = Σ_k m_k/(2h²) |x_k − y_k|² + Σ_k m_k c/(2h) |x_k − x_n,k|² + E(x) + E_β(x),
+//
+// x_k moving, every other vertex held; and the 3×3 Newton step on it. E holds the springs
+// (½K(|d| − L)², each slot of the stencil with its stiffnessAt), the quadratic bending energy
+// (model/bending.h) and the grab; E_β is the spring damping of implicit Euler's D taken on the
+// step's displacement. Stateless: positions and parameters in, gradient and Hessian out, so the
+// CPU backend and a GPU mirror compute the same operations.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "model/bending.h"
+#include "model/forces.h"
+#include "model/stiffness.h"
+#include "model/sym3.h"
+
+namespace cloth {
+
+// g = ∂G/∂x_k and H = ∂²G/∂x_k² (made positive semi-definite term by term) at the current x.
+template <typename T>
+struct VbdLocal {
+    Vec3<T> gradient{0};
+    Sym3<T> hessian;
+};
+
+// Inertia and air drag: m/(2h²)|x − y|² + m c/(2h)|x − x_n|², y the inertial target
+// x_n + h v_n + h² a_ext. The drag term is backward Euler's −c m v_{n+1} with v_{n+1} =
+// (x − x_n)/h: its gradient m c (x − x_n)/h is that force's negative.
+template <typename T>
+void addVbdInertia(const Vec3<T>& x, const Vec3<T>& y, const Vec3<T>& xn, T mass, T h,
+                   T dampingRate, VbdLocal<T>& local) {
+    const T inertia = mass / (h * h), drag = mass * dampingRate / h;
+    local.gradient += inertia * (x - y) + drag * (x - xn);
+    local.hessian.addDiagonal(inertia + drag);
+}
+
+// The spring from k to q, E = ½K(|d| − L)², d = x_q − x_k: ∂E/∂x_k = −K (|d| − L) d/|d| (minus
+// springForce, seed eq. (2)), and ∂²E/∂x_k² = K (d̂d̂ᵀ + (1 − L/|d|)(I − d̂d̂ᵀ)) with the transverse
+// part clamped at 0 (Choi & Ko), the matrix springJacobianTimes applies: positive semi-definite,
+// so a compressed spring never turns the Newton step uphill. Nothing for a spring squeezed to a
+// point, as in springCoefficient.
+template <typename T>
+void addVbdSpring(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLength,
+                  VbdLocal<T>& local) {
+    const Vec3<T> d = pq - pk;
+    const T len = glm::length(d);
+    if (!(len >= T(1e-12) * restLength)) return;
+    local.gradient -= (stiffness * (len - restLength) / len) * d;
+    const T transverse = stiffness * std::max(T(0), T(1) - restLength / len);
+    local.hessian.addDiagonal(transverse);
+    local.hessian.addOuter((stiffness - transverse) / (len * len), d);  // (K − t) d̂d̂ᵀ
+}
+
+// Spring damping as implicit Euler's D (docs/integrators.md): the force −D v_{n+1}, D = Σ βK d̂d̂ᵀ
+// at the step's start x_n, with v_{n+1} = (x − x_n)/h, is minus the gradient of
+// E_β = Σ_springs βK/(2h) (d̂_n·(Δ_q − Δ_k))², Δ = x − x_n. w = Δ_q − Δ_k; pkn, pqn the ends at
+// x_n. The gradient is −F_β(x_n, w)/h (addSpringDamping with the displacement for the velocity),
+// the Hessian βK/h d̂_n d̂_nᵀ.
+template <typename T>
+void addVbdSpringDamping(const Vec3<T>& pkn, const Vec3<T>& pqn, const Vec3<T>& w, T dampingK,
+                         T restLength, T h, VbdLocal<T>& local) {
+    Vec3<T> f(0);
+    addSpringDamping(pkn, pqn, w, dampingK, restLength, f);
+    local.gradient -= f / h;
+    const Vec3<T> d = pqn - pkn;
+    const T d2 = glm::dot(d, d), floor = T(1e-12) * restLength;
+    if (d2 >= floor * floor) local.hessian.addOuter(dampingK / (h * d2), d);
+}
+
+// W_kk, the bending Hessian's diagonal coefficient at (i, j) [N/m]: the energy is quadratic,
+// E = ½ xᵀ(W ⊗ I)x, so its Hessian block at k is W_kk I. It is −bendingForce of the field that is
+// (1, 0, 0) at (i, j) and 0 elsewhere, read off along x.
+template <typename T>
+T bendingDiagonal(const BendingWeights& w, int i, int j) {
+    const auto unit = [i, j](int a, int b) {
+        return Vec3<T>(a == i && b == j ? T(1) : T(0), 0, 0);
+    };
+    return -bendingForce<T>(w, i, j, unit).x;
+}
+
+// The grab (forces.h grabForce): E = ½K|x − t|², gradient K(x − t), Hessian K I.
+template <typename T>
+void addVbdGrab(const Vec3<T>& x, const Vec3<T>& target, T stiffness, VbdLocal<T>& local) {
+    local.gradient -= grabForce(x, target, stiffness);
+    local.hessian.addDiagonal(stiffness);
+}
+
+// Everything of G at vertex k = (i, j) that couples it to its neighbours: the springs of the
+// stencil (with their damping when modelled) and the bending energy, whose Hessian block
+// bendDiagonal·I (bendingDiagonal, constant: the caller keeps it) is added. x: the current
+// positions, xn: the step's start, both anything positionAt(x, k) reads.
+template <typename T, typename Positions>
+void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
+                   const BendingWeights& bending, T bendDiagonal, const Positions& x,
+                   const Positions& xn, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
+    const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
+    const Vec3<T> pk = positionAt(x, k);
+    for (const StencilSpring<T>& s : springs) {
+        if (!interior) {
+            const int qi = i + s.di, qj = j + s.dj;
+            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+        }
+        const std::int64_t q = k + s.indexOffset;
+        const Vec3<T> pq = positionAt(x, q);
+        addVbdSpring(pk, pq, stiffnessAt(s, i, j, nu, nv), s.restLength, local);
+        if (s.damping > 0) {
+            const bool half = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
+            const Vec3<T> pkn = positionAt(xn, k), pqn = positionAt(xn, q);
+            addVbdSpringDamping(pkn, pqn, (pq - pqn) - (pk - pkn),
+                                half ? T(0.5) * s.damping : s.damping, s.restLength, h, local);
+        }
+    }
+    if (bending.active()) {
+        const auto at = [&](int a, int b) { return positionAt(x, std::int64_t(b) * nu + a); };
+        local.gradient -= bendingForce<T>(bending, i, j, at);
+        local.hessian.addDiagonal(bendDiagonal);
+    }
+}
+
+// The Newton step x ← x − H⁻¹g, solved in double (a stiff spring beside a light vertex makes H
+// too ill-conditioned for a float inverse). H ⪰ floor·I with floor = m/h² (every other term is
+// positive semi-definite), so det H ≥ floor³: a determinant below 1e-12 of that is rounding or a
+// non-finite state, and the vertex then keeps its position. Returns whether it moved.
+template <typename T>
+bool vbdNewtonStep(const VbdLocal<T>& local, double floor, Vec3<T>& x) {
+    const glm::dmat3 h = local.hessian.matrix();
+    const double det = glm::determinant(h);
+    if (!(std::abs(det) > 1e-12 * floor * floor * floor)) return false;
+    x -= Vec3<T>(glm::inverse(h) * glm::dvec3(local.gradient));
+    return true;
+}
+
+// The paper's adaptive initial guess (§3.7): x = x_n + h v_n + h² ã, ã the component of the
+// previous step's acceleration a = (v_n − v_{n−1})/h along gravity ĝ, clipped to [0, |g|]: a
+// vertex that fell freely starts where free fall takes it, one held up by the cloth starts
+// where its velocity does. Without a previous step (`history` false) ã = g, the inertial guess.
+template <typename T>
+Vec3<T> vbdInitialGuess(const Vec3<T>& xn, const Vec3<T>& vn, const Vec3<T>& vPrevious,
+                        const Vec3<T>& gravity, T h, bool history) {
+    const T g = glm::length(gravity);
+    Vec3<T> a = gravity;
+    if (history && g > T(0)) {
+        const T along = glm::dot(vn - vPrevious, gravity) / (h * g);
+        a = (std::clamp(along, T(0), g) / g) * gravity;
+    }
+    return xn + h * vn + (h * h) * a;
+}
+
+// The Chebyshev semi-iterative weight ω_n of iteration n ≥ 1 (Wang 2015, as VBD §3.8 uses it):
+// ω_1 = 1, ω_2 = 2/(2 − ρ²), ω_n = 4/(4 − ρ²ω_{n−1}); ρ the estimated spectral radius of the
+// unaccelerated iteration. The iterate becomes ω_n (x̄_n − x_{n−2}) + x_{n−2}.
+inline double chebyshevOmega(int n, double rho, double previous) {
+    if (n <= 1) return 1;
+    if (n == 2) return 2 / (2 - rho * rho);
+    return 4 / (4 - rho * rho * previous);
+}
+
+}  // namespace cloth
