@@ -7,9 +7,9 @@
 
 #include <stdexcept>
 
+#include "render/collider_pick.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
-#include "render/collider_pick.h"
 
 namespace cloth::app {
 namespace {

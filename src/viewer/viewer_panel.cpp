@@ -70,6 +70,16 @@ bool timeSection(ViewerParams& p, std::vector<std::string>& drawn) {
             }
         ImGui::EndCombo();
     }
+    if (in.method == Method::ImplicitEuler &&
+        ImGui::BeginCombo("preconditioner", preconditionerName(in.preconditioner))) {
+        for (Preconditioner c : kPreconditioners)
+            if (ImGui::Selectable(preconditionerName(c), c == in.preconditioner) &&
+                c != in.preconditioner) {
+                in.preconditioner = c;
+                changed = true;
+            }
+        ImGui::EndCombo();
+    }
     changed |= drawParamSliders(p.scene, PanelSection::TimeStep, drawn);
     const double bound = stableDt(p.effective());
     if (in.method == Method::Vbd) {

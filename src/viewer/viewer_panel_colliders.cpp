@@ -6,10 +6,10 @@
 #include <cmath>
 #include <numbers>
 
+#include "model/collider_limits.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
 #include "viewer/viewer_widgets.h"
-#include "model/collider_limits.h"
 
 namespace cloth::app {
 namespace {

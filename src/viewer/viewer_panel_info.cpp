@@ -73,6 +73,10 @@ void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui) {
     plot("energy", h.energy, "J");
     plot("max strain", h.maxStrain, "");
     plot("step time", h.stepMs, "ms");
+    if (session.params().scene.integrator.method == Method::ImplicitEuler) {
+        plot("CG iterations", h.iterations, "per step");
+        plot("CG log10 |r|/|b|", h.residual, "");
+    }
 }
 
 void drawOutputSection(const ViewerSession& session, ViewerUi& ui) {

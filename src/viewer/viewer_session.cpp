@@ -31,6 +31,14 @@ void ViewerHistory::push(float e, float strain, float ms) {
     }
 }
 
+void ViewerHistory::pushSolve(float iterationsPerStep, float log10Residual) {
+    for (auto [series, value] :
+         {std::pair{&iterations, iterationsPerStep}, {&residual, log10Residual}}) {
+        if (series->size() == kSamples) series->erase(series->begin());
+        series->push_back(value);
+    }
+}
+
 bool gridDiffers(const Scene& a, const Scene& b) {
     const ClothSpec &x = a.cloth, &y = b.cloth;
     return x.nu != y.nu || x.nv != y.nv || x.size != y.size || x.origin != y.origin ||
@@ -283,6 +291,14 @@ void ViewerSession::sampleDiagnostics() {
     }
     const double msPerStep = lastSteps_ > 0 ? 1e3 * lastStepSeconds_ / double(lastSteps_) : 0;
     history_.push(float(energy(s, state).total()), float(maxStrain(s, state)), float(msPerStep));
+    // The solves since the last sample (a new solver starts its counts at 0).
+    const SolveStats& now = solver_->solveStats();
+    if (now.solves < sampledSolves_.solves) sampledSolves_ = SolveStats{};
+    if (now.solves > sampledSolves_.solves)
+        history_.pushSolve(float(now.iterations - sampledSolves_.iterations) /
+                               float(now.solves - sampledSolves_.solves),
+                           float(std::log10(std::max(now.lastResidual, 1e-30))));
+    sampledSolves_ = now;
 }
 
 }  // namespace cloth::app

@@ -31,7 +31,11 @@ struct ViewerHistory {
     static constexpr std::size_t kSamples = 150;
     static constexpr double kSampleSeconds = 0.1;
     std::vector<float> energy, maxStrain, stepMs;  // [J], [1], [ms per step]
+    // implicit_euler's solves: CG iterations per step over the sample, log10 of the last final
+    // |r|/|b| (empty for the other integrators).
+    std::vector<float> iterations, residual;
     void push(float e, float strain, float ms);
+    void pushSolve(float iterationsPerStep, float log10Residual);
 };
 
 class ViewerSession {
@@ -117,6 +121,7 @@ private:
     long totalSteps_ = 0, lastSteps_ = 0;
     int rebuilds_ = 0;
     ViewerHistory history_;
+    SolveStats sampledSolves_;  // the solver's counts at the last sample
 };
 
 // The drag velocity v [m/s] scaled down so that one step of Δt moves the collider at most
