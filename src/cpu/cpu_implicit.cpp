@@ -76,6 +76,8 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     const T h = dt_t_;
     const ImplicitSystem<T, Soa3<T>> a = system();
     const bool preconditioned = preconditioner_ != Preconditioner::None;
+    const bool jacobi = preconditioner_ == Preconditioner::Jacobi;
+    const bool multigrid = preconditioner_ == Preconditioner::Multigrid;
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
                      band.end, bending_);
@@ -88,7 +90,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
                        : h * (f_.get(k) + m * (gravity_ - dampingRate_ * v_.get(k)) - h * ap_[k]);
         if (pinned_[k]) dv_[k] = Vec3<T>(0);  // a new pin: the last solution moved it
         r_[k] = b;
-        if (preconditioned) blockInverse_[k] = pinned_[k] ? Sym3<T>{} : a.diagonal(k).inverse();
+        if (jacobi) blockInverse_[k] = pinned_[k] ? Sym3<T>{} : a.diagonal(k).inverse();
     }
     const double bb = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
     // The warm start: r = b − A Δv₀ with Δv₀ the last step's solution. Where it is no better a
@@ -105,17 +107,28 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         else
             r_[k] -= ap_[k];
     }
-    // z = M⁻¹ r: the block-Jacobi step is local, so it fuses with the sums r·r and r·z.
+    // The multigrid hierarchy's stencils at this state (every thread; it ends with a sync).
+    if (multigrid) multigrid_.linearise(a, cycleThreads(band, team));
+    const double goal = tolerance_ * tolerance_ * bb;
+    // z = M⁻¹ r: the block-Jacobi step is local, so it fuses with the sums r·r and r·z; the
+    // V-cycle needs the whole r (after the sum r·r, which tells whether it is needed at all).
     const std::vector<Vec3<T>>& z = preconditioned ? z_ : r_;
     auto residualSums = [&](std::int64_t k) {
-        if (preconditioned) z_[k] = blockInverse_[k] * r_[k];
+        if (jacobi) z_[k] = blockInverse_[k] * r_[k];
         return std::array<double, 2>{dot(r_[k], r_[k]), dot(r_[k], z[k])};
     };
-    std::array<double, 2> sums = reduceN<2>(band, team, residualSums);
+    auto residual = [&]() -> std::array<double, 2> {
+        if (!multigrid) return reduceN<2>(band, team, residualSums);
+        const double squared =
+            reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
+        if (squared <= goal) return {squared, 0};
+        multigrid_.apply(r_, z_, cycleThreads(band, team));  // ends with a sync
+        return {squared, reduce(band, team, [&](std::int64_t k) { return dot(r_[k], z_[k]); })};
+    };
+    std::array<double, 2> sums = residual();
     double rr = sums[0], rz = sums[1];
     for (std::int64_t k = band.begin; k < band.end; ++k) p_[k] = z[k];
     team.sync();  // the product reads the neighbours' p
-    const double goal = tolerance_ * tolerance_ * bb;
     int it = 0;
     while (rr > goal && it < maxIterations_) {
         a.apply(p_.data(), ap_.data(), band.begin, band.end);
@@ -127,7 +140,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
             r_[k] -= alpha * ap_[k];
         }
         ++it;
-        sums = reduceN<2>(band, team, residualSums);
+        sums = residual();
         rr = sums[0];
         if (rr <= goal) break;
         const T beta = T(sums[1] / rz);

@@ -112,6 +112,8 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
             z_.assign(n, Vec3<T>(0));
             blockInverse_.assign(n, Sym3<T>{});
         }
+        if (preconditioner_ == Preconditioner::Multigrid && !multigrid_.configured())
+            multigrid_.configure(grid_.nu, grid_.nv);
     }
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cpu/cpu_colliders.h"
+#include "cpu/cpu_multigrid.h"
 #include "cpu/cpu_rows.h"
 #include "cpu/cpu_soa.h"
 #include "cpu/worker_pool.h"
@@ -185,6 +186,10 @@ private:
     std::vector<Vec3<T>> dv_, r_, p_, ap_, z_;
     Preconditioner preconditioner_ = Preconditioner::None;
     std::vector<Sym3<T>> blockInverse_;
+    CpuMultigrid<T> multigrid_;  // the "multigrid" preconditioner's hierarchy
+    CycleThreads cycleThreads(const Band& band, const Team& team) const {
+        return {int(&band - bands_.data()), int(bands_.size()), team.barrier};
+    }
     // vbd: the step's start x_n, the inertial target y, the previous step's velocity v_{n−1}
     // (the adaptive initial guess), and with Chebyshev acceleration the iterates n − 1, n − 2.
     Soa3<T> xStart_;

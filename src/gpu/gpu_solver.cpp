@@ -108,6 +108,11 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     workGroup_ =
         chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
     checkGridFits(scene, workGroup_, info);
+    if (method_ == Method::ImplicitEuler &&
+        scene.integrator.preconditioner == Preconditioner::Multigrid)
+        throw InputError(scene.source, "integrator.preconditioner",
+                         "\"multigrid\" is CPU-only for now; the GPU backend has \"none\" and "
+                         "\"jacobi\"");
     if (info.maxUniformBlockSize < static_cast<long long>(sizeof(gpu::Params)))
         throw GpuUnavailable(info.renderer + " allows " + std::to_string(info.maxUniformBlockSize) +
                              "-byte uniform blocks; the parameters need " +

@@ -57,6 +57,8 @@ const char* preconditionerName(Preconditioner p) {
             return "none";
         case Preconditioner::Jacobi:
             return "jacobi";
+        case Preconditioner::Multigrid:
+            return "multigrid";
     }
     return "?";
 }

@@ -30,10 +30,12 @@ std::string methodList();  // "explicit_euler, symplectic_euler, ..."
 int forceEvaluationsPerStep(Method m);
 
 // implicit_euler's preconditioner of the conjugate gradient (docs/integrators.md,
-// "Preconditioners"): none, or the inverted 3×3 diagonal blocks of the system.
-enum class Preconditioner { None, Jacobi };
-inline constexpr Preconditioner kPreconditioners[] = {Preconditioner::None, Preconditioner::Jacobi};
-const char* preconditionerName(Preconditioner p);  // "none", "jacobi"
+// "Preconditioners"): none, the inverted 3×3 diagonal blocks of the system, or one multigrid
+// V-cycle on the grid's hierarchy (CPU only).
+enum class Preconditioner { None, Jacobi, Multigrid };
+inline constexpr Preconditioner kPreconditioners[] = {Preconditioner::None, Preconditioner::Jacobi,
+                                                      Preconditioner::Multigrid};
+const char* preconditionerName(Preconditioner p);  // "none", "jacobi", "multigrid"
 std::optional<Preconditioner> preconditionerFromName(const std::string& name);
 
 struct ClothSpec {

@@ -217,8 +217,8 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
         const std::optional<Preconditioner> preconditioner =
             preconditionerFromName(p.get<std::string>());
         if (!preconditioner)
-            fail("integrator.preconditioner",
-                 "unknown preconditioner \"" + p.get<std::string>() + "\"; known: none, jacobi");
+            fail("integrator.preconditioner", "unknown preconditioner \"" + p.get<std::string>() +
+                                                  "\"; known: none, jacobi, multigrid");
         integrator.preconditioner = *preconditioner;
     }
     integrator.tolerance = param(j, "tolerance", "integrator.tolerance", "integrator.tolerance");

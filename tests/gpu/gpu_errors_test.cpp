@@ -111,6 +111,16 @@ TEST_F(GpuErrors, ImpossibleGridIsAnInputError) {
     }
 }
 
+// The multigrid preconditioner is the CPU's alone: the GPU backend refuses it by name.
+TEST_F(GpuErrors, MultigridPreconditionerIsRefused) {
+    Scene s = smallScene();
+    s.integrator.method = Method::ImplicitEuler;
+    s.integrator.preconditioner = Preconditioner::Multigrid;
+    const std::string m = messageOf<InputError>([&] { makeGpuSolver(s); });
+    EXPECT_NE(m.find("integrator.preconditioner"), std::string::npos) << m;
+    EXPECT_NE(m.find("multigrid"), std::string::npos) << m;
+}
+
 // A stiff spring with a large Δt (far outside Δt < μ/λ_max) blows up within a few steps.
 Scene unstableScene() {
     Scene s = loadShippedScene("spring");

@@ -1,0 +1,117 @@
+// The geometric multigrid preconditioner of implicit Euler's conjugate gradient on the CPU
+// (docs/integrators.md, "Preconditioners"): one symmetric V-cycle over the grid and its
+// coarsenings.
+//
+// A coarse grid keeps every other vertex (the last one always: coarse I sits on fine
+// min(2I, n − 1)); bilinear interpolation P carries coarse corrections to the grid above and
+// its transpose R = Pᵀ restricts residuals. Every grid's system is a 5×5 stencil of 3×3
+// symmetric blocks per vertex: the fine one is read off the matrix-free product by probing it
+// with 25 colours × 3 unit directions (exact, as the fine stencil has radius 2), a coarse one is
+// the Galerkin product A_c = Pᵀ A P of the grid above (bilinear P keeps radius 2). Pins are
+// constraints on every grid: a coarse vertex is pinned iff the fine vertex it sits on is, its
+// rows and columns are the identity's, restriction gives 0 there and prolongation skips pinned
+// fine vertices. Smoothing is alternating-line block Gauss–Seidel: every row, then every column,
+// solved exactly (banded Cholesky) against the current values of the rest, the lines in 5
+// colours (j mod 5, i mod 5) so that lines of a colour do not touch; the membrane's springs are
+// stiff along u and v and soft in shear, an anisotropy point smoothers cannot handle. It
+// converges for any symmetric positive definite A; after the coarse correction it runs in the
+// exact reverse order (columns, then rows, colours backwards), its adjoint. The coarsest grid
+// is solved by a dense Cholesky factorisation. The cycle is then a symmetric
+// positive definite operator, as the conjugate gradient needs. It has no reductions: its result
+// does not depend on the thread count.
+#pragma once
+
+#include <barrier>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "cpu/cpu_soa.h"
+#include "model/implicit_system.h"
+
+namespace cloth {
+
+// The threads that run a V-cycle together: thread `index` of `count`, a barrier between passes.
+struct CycleThreads {
+    int index = 0, count = 1;
+    std::barrier<>* barrier = nullptr;
+    void sync() const {
+        if (barrier) barrier->arrive_and_wait();
+    }
+};
+
+template <typename T>
+class CpuMultigrid {
+public:
+    using FineSystem = ImplicitSystem<T, Soa3<T>>;
+    // The cycle's arithmetic, in float too: a stiff membrane's A = m I + h²K holds m at 1e-6 of
+    // h²K, under float's rounding of the Galerkin sums (its coarse grids went indefinite).
+    using S = double;
+
+    // The hierarchy under an nu × nv grid: coarse grids down to at most kCoarsest vertices.
+    void configure(int nu, int nv);
+    int levels() const { return int(levels_.size()); }  // the fine grid included
+    bool configured() const { return configured_; }
+
+    // Per step, once the fine system is linearised: the stencils of every grid, the smoothers'
+    // inverted blocks and the coarsest factorisation. Every thread calls it; it ends with a sync.
+    void linearise(const FineSystem& fine, const CycleThreads& threads);
+
+    // z = V r on the fine grid (r = 0 on pinned rows; z is 0 there). Every thread calls it; it
+    // ends with a sync.
+    void apply(const std::vector<Vec3<T>>& r, std::vector<Vec3<T>>& z, const CycleThreads& threads);
+
+    static constexpr int kCoarsest = 64;       // vertices of the grid solved exactly
+    static constexpr int kSerialBelow = 4096;  // grids smaller than this run on one thread
+    static constexpr int kSweeps = 1;          // smoothing sweeps before and after
+    static constexpr int kStencil = 25;        // blocks per vertex: offsets (−2..2)²
+
+private:
+    // One axis of a coarsening: coarse index I sits on fine index at[I]; fine index i takes
+    // (1 − w) of coarse lower[i] and w of lower[i] + 1.
+    struct Axis {
+        std::vector<int> at, lower;
+        std::vector<T> weight;
+    };
+    struct Level {
+        int nu = 0, nv = 0;
+        Axis u, v;               // from the grid above (unused on the fine grid)
+        std::vector<Sym3<S>> a;  // kStencil blocks per vertex, offset (di, dj) at 5(dj+2)+di+2
+        // The smoother's factors: every row (direction 0) and column (1) of the grid as one
+        // banded system (3 unknowns a vertex, the stencil's blocks along it), A_line = L Lᵀ,
+        // L's band stored row by row, kBand + 1 entries (the diagonal last).
+        std::vector<double> lines[2];
+        std::vector<std::uint8_t> pinned;
+        std::vector<Vec3<S>> r, z, t;  // the fine grid's r, z: copies of the caller's
+        std::int64_t count() const { return std::int64_t(nu) * nv; }
+    };
+
+    static Axis coarsen(int n);
+    using ProbeSystem = ImplicitSystem<S, Soa3<S>>;  // the fine system in the cycle's arithmetic
+    void probeFine(const ProbeSystem& fine, const CycleThreads& threads);
+    void galerkin(int l, const CycleThreads& threads);  // level l from level l − 1
+    void smoother(int l, const CycleThreads& threads);
+    void relaxLine(Level& g, int direction, int line, const Vec3<S>* r, Vec3<S>* z);
+    static constexpr int kBand = 8;  // a line's half bandwidth in unknowns: 3 × 2 + 2
+    void cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThreads& threads);
+    void factorCoarsest();
+    void solveCoarsest();
+    // [begin, end) of a grid's vertices for this thread (whole rows).
+    static std::pair<std::int64_t, std::int64_t> slice(int nu, int nv, const CycleThreads& threads);
+
+    bool configured_ = false;
+    std::vector<Level> levels_;
+    std::vector<std::vector<Vec3<S>>> probe_, probed_;  // per thread: the fine probes
+    // The fine system's data in double (float's rounding of h²K's blocks at 1e6 N/m, 128², is
+    // larger than the mass: a float probe gave an indefinite stencil).
+    Soa3<S> x_;
+    std::vector<StencilSpring<S>> springs_;
+    std::vector<S> inverseMass_;
+    std::vector<double> cholesky_;  // the coarsest system's factor L (row-major, lower)
+    std::vector<double> solve_;
+};
+
+extern template class CpuMultigrid<float>;
+extern template class CpuMultigrid<double>;
+
+}  // namespace cloth

@@ -1,0 +1,240 @@
+// The multigrid preconditioner of implicit Euler (cpu/cpu_multigrid.h) as an operator: the
+// conjugate gradient needs it symmetric positive definite, and it is worth its cost only if one
+// V-cycle removes most of the error, at every resolution alike.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <sstream>
+
+#include "backends/solver_factory.h"
+#include "cpu/cpu_multigrid.h"
+#include "scene/scene_loader.h"
+#include "support/material_scene.h"
+#include "support/same_bits.h"
+
+namespace cloth {
+namespace {
+
+// implicit_euler's system of the drape cloth at `cells`² vertices, stretch `stretch` [N/m] (0: the
+// cotton preset's), at Δt = 1/60, linearised at a sagged, slightly crumpled state (every spring
+// strained a little, some compressed), pinned at two corners.
+struct Fixture {
+    Scene scene;
+    Grid grid;
+    std::vector<StencilSpring<double>> springs;
+    Soa3<double> x;
+    std::vector<double> inverseMass;
+    std::vector<std::uint8_t> pinned;
+    CpuMultigrid<double>::FineSystem system;
+    CpuMultigrid<double> multigrid;
+
+    Fixture(int cells, double stretch) {
+        std::ostringstream resolution, material;
+        resolution << "cloth.resolution=[" << cells << "," << cells << "]";
+        material << "material.stretch=" << stretch;
+        std::vector<std::string> sets = {resolution.str(), "integrator.dt=0.016667"};
+        if (stretch > 0) sets.push_back(material.str());
+        scene = loadScene(CLOTH_SOURCE_DIR "/scenes/drape.json", sets);
+        grid = scene.grid();
+        springs = activeSprings<double>(scene);
+        const std::int64_t n = grid.count();
+        x.assign(n, Vec3<double>(0));
+        std::mt19937 random(7);
+        std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+        for (int j = 0; j < grid.nv; ++j)
+            for (int i = 0; i < grid.nu; ++i) {
+                const double s = double(i) / (grid.nu - 1), t = double(j) / (grid.nv - 1);
+                glm::dvec3 p = grid.restPosition(i, j) * 1.002;  // strained 0.2 %
+                p.y -= 0.1 * std::sin(3.14159 * s) * std::sin(3.14159 * t);
+                p += glm::dvec3(jitter(random), jitter(random), jitter(random)) * grid.du;
+                x.set(grid.index(i, j), p);
+                inverseMass.push_back(1 / scene.vertexMass(i, j));
+            }
+        pinned.assign(std::size_t(n), 0);
+        pinned[0] = pinned[std::size_t(grid.nu - 1)] = 1;
+        system.nu = grid.nu;
+        system.nv = grid.nv;
+        system.springs = &springs;
+        system.bending = bendingWeights(grid, scene.bendingStiffness());
+        system.x = &x;
+        system.inverseMass = inverseMass.data();
+        system.pinned = pinned.data();
+        system.h = scene.integrator.dt;
+        system.drag = 1 + system.h * scene.dampingRate();
+        multigrid.configure(grid.nu, grid.nv);
+        multigrid.linearise(system, CycleThreads{});
+    }
+    std::vector<Vec3<double>> random(unsigned seed) const {
+        std::mt19937 g(seed);
+        std::normal_distribution<double> normal;
+        std::vector<Vec3<double>> v(std::size_t(grid.count()));
+        for (std::size_t k = 0; k < v.size(); ++k)
+            if (!pinned[k]) v[k] = {normal(g), normal(g), normal(g)};
+        return v;
+    }
+    std::vector<Vec3<double>> cycle(const std::vector<Vec3<double>>& r) {
+        std::vector<Vec3<double>> z(r.size());
+        multigrid.apply(r, z, CycleThreads{});
+        return z;
+    }
+    std::vector<Vec3<double>> product(const std::vector<Vec3<double>>& p) const {
+        std::vector<Vec3<double>> out(p.size());
+        system.apply(p.data(), out.data(), 0, grid.count());
+        return out;
+    }
+    // The energy-norm contraction of the stationary iteration x ← x + V (b − A x), per cycle
+    // over its last of `cycles` cycles.
+    double contraction(int cycles) {
+        const auto exact = random(3);
+        const auto b = product(exact);
+        std::vector<Vec3<double>> solution(b.size());
+        auto energy = [&] {
+            std::vector<Vec3<double>> e(b.size());
+            for (std::size_t k = 0; k < e.size(); ++k) e[k] = exact[k] - solution[k];
+            const auto ae = product(e);
+            double s = 0;
+            for (std::size_t k = 0; k < e.size(); ++k) s += glm::dot(e[k], ae[k]);
+            return std::sqrt(s);
+        };
+        double last = energy(), factor = 0;
+        for (int it = 0; it < cycles; ++it) {
+            const auto ax = product(solution);
+            std::vector<Vec3<double>> r(b.size());
+            for (std::size_t k = 0; k < r.size(); ++k) r[k] = b[k] - ax[k];
+            const auto z = cycle(r);
+            for (std::size_t k = 0; k < solution.size(); ++k) solution[k] += z[k];
+            const double now = energy();
+            factor = now / last;
+            last = now;
+        }
+        return factor;
+    }
+};
+
+double dot(const std::vector<Vec3<double>>& a, const std::vector<Vec3<double>>& b) {
+    double s = 0;
+    for (std::size_t k = 0; k < a.size(); ++k) s += glm::dot(a[k], b[k]);
+    return s;
+}
+
+// The CG's preconditioner must be a symmetric operator: u·V w = w·V u.
+TEST(Multigrid, VCycleIsSymmetric) {
+    for (double stretch : {1e6, 0.0}) {
+        Fixture f(64, stretch);
+        ASSERT_GE(f.multigrid.levels(), 4);
+        const auto u = f.random(1), w = f.random(2);
+        const double uvw = dot(u, f.cycle(w)), wvu = dot(w, f.cycle(u));
+        EXPECT_NEAR(uvw, wvu, 1e-10 * std::abs(uvw)) << "stretch " << stretch;
+    }
+}
+
+// ... and positive definite: u·V u > 0.
+TEST(Multigrid, VCycleIsPositiveDefinite) {
+    for (double stretch : {1e6, 0.0}) {
+        Fixture f(64, stretch);
+        for (unsigned seed = 1; seed <= 5; ++seed) {
+            const auto u = f.random(seed);
+            EXPECT_GT(dot(u, f.cycle(u)), 0) << "seed " << seed << ", stretch " << stretch;
+        }
+    }
+}
+
+// As a solver on its own, x ← x + V (b − A x), one V-cycle divides the error's energy norm by
+// a factor below 1 and independent of the resolution: the point of multigrid. Measured at this
+// sagged, jittered state (0.85–0.87 at stretch 1e6, 0.52–0.57 for cotton; flat and unjittered
+// 0.25–0.29 and 0.38–0.52): short of the 0.3 aimed at. What is left is out-of-plane error, rough
+// where the jitter tilts the stiff springs, smooth on the sag alone (0.64–0.70): the bilinear
+// interpolation of a curved sheet's smooth normal displacement stretches the coarse membrane
+// (membrane locking), so the coarse grids do not see the sheet's soft inextensional modes.
+TEST(Multigrid, VCycleContractsTheErrorAtEveryResolution) {
+    for (double stretch : {1e6, 0.0}) {
+        const double reached = stretch > 0 ? 0.9 : 0.6;
+        std::vector<double> factors;
+        for (int cells : {33, 65, 129}) {
+            Fixture f(cells, stretch);
+            const double factor = f.contraction(8);
+            std::printf("stretch %s, %d²: %d levels, V-cycle contraction %.3f\n",
+                        stretch > 0 ? "1e6" : "cotton", cells, f.multigrid.levels(), factor);
+            EXPECT_LT(factor, reached) << cells << "², stretch " << stretch;
+            factors.push_back(factor);
+        }
+        EXPECT_LT(std::abs(factors.back() - factors.front()), 0.1) << "stretch " << stretch;
+    }
+}
+
+struct Solved {
+    SimState state;
+    SolveStats stats;
+};
+
+Solved run(Scene scene, Preconditioner p, Precision precision, int threads, long steps) {
+    scene.integrator.preconditioner = p;
+    std::unique_ptr<Solver> solver = makeSolver(scene, {Backend::Cpu, precision, threads});
+    const StepResult r = solver->step(steps);
+    EXPECT_FALSE(r.unstable) << r.reason;
+    return {solver->read(), solver->solveStats()};
+}
+
+double largestDifference(const SimState& a, const SimState& b) {
+    double d = 0;
+    for (std::size_t k = 0; k < a.positions.size(); ++k)
+        d = std::max(d, glm::length(a.positions[k] - b.positions[k]));
+    return d;
+}
+
+// A preconditioner changes how the system is solved, never which: the material sheet (pinned
+// corners, wind, drag, bending, spring damping) at Δt = 1/60 solved to 1e-11 moves the same
+// with the V-cycle as with block-Jacobi, in fewer iterations.
+TEST(MultigridSolver, SolvesTheSameSystemAsJacobiInFewerIterations) {
+    Scene scene = materialScene(Method::ImplicitEuler, 1.0 / 60);
+    scene.material->bend = 1e-4;
+    scene.material->springDamping = 1e-3;
+    scene.integrator.tolerance = 1e-11;
+    scene.integrator.maxIterations = 2000;
+    const Solved jacobi = run(scene, Preconditioner::Jacobi, Precision::Double, 1, 60);
+    const Solved multigrid = run(scene, Preconditioner::Multigrid, Precision::Double, 1, 60);
+    EXPECT_EQ(jacobi.stats.misses, 0);
+    EXPECT_EQ(multigrid.stats.misses, 0);
+    const double d = largestDifference(jacobi.state, multigrid.state);
+    std::printf("after 1 s: |x_jacobi − x_multigrid| ≤ %.3g m; iterations per step %.1f → %.1f\n",
+                d, double(jacobi.stats.iterations) / jacobi.stats.solves,
+                double(multigrid.stats.iterations) / multigrid.stats.solves);
+    EXPECT_LT(d, 1e-9 * scene.grid().extent());
+    EXPECT_LT(multigrid.stats.iterations, jacobi.stats.iterations);
+}
+
+// The V-cycle has no reductions and its passes write disjoint rows: 1 and 3 threads give the
+// same bits, in float and double (a grid large enough for its fine levels to be shared).
+TEST(MultigridSolver, RunsAreBitIdenticalOnAnyThreadCount) {
+    Scene scene = materialScene(Method::ImplicitEuler, 1.0 / 60);
+    scene.cloth.nu = 80;
+    scene.cloth.nv = 90;
+    scene.pins = {{0, 89}, {79, 89}};
+    for (Precision precision : {Precision::Float, Precision::Double}) {
+        const Solved serial = run(scene, Preconditioner::Multigrid, precision, 1, 10);
+        const Solved parallel = run(scene, Preconditioner::Multigrid, precision, 3, 10);
+        test::expectSameBits(serial.state, parallel.state, "3 threads");
+        EXPECT_EQ(serial.stats.iterations, parallel.stats.iterations);
+    }
+}
+
+// Issue 17's case: the drape at 128², stretch 1e6 N/m, Δt = 1/60, relative residual 1e-6, in
+// double, the first 10 steps. Block-Jacobi takes 115.5 iterations per step there; the issue
+// asks for at most 20, which this V-cycle does not reach (see the contraction test).
+TEST(MultigridSolver, IssueCaseIterationsPerStep) {
+    Scene scene = loadScene(CLOTH_SOURCE_DIR "/scenes/drape.json",
+                            {"cloth.resolution=[128,128]", "material.stretch=1e6",
+                             "integrator.method=\"implicit_euler\"", "integrator.dt=0.016667",
+                             "integrator.tolerance=1e-6", "integrator.max_iterations=3000"});
+    const Solved multigrid = run(scene, Preconditioner::Multigrid, Precision::Double, 2, 10);
+    const double perStep = double(multigrid.stats.iterations) / multigrid.stats.solves;
+    std::printf("drape 128², stretch 1e6, 10 steps: %.1f iterations per step, %ld misses\n",
+                perStep, multigrid.stats.misses);
+    EXPECT_EQ(multigrid.stats.misses, 0);
+    EXPECT_LE(perStep, 20);
+}
+
+}  // namespace
+}  // namespace cloth
