@@ -7,30 +7,14 @@
 
 #include "backends/solver_factory.h"
 #include "support/material_scene.h"
+#include "support/preconditioned_runs.h"
 #include "support/same_bits.h"
 
 namespace cloth {
 namespace {
 
-struct Solved {
-    SimState state;
-    SolveStats stats;
-};
-
-Solved run(Scene scene, Preconditioner p, Precision precision, int threads, long steps) {
-    scene.integrator.preconditioner = p;
-    std::unique_ptr<Solver> solver = makeSolver(scene, {Backend::Cpu, precision, threads});
-    const StepResult r = solver->step(steps);
-    EXPECT_FALSE(r.unstable) << r.reason;
-    return {solver->read(), solver->solveStats()};
-}
-
-double largestDifference(const SimState& a, const SimState& b) {
-    double d = 0;
-    for (std::size_t k = 0; k < a.positions.size(); ++k)
-        d = std::max(d, glm::length(a.positions[k] - b.positions[k]));
-    return d;
-}
+using test::largestDifference;
+using test::Solved;
 
 // The material sheet (pinned corners, wind, drag, masses ¼ and ½ at corners and edges) at
 // Δt = 1/60 with bending and spring damping: both preconditioners solved to 1e-11 give the same
@@ -41,8 +25,10 @@ TEST(ImplicitPreconditioner, JacobiSolvesTheSameSystemInFewerIterations) {
     scene.material->springDamping = 1e-3;
     scene.integrator.tolerance = 1e-11;
     scene.integrator.maxIterations = 2000;
-    const Solved none = run(scene, Preconditioner::None, Precision::Double, 1, 60);
-    const Solved jacobi = run(scene, Preconditioner::Jacobi, Precision::Double, 1, 60);
+    const Solved none =
+        test::runPreconditioned(scene, Preconditioner::None, Precision::Double, 1, 60);
+    const Solved jacobi =
+        test::runPreconditioned(scene, Preconditioner::Jacobi, Precision::Double, 1, 60);
     EXPECT_EQ(none.stats.misses, 0);
     EXPECT_EQ(jacobi.stats.misses, 0);
     const double d = largestDifference(none.state, jacobi.state);
@@ -62,9 +48,11 @@ TEST(ImplicitPreconditioner, JacobiRunsAreBitIdenticalOnAnyThreadCount) {
     scene.cloth.size = {1.2, 2.7};
     scene.pins = {{0, 89}, {39, 89}};
     for (Precision precision : {Precision::Float, Precision::Double}) {
-        const Solved serial = run(scene, Preconditioner::Jacobi, precision, 1, 8);
+        const Solved serial =
+            test::runPreconditioned(scene, Preconditioner::Jacobi, precision, 1, 8);
         for (int threads : {2, 3}) {
-            const Solved parallel = run(scene, Preconditioner::Jacobi, precision, threads, 8);
+            const Solved parallel =
+                test::runPreconditioned(scene, Preconditioner::Jacobi, precision, threads, 8);
             test::expectSameBits(serial.state, parallel.state,
                                  std::to_string(threads) + " threads");
             EXPECT_EQ(serial.stats.iterations, parallel.stats.iterations);
@@ -79,8 +67,8 @@ TEST(ImplicitPreconditioner, JacobiRunsAreBitIdenticalOnAnyThreadCount) {
 TEST(ImplicitPreconditioner, WarmStartSolvesASteadyFallInAFewIterations) {
     const Scene scene = fallingMaterialScene(Method::ImplicitEuler, 0.0, 1.0 / 60);
     for (Preconditioner p : {Preconditioner::None, Preconditioner::Jacobi}) {
-        const Solved first = run(scene, p, Precision::Double, 1, 1);
-        const Solved ten = run(scene, p, Precision::Double, 1, 10);
+        const Solved first = test::runPreconditioned(scene, p, Precision::Double, 1, 1);
+        const Solved ten = test::runPreconditioned(scene, p, Precision::Double, 1, 10);
         const double later = double(ten.stats.iterations - first.stats.iterations) / 9;
         std::printf("%s: %ld iterations at the first step, %.1f per step after\n",
                     preconditionerName(p), first.stats.iterations, later);

@@ -12,6 +12,7 @@
 #include "cpu/cpu_multigrid.h"
 #include "scene/scene_loader.h"
 #include "support/material_scene.h"
+#include "support/preconditioned_runs.h"
 #include "support/same_bits.h"
 
 namespace cloth {
@@ -164,25 +165,8 @@ TEST(Multigrid, VCycleContractsTheErrorAtEveryResolution) {
     }
 }
 
-struct Solved {
-    SimState state;
-    SolveStats stats;
-};
-
-Solved run(Scene scene, Preconditioner p, Precision precision, int threads, long steps) {
-    scene.integrator.preconditioner = p;
-    std::unique_ptr<Solver> solver = makeSolver(scene, {Backend::Cpu, precision, threads});
-    const StepResult r = solver->step(steps);
-    EXPECT_FALSE(r.unstable) << r.reason;
-    return {solver->read(), solver->solveStats()};
-}
-
-double largestDifference(const SimState& a, const SimState& b) {
-    double d = 0;
-    for (std::size_t k = 0; k < a.positions.size(); ++k)
-        d = std::max(d, glm::length(a.positions[k] - b.positions[k]));
-    return d;
-}
+using test::largestDifference;
+using test::Solved;
 
 // A preconditioner changes how the system is solved, never which: the material sheet (pinned
 // corners, wind, drag, bending, spring damping) at Δt = 1/60 solved to 1e-11 moves the same
@@ -193,8 +177,10 @@ TEST(MultigridSolver, SolvesTheSameSystemAsJacobiInFewerIterations) {
     scene.material->springDamping = 1e-3;
     scene.integrator.tolerance = 1e-11;
     scene.integrator.maxIterations = 2000;
-    const Solved jacobi = run(scene, Preconditioner::Jacobi, Precision::Double, 1, 60);
-    const Solved multigrid = run(scene, Preconditioner::Multigrid, Precision::Double, 1, 60);
+    const Solved jacobi =
+        test::runPreconditioned(scene, Preconditioner::Jacobi, Precision::Double, 1, 60);
+    const Solved multigrid =
+        test::runPreconditioned(scene, Preconditioner::Multigrid, Precision::Double, 1, 60);
     EXPECT_EQ(jacobi.stats.misses, 0);
     EXPECT_EQ(multigrid.stats.misses, 0);
     const double d = largestDifference(jacobi.state, multigrid.state);
@@ -213,8 +199,10 @@ TEST(MultigridSolver, RunsAreBitIdenticalOnAnyThreadCount) {
     scene.cloth.nv = 90;
     scene.pins = {{0, 89}, {79, 89}};
     for (Precision precision : {Precision::Float, Precision::Double}) {
-        const Solved serial = run(scene, Preconditioner::Multigrid, precision, 1, 10);
-        const Solved parallel = run(scene, Preconditioner::Multigrid, precision, 3, 10);
+        const Solved serial =
+            test::runPreconditioned(scene, Preconditioner::Multigrid, precision, 1, 10);
+        const Solved parallel =
+            test::runPreconditioned(scene, Preconditioner::Multigrid, precision, 3, 10);
         test::expectSameBits(serial.state, parallel.state, "3 threads");
         EXPECT_EQ(serial.stats.iterations, parallel.stats.iterations);
     }
@@ -228,7 +216,8 @@ TEST(MultigridSolver, IssueCaseIterationsPerStep) {
                             {"cloth.resolution=[128,128]", "material.stretch=1e6",
                              "integrator.method=\"implicit_euler\"", "integrator.dt=0.016667",
                              "integrator.tolerance=1e-6", "integrator.max_iterations=3000"});
-    const Solved multigrid = run(scene, Preconditioner::Multigrid, Precision::Double, 2, 10);
+    const Solved multigrid =
+        test::runPreconditioned(scene, Preconditioner::Multigrid, Precision::Double, 2, 10);
     const double perStep = double(multigrid.stats.iterations) / multigrid.stats.solves;
     std::printf("drape 128², stretch 1e6, 10 steps: %.1f iterations per step, %ld misses\n",
                 perStep, multigrid.stats.misses);
