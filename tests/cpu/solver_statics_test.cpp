@@ -1,4 +1,4 @@
-// Statics do not depend on the integrator (issue 17): a cloth at rest is where its forces
+// Statics do not depend on the integrator: a cloth at rest is where its forces
 // balance, and every integrator that settles settles there. The hanging cotton sheet of
 // tests/support/material_statics (1 m square, held along two stretches of its top edge) is run
 // to rest by symplectic Euler at half its stability bound, by implicit Euler (block-Jacobi CG)
