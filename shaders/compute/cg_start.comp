@@ -19,10 +19,14 @@ void main() {
             cgVelocityChange[k] = vec4(0.0);
         else
             r -= cgProduct[k].xyz;
-        vec3 z = precondition(k, r);
         cgResidual[k] = vec4(r, 0.0);
+#ifndef PRECONDITIONER_MULTIGRID  // p and r·z follow the V-cycle (cg_preconditioned.comp)
+        vec3 z = precondition(k, r);
         cgDirection[k] = vec4(z, 0.0);
         rz = dot(r, z);
+#endif
     }
+#ifndef PRECONDITIONER_MULTIGRID
     storeGroupSum(rz);
+#endif
 }

@@ -19,7 +19,11 @@ void main() {
         vec3 r = cgResidual[k].xyz - alpha * cgProduct[k].xyz;
         cgResidual[k] = vec4(r, 0.0);
         rr = dot(r, r);
+#ifndef PRECONDITIONER_MULTIGRID
         rz = dot(r, precondition(k, r));
+#endif
     }
+#ifndef PRECONDITIONER_MULTIGRID  // the sums follow the V-cycle (cg_preconditioned.comp)
     storeGroupSums(rr, rz);
+#endif
 }

@@ -42,7 +42,7 @@ constexpr int stencilSlot(int di, int dj) {
 template <typename T>
 typename CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int n) {
     Axis a;
-    const int coarse = n <= 2 ? n : n / 2 + 1;
+    const int coarse = coarsenedCount(n);
     for (int I = 0; I < coarse; ++I) a.at.push_back(std::min(2 * I, n - 1));
     for (int i = 0; i < n; ++i) {
         int I = 0;
@@ -63,18 +63,14 @@ template <typename T>
 void CpuMultigrid<T>::configure(int nu, int nv) {
     levels_.clear();
     configured_ = true;
-    Level fine;
-    fine.nu = nu;
-    fine.nv = nv;
-    levels_.push_back(std::move(fine));
-    while (levels_.back().count() > kCoarsest) {
-        const Level& above = levels_.back();
+    for (const MultigridLevel& size : multigridLevels(nu, nv)) {
         Level level;
-        level.u = coarsen(above.nu);
-        level.v = coarsen(above.nv);
-        level.nu = int(level.u.at.size());
-        level.nv = int(level.v.at.size());
-        if (level.nu == above.nu && level.nv == above.nv) break;
+        level.nu = size.nu;
+        level.nv = size.nv;
+        if (!levels_.empty()) {
+            level.u = coarsen(levels_.back().nu);
+            level.v = coarsen(levels_.back().nv);
+        }
         levels_.push_back(std::move(level));
     }
     for (std::size_t l = 0; l < levels_.size(); ++l) {

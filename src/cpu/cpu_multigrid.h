@@ -28,6 +28,7 @@
 
 #include "cpu/cpu_soa.h"
 #include "model/implicit_system.h"
+#include "model/multigrid_levels.h"
 
 namespace cloth {
 
@@ -61,7 +62,7 @@ public:
     // ends with a sync.
     void apply(const std::vector<Vec3<T>>& r, std::vector<Vec3<T>>& z, const CycleThreads& threads);
 
-    static constexpr int kCoarsest = 64;       // vertices of the grid solved exactly
+    static constexpr int kCoarsest = kMultigridCoarsest;  // vertices of the grid solved exactly
     static constexpr int kSerialBelow = 4096;  // grids smaller than this run on one thread
     static constexpr int kSweeps = 1;          // smoothing sweeps before and after
     static constexpr int kStencil = 25;        // blocks per vertex: offsets (−2..2)²

@@ -56,6 +56,8 @@ inline constexpr int kReductionLocation = 0;
 // vbd's kernels: the guess whether v_{n−1} is there (int), the sweep its colour (int), the
 // Chebyshev extrapolation ω (float).
 inline constexpr int kVbdLocation = 3;
+// cg_preconditioned.comp: whether it starts the solve (int; p = z).
+inline constexpr int kPreconditionedStartLocation = 6;
 enum CgReduction : int {
     kReduceStart = 0,
     kReduceAlpha = 1,

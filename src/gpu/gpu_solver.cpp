@@ -41,7 +41,8 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
                                  "/compute (shader directory " + dir.how +
                                  "); set CLOTH_SHADER_DIR to the project's shaders/");
     std::array<unsigned, kKernelCount> programs{};
-    std::vector<Kernel> kernels = kernelsOf(scene.integrator.method);
+    std::vector<Kernel> kernels =
+        kernelsOf(scene.integrator.method, scene.integrator.preconditioner);
     Defines extra;
     if (forces == ForcesKernel::Tiled) extra.push_back({"FORCES_TILED", ""});
     if (manyStepsGroup > 0) {
@@ -108,11 +109,9 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     workGroup_ =
         chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
     checkGridFits(scene, workGroup_, info);
-    if (method_ == Method::ImplicitEuler &&
-        scene.integrator.preconditioner == Preconditioner::Multigrid)
-        throw InputError(scene.source, "integrator.preconditioner",
-                         "\"multigrid\" is CPU-only for now; the GPU backend has \"none\" and "
-                         "\"jacobi\"");
+    const bool multigrid = method_ == Method::ImplicitEuler &&
+                           scene.integrator.preconditioner == Preconditioner::Multigrid;
+    if (multigrid) checkMultigridFits(scene, info);
     if (info.maxUniformBlockSize < static_cast<long long>(sizeof(gpu::Params)))
         throw GpuUnavailable(info.renderer + " allows " + std::to_string(info.maxUniformBlockSize) +
                              "-byte uniform blocks; the parameters need " +
@@ -132,6 +131,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     glGenBuffers(1, &paramsBuffer_);
     for (gpu::Binding b : integratorBindings(method_, preconditioner_))
         glGenBuffers(1, &buffers_[b]);
+    if (multigrid) multigrid_ = std::make_unique<GpuMultigrid>(nu_, nv_, workGroup_);
     upload(scene);
     setGrabUniforms(std::nullopt);
     // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
@@ -276,13 +276,14 @@ void GpuSolver::bindBuffers() const {
     for (unsigned b = 0; b < buffers_.size(); ++b)
         if (buffers_[b] != 0) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
     glBindBufferBase(GL_UNIFORM_BUFFER, gpu::kParamsBlock, paramsBuffer_);
+    if (multigrid_) multigrid_->bind();
 }
 
 // The grab's two uniforms in every kernel that includes grab.glsl: the forces pass, many steps
 // per dispatch and, for implicit_euler, its right-hand side, the warm start's product and A p.
 void GpuSolver::setGrabUniforms(const std::optional<Grab>& grab) const {
     for (Kernel k : {Kernel::Forces, Kernel::ManySteps, Kernel::CgRightHandSide,
-                     Kernel::CgWarmStart, Kernel::CgProduct, Kernel::VbdSweep}) {
+                     Kernel::CgWarmStart, Kernel::CgProduct, Kernel::VbdSweep, Kernel::MgFine}) {
         const unsigned program = programs_[int(k)];
         if (program == 0) continue;
         glProgramUniform1i(program, gpu::kGrabVertexLocation, grab ? GLint(grab->vertex) : -1);
@@ -315,6 +316,7 @@ std::size_t GpuSolver::bufferBytes() const {
         glGetBufferParameteri64v(GL_SHADER_STORAGE_BUFFER, GL_BUFFER_SIZE, &size);
         bytes += std::size_t(size);
     }
+    if (multigrid_) bytes += multigrid_->bytes();
     return bytes;
 }
 

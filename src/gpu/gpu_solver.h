@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "gpu/gpu_backend.h"
 #include "gpu/gpu_collider_table.h"
 #include "gpu/gpu_layout.h"
+#include "gpu/gpu_multigrid.h"
 #include "gpu/gpu_variant.h"
 #include "solver/solver.h"
 
@@ -106,6 +108,9 @@ private:
     void stepVbd(long stepNumber) const;
     gpu::CgState solve() const;
     void iterate() const;
+    // With the multigrid preconditioner: z = V r, then z into the CG with its sums (p = z at
+    // the solve's start).
+    void precondition(bool start) const;
     void runReduction(gpu::CgReduction which) const;
     gpu::CgState readCgState() const;
     void recordSolve(long stepNumber, const gpu::CgState& cg);
@@ -116,6 +121,7 @@ private:
     Method method_;
     Preconditioner preconditioner_;  // implicit_euler's (a kernel variant: fixed per solver)
     int maxIterations_;              // implicit_euler's cap on CG iterations per step
+    std::unique_ptr<GpuMultigrid> multigrid_;  // the "multigrid" preconditioner's hierarchy
     // vbd: sweeps per step, Chebyshev's ρ, and the first step whose v_{n−1} is in kVbdPrevious.
     int vbdIterations_;
     double chebyshevRho_;

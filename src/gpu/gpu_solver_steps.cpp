@@ -112,9 +112,11 @@ void GpuSolver::stepImplicit(long stepNumber) {
     runPass(Kernel::Forces);
     runPass(Kernel::CgRightHandSide);
     runReduction(gpu::kReduceStart);
+    if (multigrid_) multigrid_->linearise(programs_);
     runPass(Kernel::CgWarmStart);
     runReduction(gpu::kReduceWarm);
     runPass(Kernel::CgStart);
+    if (multigrid_) precondition(true);
     runReduction(gpu::kReduceStartDirection);
     recordSolve(stepNumber, solve());
     runStepPass(Kernel::ImplicitFinish, stepNumber);
@@ -160,13 +162,24 @@ gpu::CgState GpuSolver::solve() const {
 }
 
 // One CG iteration (docs/integrators.md): α = r·z / p·A p; Δv += α p; r −= α A p;
-// z = M⁻¹ r; β = r_new·z_new / r·z; p = z + β p. The dot products never leave the GPU.
+// z = M⁻¹ r; β = r_new·z_new / r·z; p = z + β p. The dot products never leave the GPU; M⁻¹ is
+// part of the update and direction passes, or with multigrid its own passes between them.
 void GpuSolver::iterate() const {
     runPass(Kernel::CgProduct);
     runReduction(gpu::kReduceAlpha);
     runPass(Kernel::CgUpdate);
+    if (multigrid_) precondition(false);
     runReduction(gpu::kReduceBeta);
     runPass(Kernel::CgDirection);
+}
+
+// The V-cycle on r (gpu_multigrid.h), then cg_preconditioned.comp: r·z (and r·r) summed after
+// it, as the CPU's loop does (src/cpu/cpu_implicit.cpp).
+void GpuSolver::precondition(bool start) const {
+    multigrid_->apply(programs_);
+    glProgramUniform1i(programs_[int(Kernel::CgPreconditioned)], gpu::kPreconditionedStartLocation,
+                       start ? 1 : 0);
+    runPass(Kernel::CgPreconditioned);
 }
 
 // The second level of a dot product: one work group over the partial sums.

@@ -7,6 +7,7 @@
 #include "gpu/egl_context.h"
 #include "gpu/gpu_collider_table.h"
 #include "model/errors.h"
+#include "model/multigrid_levels.h"
 #include "model/stiffness.h"
 #include "solver/solver.h"
 
@@ -58,7 +59,46 @@ std::pair<int, std::string> springTable(const Scene& scene) {
     return {count, rows};
 }
 
+// The multigrid hierarchy compiled in (shaders/compute/multigrid.glsl): per level ivec4(nu, nv,
+// the vertices of the levels above, 0), and the vertices of all levels.
+void appendMultigridDefines(Defines& d, int nu, int nv) {
+    std::string rows;
+    long long first = 0;
+    const std::vector<MultigridLevel> levels = multigridLevels(nu, nv);
+    for (const MultigridLevel& l : levels) {
+        rows += (rows.empty() ? "" : ", ") + std::string("ivec4(") + std::to_string(l.nu) + ", " +
+                std::to_string(l.nv) + ", " + std::to_string(first) + ", 0)";
+        first += l.count();
+    }
+    d.push_back({"PRECONDITIONER_MULTIGRID", ""});
+    d.push_back({"MG_LEVEL_COUNT", std::to_string(levels.size())});
+    d.push_back({"MG_LEVELS", rows});
+    d.push_back({"MG_TOTAL", std::to_string(first)});
+}
+
 }  // namespace
+
+MultigridBytes multigridBytes(int nu, int nv) {
+    long long total = 0;
+    const std::vector<MultigridLevel> levels = multigridLevels(nu, nv);
+    for (const MultigridLevel& l : levels) total += l.count();
+    const long long coarsestDofs = 3 * levels.back().count();
+    constexpr long long kDouble = 8;
+    return {total * 25 * 6 * kDouble, (63 * total + coarsestDofs * coarsestDofs) * kDouble};
+}
+
+void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
+    const MultigridBytes bytes = multigridBytes(scene.cloth.nu, scene.cloth.nv);
+    const long long largest = std::max(bytes.stencil, bytes.work);
+    if (largest <= info.maxStorageBlockSize) return;
+    throw InputError(scene.source, "integrator.preconditioner",
+                     "\"multigrid\" on the " + std::to_string(scene.cloth.nu) + "x" +
+                         std::to_string(scene.cloth.nv) + " grid needs a " +
+                         std::to_string(largest) + "-byte buffer of its stencils (1.6 kB a vertex); " +
+                         info.renderer + " allows at most " +
+                         std::to_string(info.maxStorageBlockSize) +
+                         " bytes per SSBO: use \"jacobi\", a coarser grid or the CPU backend");
+}
 
 WorkGroup chooseWorkGroup(WorkGroup wg, const GpuInfo* info, const std::string& key) {
     const std::string size = std::to_string(wg.x) + "x" + std::to_string(wg.y);
@@ -121,6 +161,9 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
     if (scene.integrator.method == Method::ImplicitEuler &&
         scene.integrator.preconditioner == Preconditioner::Jacobi)
         d.push_back({"PRECONDITIONER_JACOBI", ""});
+    if (scene.integrator.method == Method::ImplicitEuler &&
+        scene.integrator.preconditioner == Preconditioner::Multigrid)
+        appendMultigridDefines(d, scene.cloth.nu, scene.cloth.nv);
     d.push_back({"WX", std::to_string(wg.x)});
     d.push_back({"WY", std::to_string(wg.y)});
     const auto [count, rows] = springTable(scene);
@@ -140,11 +183,22 @@ const char* kernelFile(Kernel k) {
         "compute/implicit_finish.comp", "compute/vbd_start.comp",
         "compute/vbd_guess.comp",       "compute/vbd_sweep.comp",
         "compute/vbd_accelerate.comp",  "compute/vbd_finish.comp",
-        "compute/many_steps.comp"};
+        "compute/many_steps.comp",      "compute/cg_preconditioned.comp",
+        "compute/mg_fine.comp",         "compute/mg_galerkin.comp",
+        "compute/mg_lines.comp",        "compute/mg_coarsest_factor.comp",
+        "compute/mg_begin.comp",        "compute/mg_relax.comp",
+        "compute/mg_residual.comp",     "compute/mg_restrict.comp",
+        "compute/mg_prolong.comp",      "compute/mg_coarsest_solve.comp"};
     return kFiles[int(k)];
 }
 
-std::vector<Kernel> kernelsOf(Method m) {
+std::vector<Kernel> kernelsOf(Method m, Preconditioner p) {
+    if (m == Method::ImplicitEuler && p == Preconditioner::Multigrid) {
+        std::vector<Kernel> kernels = kernelsOf(m);
+        for (int k = int(Kernel::CgPreconditioned); k < kKernelCount; ++k)
+            kernels.push_back(Kernel(k));
+        return kernels;
+    }
     switch (m) {
         case Method::ExplicitEuler:
         case Method::SymplecticEuler:

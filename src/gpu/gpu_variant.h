@@ -58,11 +58,35 @@ enum class Kernel {
     VbdAccelerate,    // vbd: the Chebyshev extrapolation
     VbdFinish,        // vbd: v = (x − x_n)/h, pins, colliders, check
     ManySteps,        // explicit/symplectic Euler, small grids: many steps in one work group
+    // implicit_euler with the multigrid preconditioner (multigrid.glsl, gpu/gpu_multigrid.h):
+    CgPreconditioned,   // z of the V-cycle into the CG, r·r and r·z (p = z at the start)
+    MgFine,             // the fine grid's stencil
+    MgGalerkin,         // a coarse grid's stencil Pᵀ A P
+    MgLines,            // a grid's line factors
+    MgCoarsestFactor,   // the coarsest grid's dense factor
+    MgBegin,            // the fine r, z = 0
+    MgRelax,            // one colour of one direction's lines
+    MgResidual,         // t = r − A z
+    MgRestrict,         // r_c = Pᵀ t, z_c = 0
+    MgProlong,          // z += P z_c
+    MgCoarsestSolve,    // the coarsest grid solved
 };
-inline constexpr int kKernelCount = int(Kernel::ManySteps) + 1;
+inline constexpr int kKernelCount = int(Kernel::MgCoarsestSolve) + 1;
 
 const char* kernelFile(Kernel k);  // "compute/forces.comp", ...
-std::vector<Kernel> kernelsOf(Method m);
+// The kernels of an integrator, and with implicit_euler's multigrid preconditioner its own.
+std::vector<Kernel> kernelsOf(Method m, Preconditioner p = Preconditioner::Jacobi);
+
+// The bytes of the multigrid preconditioner's two buffers on an nu × nv grid
+// (shaders/compute/multigrid.glsl): every level's 25 blocks of six doubles per vertex, and the
+// line factors, vectors and coarsest factor.
+struct MultigridBytes {
+    long long stencil = 0, work = 0;
+};
+MultigridBytes multigridBytes(int nu, int nv);
+// Throws InputError (key integrator.preconditioner) when either buffer exceeds one SSBO binding
+// of `info`'s device.
+void checkMultigridFits(const Scene& scene, const GpuInfo& info);
 
 // Whether a scene runs many steps per dispatch (many_steps.comp): as asked, or with Auto for
 // explicit and symplectic Euler up to manyStepsMaxVertices(software). Throws InputError (key

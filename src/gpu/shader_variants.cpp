@@ -42,12 +42,15 @@ std::vector<ShaderVariant> computeShaderVariants(const std::string& dir, const S
                 for (Kernel k : kernelsOf(method))
                     add(prefix + "." + stem(kernelFile(k)) + ".comp", kernelFile(k), s, {}, extra,
                         dragSets[d]);
-                if (method == Method::ImplicitEuler) {  // the block-Jacobi preconditioner's
-                    Scene jacobi = s;
-                    jacobi.integrator.preconditioner = Preconditioner::Jacobi;
-                    for (Kernel k : kernelsOf(method))
-                        add(prefix + ".jacobi." + stem(kernelFile(k)) + ".comp", kernelFile(k),
-                            jacobi, {}, extra, dragSets[d]);
+                if (method == Method::ImplicitEuler) {  // the preconditioners' variants
+                    for (Preconditioner p : {Preconditioner::Jacobi, Preconditioner::Multigrid}) {
+                        Scene preconditioned = s;
+                        preconditioned.integrator.preconditioner = p;
+                        for (Kernel k : kernelsOf(method, p))
+                            add(prefix + "." + preconditionerName(p) + "." +
+                                    stem(kernelFile(k)) + ".comp",
+                                kernelFile(k), preconditioned, {}, extra, dragSets[d]);
+                    }
                 }
                 if (method == Method::ExplicitEuler || method == Method::SymplecticEuler) {
                     for (int group : manyStepsGroups) {

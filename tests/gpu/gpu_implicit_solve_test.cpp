@@ -83,9 +83,11 @@ class GpuImplicitSolve : public GpuTest {};
 
 // Steps from a moving, deformed state, with the grab pulling one vertex: each step's Δv solves
 // the system to the tolerance (1e-5), up to float rounding of A Δv and of v + Δv, whichever the
-// preconditioner: it changes how the system is solved, not which.
+// preconditioner: it changes how the system is solved, not which (the 9 × 7 grid is multigrid's
+// coarsest at once: its V-cycle is the exact solve).
 TEST_F(GpuImplicitSolve, EachStepSolvesTheLinearisedSystem) {
-    for (Preconditioner p : {Preconditioner::None, Preconditioner::Jacobi}) {
+    for (Preconditioner p :
+         {Preconditioner::None, Preconditioner::Jacobi, Preconditioner::Multigrid}) {
         Scene scene = clothScene(2000, 200);
         scene.integrator.preconditioner = p;
         std::unique_ptr<Solver> solver = makeGpuSolver(scene);
@@ -106,7 +108,9 @@ TEST_F(GpuImplicitSolve, EachStepSolvesTheLinearisedSystem) {
         EXPECT_LT(worst, 1e-4) << preconditionerName(p);
         EXPECT_EQ(st.solves, 25);
         EXPECT_EQ(st.misses, 0);
-        EXPECT_GT(st.mostIterations, 8) << "a solve of several chunks of iterations";
+        if (p != Preconditioner::Multigrid) {  // the V-cycle solves it in fewer
+            EXPECT_GT(st.mostIterations, 8) << "a solve of several chunks of iterations";
+        }
     }
 }
 
