@@ -1,7 +1,8 @@
 // implicit_euler's multigrid preconditioner: the line smoother's factors of level uLevel
 // (multigrid.glsl; src/cpu/cpu_multigrid.cpp smoother): every row (direction 0) and column (1)
 // of the grid as one banded system of 3 unknowns a vertex, the stencil's blocks along the line,
-// factored A_line = L Lᵀ in place. One invocation per line, the rows first.
+// factored A_line = L Lᵀ in place. One invocation per line (one a work group: each factor is
+// sequential, and separate groups spread over the device), the rows first.
 #include "layout.glsl"
 #include "common.glsl"
 #include "multigrid.glsl"

@@ -8,7 +8,7 @@ namespace {
 // multigrid.glsl's bindings and uniform locations.
 constexpr unsigned kStencilBinding = 4, kWorkBinding = 14;
 constexpr int kLevelLocation = 4, kLineLocation = 5;
-constexpr int kLineGroup = 64;  // mg_lines.comp, mg_relax.comp
+constexpr int kLineGroup = 64;  // mg_lines.comp, mg_relax.comp: a sequential line a group
 
 void allocate(unsigned buffer, long long bytes) {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
@@ -74,15 +74,24 @@ void GpuMultigrid::apply(const Programs& programs) const {
     cycle(programs, 0);
 }
 
-// One direction's 5 colours of lines, in turn (backwards for the adjoint sweep).
+// One direction's 5 colours of lines, in turn (backwards for the adjoint sweep): each colour's
+// right-hand sides a vertex an invocation (x along the line, y the colour's lines), then its
+// lines solved.
 void GpuMultigrid::sweep(const Programs& programs, int level, int direction, bool forward) const {
-    const unsigned program = programs[int(Kernel::MgRelax)];
+    const unsigned rightHandSide = programs[int(Kernel::MgRelaxRightHandSide)];
+    const unsigned solve = programs[int(Kernel::MgRelax)];
     const MultigridLevel& l = levels_[std::size_t(level)];
-    const int lines = direction == 0 ? l.nv : l.nu;
+    const int lines = direction == 0 ? l.nv : l.nu, length = direction == 0 ? l.nu : l.nv;
     for (int c = 0; c < 5; ++c) {
         const int colour = forward ? c : 4 - c;
-        glProgramUniform2i(program, kLineLocation, direction, colour);
-        dispatchLines(program, level, (lines - colour + 4) / 5);
+        const int count = (lines - colour + 4) / 5;  // lines colour, colour + 5, …
+        if (count <= 0) continue;
+        for (unsigned program : {rightHandSide, solve}) {
+            glProgramUniform2i(program, kLineLocation, direction, colour);
+            glProgramUniform1i(program, kLevelLocation, level);
+        }
+        run(rightHandSide, GLuint((length + wg_.x - 1) / wg_.x), GLuint((count + wg_.y - 1) / wg_.y));
+        dispatchLines(solve, level, count);
     }
 }
 

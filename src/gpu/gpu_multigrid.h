@@ -7,7 +7,7 @@
 // coarser grid's Galerkin product (mg_galerkin), every grid's line factors (mg_lines) and the
 // coarsest grid's dense factor. Per application of M⁻¹ (apply): the conjugate gradient's r into
 // the fine grid (mg_begin), then on each grid 5 colours of rows and 5 of columns relaxed
-// (mg_relax), t = r − A z (mg_residual), r_c = Pᵀ t (mg_restrict), the coarser grid's cycle,
+// (mg_relax_right_hand_side, mg_relax), t = r − A z (mg_residual), r_c = Pᵀ t (mg_restrict), the coarser grid's cycle,
 // z += P z_c (mg_prolong) and the same sweeps in reverse order; the coarsest grid is solved by
 // its factor (mg_coarsest_solve). Nothing leaves the GPU; every kernel of apply returns at once
 // once the solve has converged.

@@ -186,7 +186,8 @@ const char* kernelFile(Kernel k) {
         "compute/many_steps.comp",      "compute/cg_preconditioned.comp",
         "compute/mg_fine.comp",         "compute/mg_galerkin.comp",
         "compute/mg_lines.comp",        "compute/mg_coarsest_factor.comp",
-        "compute/mg_begin.comp",        "compute/mg_relax.comp",
+        "compute/mg_begin.comp",        "compute/mg_relax_right_hand_side.comp",
+        "compute/mg_relax.comp",
         "compute/mg_residual.comp",     "compute/mg_restrict.comp",
         "compute/mg_prolong.comp",      "compute/mg_coarsest_solve.comp"};
     return kFiles[int(k)];

@@ -65,7 +65,8 @@ enum class Kernel {
     MgLines,            // a grid's line factors
     MgCoarsestFactor,   // the coarsest grid's dense factor
     MgBegin,            // the fine r, z = 0
-    MgRelax,            // one colour of one direction's lines
+    MgRelaxRightHandSide,  // their right-hand sides, a vertex an invocation
+    MgRelax,            // one colour of one direction's lines solved
     MgResidual,         // t = r − A z
     MgRestrict,         // r_c = Pᵀ t, z_c = 0
     MgProlong,          // z += P z_c
