@@ -33,14 +33,14 @@ void main() {
         if (t == 0u) {
             double s = mgWork[a + j * dofs + j], diagonal = s;
             for (int m = 0; m < j; ++m) s -= mgWork[a + j * dofs + m] * mgWork[a + j * dofs + m];
-            mgWork[a + j * dofs + j] = sqrt(max(s, 1e-6lf * diagonal + 1e-300lf));
+            mgWork[a + j * dofs + j] = squareRoot(max(s, 1e-6lf * diagonal + 1e-300lf));
         }
         memoryBarrierBuffer();
         barrier();
         for (int i = j + 1 + int(t); i < dofs; i += int(threads)) {
             double s = mgWork[a + i * dofs + j];
             for (int m = 0; m < j; ++m) s -= mgWork[a + i * dofs + m] * mgWork[a + j * dofs + m];
-            mgWork[a + i * dofs + j] = s / mgWork[a + j * dofs + j];
+            mgWork[a + i * dofs + j] = divide(s, mgWork[a + j * dofs + j]);
         }
         memoryBarrierBuffer();
         barrier();

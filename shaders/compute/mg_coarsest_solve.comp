@@ -15,12 +15,12 @@ void main() {
     for (int i = 0; i < dofs; ++i) {  // L y = r
         double s = mgWork[r + 9 * (i / 3) + i % 3];
         for (int m = 0; m < i; ++m) s -= mgWork[a + i * dofs + m] * mgWork[z + 9 * (m / 3) + m % 3];
-        mgWork[z + 9 * (i / 3) + i % 3] = s / mgWork[a + i * dofs + i];
+        mgWork[z + 9 * (i / 3) + i % 3] = divide(s, mgWork[a + i * dofs + i]);
     }
     for (int i = dofs - 1; i >= 0; --i) {  // Lᵀ z = y
         double s = mgWork[z + 9 * (i / 3) + i % 3];
         for (int m = i + 1; m < dofs; ++m) s -= mgWork[a + m * dofs + i] * mgWork[z + 9 * (m / 3) + m % 3];
-        mgWork[z + 9 * (i / 3) + i % 3] = s / mgWork[a + i * dofs + i];
+        mgWork[z + 9 * (i / 3) + i % 3] = divide(s, mgWork[a + i * dofs + i]);
     }
     for (int k = 0; k < n; ++k)
         if (pinnedAt(l, ivec2(k % nu, k / nu))) storeVector(l, k, kMgZ, dvec3(0.0lf));

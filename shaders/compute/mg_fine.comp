@@ -40,7 +40,7 @@ void main() {
     }
     double h = double(params.dt), h2 = h * h;
     float drag = 1.0 + params.dt * params.dampingRate;
-    double m = double(drag) / double(inverseMass);
+    double m = divide(double(drag), double(inverseMass));
     Sym3 centre = Sym3(m, 0.0lf, 0.0lf, m, 0.0lf, m);
     if (grabbed(uint(k))) {
         double g = h2 * double(uGrab.w);
@@ -56,14 +56,14 @@ void main() {
         if (!insideGrid(q)) continue;
         int kq = int(vertexIndex(q));
         dvec3 d = dvec3(positions[kq].xyz) - xk;
-        double len = length(d), restLength = double(springRestLength(s));
+        double len = squareRoot(dot(d, d)), restLength = double(springRestLength(s));
         if (!(len >= 1e-12lf * restLength)) continue;
-        dvec3 n = d / len;
+        dvec3 n = d * divide(1.0lf, len);
         double stiffness = double(springStiffnessAt(s, ij));
-        double transverse = stiffness * max(0.0lf, 1.0lf - restLength / len);
+        double transverse = stiffness * max(0.0lf, 1.0lf - divide(restLength, len));
         double along = stiffness - transverse;
 #ifdef HAS_SPRING_DAMPING
-        along += double(springDampingAt(s, ij)) / h;
+        along += divide(double(springDampingAt(s, ij)), h);
 #endif
         addScaled(centre, h2, n, along, transverse);
         if (positions[kq].w == 0.0) continue;  // a pinned column

@@ -39,8 +39,8 @@ void main() {
                 if (j - q <= kMgBand) s -= mgWork[bandAt(f, i, q)] * mgWork[bandAt(f, j, q)];
             // A pivot at or under float's rounding of the stiff blocks is held at 1e-6 of the
             // diagonal, as on the CPU.
-            mgWork[bandAt(f, i, j)] = i == j ? sqrt(max(s, 1e-6lf * diagonal + 1e-300lf))
-                                             : s / mgWork[bandAt(f, j, j)];
+            mgWork[bandAt(f, i, j)] = i == j ? squareRoot(max(s, 1e-6lf * diagonal + 1e-300lf))
+                                             : divide(s, mgWork[bandAt(f, j, j)]);
         }
     }
 }

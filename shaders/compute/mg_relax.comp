@@ -26,13 +26,13 @@ void main() {
         double s = mgWork[lineEntry(l, direction, line, i, kMgT)];
         for (int q = max(0, i - kMgBand); q < i; ++q)
             s -= mgWork[bandAt(f, i, q)] * mgWork[lineEntry(l, direction, line, q, kMgZ)];
-        mgWork[lineEntry(l, direction, line, i, kMgZ)] = s / mgWork[bandAt(f, i, i)];
+        mgWork[lineEntry(l, direction, line, i, kMgZ)] = divide(s, mgWork[bandAt(f, i, i)]);
     }
     for (int i = dofs - 1; i >= 0; --i) {  // Lᵀ z = y'
         double s = mgWork[lineEntry(l, direction, line, i, kMgZ)];
         for (int q = i + 1; q < min(dofs, i + kMgBand + 1); ++q)
             s -= mgWork[bandAt(f, q, i)] * mgWork[lineEntry(l, direction, line, q, kMgZ)];
-        mgWork[lineEntry(l, direction, line, i, kMgZ)] = s / mgWork[bandAt(f, i, i)];
+        mgWork[lineEntry(l, direction, line, i, kMgZ)] = divide(s, mgWork[bandAt(f, i, i)]);
     }
     for (int a = 0; a < lineLength(l, direction); ++a) {
         ivec2 ij = onLine(direction, line, a);

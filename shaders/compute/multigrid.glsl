@@ -13,6 +13,23 @@
 //              then r, z, t of each vertex (9 doubles), then the coarsest grid's dense factor.
 
 const ivec4 kMgLevels[MG_LEVEL_COUNT] = ivec4[](MG_LEVELS);
+
+// GLSL promises double division and square roots only single precision (GLSL 4.50 §4.7.1), and
+// NVIDIA's driver gives no more: at stretch 1e6 N/m the stencil's mass is 1e-8 of its springs,
+// under that rounding, and the hierarchy went indefinite. Two Newton steps from the estimate
+// (products and fma are exact doubles) restore double precision; an exact estimate stays.
+double divide(double a, double b) {
+    double y = 1.0lf / b;
+    double q = a * y;
+    q = fma(fma(-q, b, a), y, q);
+    return fma(fma(-q, b, a), y, q);
+}
+double squareRoot(double x) {
+    if (!(x > 0.0lf)) return 0.0lf;
+    double y = sqrt(x);
+    y = 0.5lf * (y + divide(x, y));
+    return 0.5lf * (y + divide(x, y));
+}
 const int kMgBand = 8;  // a line's half bandwidth in unknowns: 3 × 2 + 2
 
 layout(std430, binding = 4) buffer MgStencil {
@@ -112,7 +129,7 @@ void interpolationRow(int i, int n, int c, out int I, out double w) {
     }
     I = min(i / 2, c - 2);
     int lo = fineOf(I, n), hi = fineOf(I + 1, n);
-    w = double(i - lo) / double(hi - lo);
+    w = divide(double(i - lo), double(hi - lo));
 }
 
 // Column I of P along an axis (n fine, c coarse vertices): fine indices [first, last] with
@@ -123,11 +140,11 @@ double interpolationWeight(int I, int i, int n, int c) {
     if (i < centre) {
         if (I == 0) return 0.0lf;
         int below = fineOf(I - 1, n);
-        return i > below ? double(i - below) / double(centre - below) : 0.0lf;
+        return i > below ? divide(double(i - below), double(centre - below)) : 0.0lf;
     }
     if (I == c - 1) return 0.0lf;
     int above = fineOf(I + 1, n);
-    return i < above ? double(above - i) / double(above - centre) : 0.0lf;
+    return i < above ? divide(double(above - i), double(above - centre)) : 0.0lf;
 }
 // The fine indices column I of P reaches: (fineOf(I − 1), fineOf(I + 1)) exclusive, centre
 // included.
