@@ -26,7 +26,9 @@ constexpr const char* kHelp = R"(usage: clothsim run SCENE [options]
 Simulates SCENE headless for its "duration" (or --steps) and reports the speed.
 
 options:
-  --backend cpu|gpu         solver backend (default cpu)
+  --backend cpu|gpu|auto    solver backend (default cpu); auto: the GPU when its OpenGL device
+                            is hardware, else the CPU (a software rasteriser such as llvmpipe
+                            runs the GPU backend about 10-30x slower), said on stderr
   --precision float|double  CPU arithmetic (default double; the GPU computes in float)
   --threads N               CPU threads (default: automatic by cloth size)
   --steps N                 number of steps (default: duration / integrator.dt)
@@ -57,7 +59,8 @@ exit codes: 0 ok, 1 internal error or a failed write, 2 invalid input (an output
 struct RunOptions {
     std::string scenePath;
     BackendChoice backend = backendChoiceFromEnvironment();
-    long steps = 0;  // 0: the scene's duration
+    bool doubleAsked = false;  // --precision double: --backend auto picks the CPU
+    long steps = 0;            // 0: the scene's duration
     std::vector<std::string> sets;
     std::string csv, obj, framesDir, colliders, solves, pc2;
     long every = 0;  // --every; for --out-pc2 alone, 0 until the scene's substeps fill it in
@@ -95,6 +98,7 @@ bool parse(Args& args, RunOptions& o) {
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "run needs a scene file");
     common.finish();
+    o.doubleAsked = common.doubleAsked();
     if (!o.framesDir.empty() && o.every == 0)
         throw InputError("command line", "--every", "--frames DIR needs --every K");
     if (o.framesDir.empty() && o.pc2.empty() && o.every > 0)
@@ -232,6 +236,7 @@ int runCommand(Args& args) {
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
     if (o.every == 0 && !o.pc2.empty()) o.every = std::max(1, scene.integrator.substeps);
     std::optional<Pc2Writer> pc2 = openPc2(o, scene, total);
+    settleBackendAndSay(o.backend, scene, o.doubleAsked, o.quiet);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
     if (!o.quiet) warnUnstableDt(scene);
 
