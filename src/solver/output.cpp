@@ -65,9 +65,9 @@ void writeObj(const std::string& path, const SimState& state, const std::string&
         }
     }
     if (nu == 1 || nv == 1) {
-        out.write("l");
-        for (int k = 1; k <= nu * nv; ++k) out.print(" %d/%d", k, k);
-        out.write("\n");
+        // A segment per `l`: Blender 3.4's importer makes one edge of a longer `l` and drops the
+        // vertices past its second, which a point cache played on this OBJ needs.
+        for (int k = 1; k < nu * nv; ++k) out.print("l %d/%d %d/%d\n", k, k, k + 1, k + 1);
     } else {
         // OBJ indices are 1-based; the normal a × b points along û × v̂ at rest, so (k, k+1,
         // k+nu+1) is counter-clockwise seen from the normal's side.

@@ -16,7 +16,7 @@ namespace cloth {
 void writeCsv(const std::string& path, const SimState& state, Precision precision);
 
 // Wavefront OBJ: v (positions), vt (u, v in [0, 1]), vn (DESIGN.md §2 normals), f (two triangles
-// per grid cell, counter-clockwise about the normal); a 1-D chain is written as one line `l`.
+// per grid cell, counter-clockwise about the normal); a 1-D chain as its segments, one `l` each.
 void writeObj(const std::string& path, const SimState& state, const std::string& sceneName);
 
 // Point cache PC2, the format of 3ds Max's Point Cache and Blender's Mesh Cache modifier:
