@@ -1,5 +1,6 @@
 #include "app/backend_flags.h"
 
+#include <cstdio>
 #include <cstdlib>
 #include <regex>
 
@@ -9,7 +10,7 @@ namespace cloth::app {
 
 bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice) {
     if (flag == "--backend")
-        choice.backend = parseBackend(flag, args.value(flag));
+        parseBackend(flag, args.value(flag), choice);
     else if (flag == "--precision")
         choice.precision = parsePrecision(flag, args.value(flag));
     else if (flag == "--threads")
@@ -20,7 +21,8 @@ bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice
 }
 
 void refuseGpuDouble(const BackendChoice& choice, bool precisionGiven) {
-    if (choice.backend == Backend::Gpu && precisionGiven && choice.precision == Precision::Double)
+    if (!choice.automatic && choice.backend == Backend::Gpu && precisionGiven &&
+        choice.precision == Precision::Double)
         throw InputError("command line", "--precision",
                          "the GPU backend computes in float; --precision double needs --backend "
                          "cpu (or leave --precision out)");
@@ -34,10 +36,17 @@ bool RunFlags::take(const std::string& flag, Args& args) {
     return true;
 }
 
-Backend parseBackend(const std::string& flag, const std::string& value) {
-    if (value == "cpu") return Backend::Cpu;
-    if (value == "gpu") return Backend::Gpu;
-    throw InputError("command line", flag, "expected cpu or gpu, got '" + value + "'");
+void settleBackendAndSay(BackendChoice& choice, const Scene& scene, bool doubleAsked, bool quiet) {
+    const std::string line = settleBackend(choice, scene, doubleAsked);
+    if (!quiet && !line.empty()) std::fprintf(stderr, "clothsim: %s\n", line.c_str());
+}
+
+void parseBackend(const std::string& flag, const std::string& value, BackendChoice& choice) {
+    choice.automatic = value == "auto";
+    if (value == "cpu" || value == "gpu")
+        choice.backend = value == "gpu" ? Backend::Gpu : Backend::Cpu;
+    else if (!choice.automatic)
+        throw InputError("command line", flag, "expected cpu, gpu or auto, got '" + value + "'");
 }
 
 Precision parsePrecision(const std::string& flag, const std::string& value) {

@@ -10,8 +10,8 @@
 
 namespace cloth::app {
 
-// --backend cpu|gpu, --precision float|double, --threads N: true when `flag` was one of them
-// (its value then taken from `args` into `choice`).
+// --backend cpu|gpu|auto, --precision float|double, --threads N: true when `flag` was one of
+// them (its value then taken from `args` into `choice`).
 bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice);
 
 // The GPU backend computes in float: a command that runs one backend refuses --precision double
@@ -19,8 +19,9 @@ bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice
 // `precisionGiven`: --precision was on the command line (the default double is no request).
 void refuseGpuDouble(const BackendChoice& choice, bool precisionGiven);
 
-// The flags of a command that runs one backend (run, render): the backend flags and --set.
-// take() is true when `flag` was one of them; finish() refuses their bad combinations.
+// The flags of a command that runs one backend (run, render, view): the backend flags and --set.
+// take() is true when `flag` was one of them; finish() refuses their bad combinations (run,
+// render).
 struct RunFlags {
     BackendChoice& backend;
     std::vector<std::string>& sets;
@@ -28,9 +29,18 @@ struct RunFlags {
 
     bool take(const std::string& flag, Args& args);
     void finish() const { refuseGpuDouble(backend, precisionGiven); }
+    // --precision double was asked for: --backend auto then picks the CPU.
+    bool doubleAsked() const { return precisionGiven && backend.precision == Precision::Double; }
 };
 
-Backend parseBackend(const std::string& flag, const std::string& value);
+// Settles `choice` for `scene` (backends/solver_factory.h settleBackend) and, unless `quiet`, says
+// on stderr which backend --backend auto picked and why, or that --backend gpu runs on a software
+// rasteriser.
+void settleBackendAndSay(BackendChoice& choice, const Scene& scene, bool doubleAsked, bool quiet);
+
+// --backend cpu|gpu|auto into `choice`; auto leaves the pick to settleBackend, once the scene is
+// known.
+void parseBackend(const std::string& flag, const std::string& value, BackendChoice& choice);
 Precision parsePrecision(const std::string& flag, const std::string& value);
 
 // The choice as the environment tunes it (README, "Environment"): CLOTH_CPU_ISA picks the CPU's

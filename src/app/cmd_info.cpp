@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "app/backend_flags.h"
 #include "app/cli.h"
 #include "backends/solver_factory.h"
 
@@ -12,8 +13,9 @@ int infoCommand(Args& args) {
         const std::string f = args.flag();
         if (f == "--help") {
             std::fputs(
-                "usage: clothsim info\n\nPrints the build, the CPU threads, and the GPU "
-                "(EGL platform, vendor, GL renderer and version, compute limits).\n",
+                "usage: clothsim info\n\nPrints the build, the CPU threads, the GPU (EGL "
+                "platform, every EGL device, hardware or software, vendor, GL renderer and "
+                "version, compute limits), and which backend --backend auto picks and why.\n",
                 stdout);
             return kOk;
         }
@@ -27,6 +29,8 @@ int infoCommand(Args& args) {
          at = gpu.find('\n', at + 1))
         gpu.insert(at + 1, "             ");
     std::printf("gpu          %s%s", gpu.c_str(), gpu.empty() || gpu.back() != '\n' ? "\n" : "");
+    const BackendPick pick = pickBackend(nullptr, backendChoiceFromEnvironment().gpu, false);
+    std::printf("auto         %s, %s\n", backendName(pick.backend), pick.reason.c_str());
     return kOk;
 }
 

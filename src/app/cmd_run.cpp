@@ -1,7 +1,10 @@
 // clothsim run SCENE [options]: a headless simulation (DESIGN.md §5).
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <optional>
 
 #include "app/backend_flags.h"
 #include "app/cli.h"
@@ -23,7 +26,9 @@ constexpr const char* kHelp = R"(usage: clothsim run SCENE [options]
 Simulates SCENE headless for its "duration" (or --steps) and reports the speed.
 
 options:
-  --backend cpu|gpu         solver backend (default cpu)
+  --backend cpu|gpu|auto    solver backend (default cpu); auto: the GPU when its OpenGL device
+                            is hardware, else the CPU (a software rasteriser such as llvmpipe
+                            runs the GPU backend about 10-30x slower), said on stderr
   --precision float|double  CPU arithmetic (default double; the GPU computes in float)
   --threads N               CPU threads (default: automatic by cloth size)
   --steps N                 number of steps (default: duration / integrator.dt)
@@ -33,6 +38,13 @@ options:
   --out-obj FILE            final frame as Wavefront OBJ (positions, normals, UVs, faces)
   --frames DIR --every K    an OBJ every K steps (and the initial one) into DIR, named
                             SCENE_<step>.obj with the step zero-padded so the names sort
+  --out-pc2 FILE            a point cache (PC2) of the positions at step 0 and every K steps
+                            (--every K, shared with --frames, and like it none for a last
+                            partial interval; default K: the scene's integrator.substeps, one
+                            sample per displayed frame), and beside it the cloth at rest with
+                            UVs as OBJ, in the same vertex order (FILE with .obj for .pc2): in
+                            Blender, import that OBJ and add a Mesh Cache modifier, format PC2,
+                            on it (the header says start frame 0, one frame per sample)
   --out-colliders FILE      the colliders as their own OBJ, one object each (a plane as a
                             square of side 8× the cloth's extent, at least 20 m)
   --out-solves FILE         implicit_euler: one row per step, step,iterations,residual,converged
@@ -47,10 +59,11 @@ exit codes: 0 ok, 1 internal error or a failed write, 2 invalid input (an output
 struct RunOptions {
     std::string scenePath;
     BackendChoice backend = backendChoiceFromEnvironment();
-    long steps = 0;  // 0: the scene's duration
+    bool doubleAsked = false;  // --precision double: --backend auto picks the CPU
+    long steps = 0;            // 0: the scene's duration
     std::vector<std::string> sets;
-    std::string csv, obj, framesDir, colliders, solves;
-    long every = 0;
+    std::string csv, obj, framesDir, colliders, solves, pc2;
+    long every = 0;  // --every; for --out-pc2 alone, 0 until the scene's substeps fill it in
     bool quiet = false;
 };
 
@@ -70,6 +83,8 @@ bool parse(Args& args, RunOptions& o) {
             o.obj = args.value(f);
         else if (f == "--frames")
             o.framesDir = args.value(f);
+        else if (f == "--out-pc2")
+            o.pc2 = args.value(f);
         else if (f == "--out-colliders")
             o.colliders = args.value(f);
         else if (f == "--out-solves")
@@ -83,11 +98,39 @@ bool parse(Args& args, RunOptions& o) {
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "run needs a scene file");
     common.finish();
+    o.doubleAsked = common.doubleAsked();
     if (!o.framesDir.empty() && o.every == 0)
         throw InputError("command line", "--every", "--frames DIR needs --every K");
-    if (o.framesDir.empty() && o.every > 0)
-        throw InputError("command line", "--frames", "--every K needs --frames DIR");
+    if (o.framesDir.empty() && o.pc2.empty() && o.every > 0)
+        throw InputError("command line", "--every",
+                         "--every K needs --frames DIR or --out-pc2 FILE");
     return true;
+}
+
+// The OBJ at rest that --out-pc2 FILE writes beside it: FILE with .obj for its extension.
+std::string pc2ObjPath(const std::string& pc2) {
+    return std::filesystem::path(pc2).replace_extension(".obj").string();
+}
+
+// --out-pc2's two files checked before the run, as every output is (exit 2), and its writer
+// opened for the run's samples: the initial state and every K steps up to `total`.
+std::optional<Pc2Writer> openPc2(const RunOptions& o, const Scene& scene, long total) {
+    if (o.pc2.empty()) return std::nullopt;
+    const std::string obj = pc2ObjPath(o.pc2);
+    if (obj == o.pc2 || obj == o.obj)
+        throw InputError("command line", "--out-pc2",
+                         "'" + o.pc2 + "' would write its OBJ at rest to '" + obj + "', which " +
+                             (obj == o.pc2 ? "is the point cache itself" : "--out-obj names") +
+                             "; name the cache FILE.pc2");
+    checkOutputFile("--out-pc2", o.pc2);
+    checkOutputFile("--out-pc2", obj);
+    const long samples = total / o.every + 1;
+    if (samples > std::numeric_limits<std::int32_t>::max())
+        throw InputError("command line", "--every",
+                         std::to_string(total) + " steps make " + std::to_string(samples) +
+                             " samples, more than a PC2 file counts (2^31 - 1)");
+    return std::optional<Pc2Writer>(std::in_place, o.pc2, long(scene.cloth.nu) * scene.cloth.nv,
+                                    samples);
 }
 
 std::string framePath(const RunOptions& o, const Scene& scene, long step, long total) {
@@ -118,13 +161,27 @@ struct RunTimes {
     double wall = 0, stepping = 0, device = 0;
 };
 
-// The run's final files: CSV, OBJ and the colliders' OBJ as asked.
-void writeFinalFiles(const RunOptions& o, const Scene& scene, const SimState& state) {
+// What the run writes at step 0 and every K steps (--every): an OBJ frame into --frames DIR, a
+// sample into --out-pc2 FILE.
+void writeEvery(const RunOptions& o, const Scene& scene, const SimState& state, long step,
+                long total, std::optional<Pc2Writer>& pc2) {
+    if (!o.framesDir.empty()) writeObj(framePath(o, scene, step, total), state, scene.name);
+    if (pc2) pc2->add(state);
+}
+
+// The run's final files as asked: CSV, OBJ, the colliders' OBJ, and the point cache with its OBJ
+// at rest (`initial`), the OBJ first: a cache is put in place only beside the mesh it plays on.
+void writeFinalFiles(const RunOptions& o, const Scene& scene, const SimState& state,
+                     const SimState& initial, std::optional<Pc2Writer>& pc2) {
     if (!o.csv.empty()) writeCsv(o.csv, state, effectivePrecision(o.backend));
     if (!o.obj.empty()) writeObj(o.obj, state, scene.name);
     if (!o.colliders.empty())  // at their pose at t = 0 (a moving collider where it starts)
         writeMeshesObj(o.colliders,
                        colliderMeshes(scene.colliders, std::max(10.0, 4 * scene.grid().extent())));
+    if (pc2) {
+        writeObj(pc2ObjPath(o.pc2), initial, scene.name);
+        pc2->commit();
+    }
 }
 
 // The summary line (README, "The command line"), the GPU's time and the solves, files written.
@@ -147,6 +204,10 @@ void printSummary(const RunOptions& o, const Scene& scene, const Solver& solver,
             double(cg.iterations) / double(cg.solves), cg.mostIterations);
     for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
         if (!f->empty()) std::printf("wrote %s\n", f->c_str());
+    if (!o.pc2.empty())
+        std::printf("wrote %s (%ld samples of %d points, one every %ld steps) and %s (at rest)\n",
+                    o.pc2.c_str(), total / o.every + 1, scene.cloth.nu * scene.cloth.nv, o.every,
+                    pc2ObjPath(o.pc2).c_str());
     if (!o.solves.empty()) std::printf("wrote %s\n", o.solves.c_str());
     if (!o.framesDir.empty())
         std::printf("wrote %ld frames to %s\n", total / o.every + 1, o.framesDir.c_str());
@@ -173,13 +234,18 @@ int runCommand(Args& args) {
     SolveLog solveLog{o.solves};
     if (!o.framesDir.empty()) prepareFramesDir("--frames", o.framesDir);
     const long total = o.steps > 0 ? o.steps : scene.defaultSteps();
+    if (o.every == 0 && !o.pc2.empty()) o.every = std::max(1, scene.integrator.substeps);
+    std::optional<Pc2Writer> pc2 = openPc2(o, scene, total);
+    settleBackendAndSay(o.backend, scene, o.doubleAsked, o.quiet);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
     if (!o.quiet) warnUnstableDt(scene);
 
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();
     RunTimes times;
-    if (!o.framesDir.empty()) writeObj(framePath(o, scene, 0, total), solver->read(), scene.name);
+    // Read only when something is written every K steps: a large grid's state is large.
+    const SimState initial = o.every > 0 ? solver->read() : SimState{};
+    if (o.every > 0) writeEvery(o, scene, initial, 0, total, pc2);
     Progress progress(total, !o.quiet);
     const long chunk = std::max(1L, std::min(total / 100, kStrainCheckSteps));
     long checked = 0;  // steps done at the last strain check
@@ -198,19 +264,21 @@ int runCommand(Args& args) {
         if (r.unstable) {
             progress.finish();
             solveLog.write();
-            reportUnstable(scene, *solver, r, "nothing was written for the unstable state");
+            reportUnstable(scene, *solver, r,
+                           pc2 ? "nothing was written for the unstable state, nor the point cache"
+                               : "nothing was written for the unstable state");
             return kUnstable;
         }
         if (solveLog.wanted()) solveLog.add(solver->stepsDone(), solver->solveStats());
         if (o.every > 0 && solver->stepsDone() % o.every == 0)
-            writeObj(framePath(o, scene, solver->stepsDone(), total), solver->read(), scene.name);
+            writeEvery(o, scene, solver->read(), solver->stepsDone(), total, pc2);
         progress.update(solver->stepsDone());
     }
     times.wall = std::chrono::duration<double>(Clock::now() - start).count();
     progress.finish();
 
     reportSolveMisses(scene, *solver);
-    writeFinalFiles(o, scene, solver->read());
+    writeFinalFiles(o, scene, solver->read(), initial, pc2);
     solveLog.write();
     if (!o.quiet) printSummary(o, scene, *solver, total, times);
     return kOk;

@@ -20,7 +20,11 @@ Opens SCENE (default scenes/drape.json) in a window: the simulation runs live, a
 every parameter, the mouse orbits, pans, zooms, grabs and pins. See docs/viewer.md.
 
 options:
-  --backend cpu|gpu         solver backend to start with (default cpu; switchable live)
+  --backend cpu|gpu|auto    solver backend to start with (default auto: the GPU when the
+                            window's OpenGL device is hardware, else the CPU, about 10-30x
+                            faster than the GPU backend on a software rasteriser such as
+                            llvmpipe; the pick is said on stderr and in the panel; switchable
+                            live)
   --precision float|double  CPU arithmetic (default double)
   --set KEY.PATH=JSON       change a parameter after loading, as the panel does (repeatable)
   --size WxH                window size (default 1280x800)
@@ -38,6 +42,8 @@ int viewCommand(Args& args) {
 #ifdef CLOTH_HAVE_VIEWER
     ViewerOptions o;
     o.backend = backendChoiceFromEnvironment();
+    o.backend.automatic = true;  // view's default: --backend auto
+    RunFlags common{o.backend, o.sets};
     while (!args.done()) {
         if (args.takeScene(o.scenePath)) continue;
         const std::string f = args.flag();
@@ -45,10 +51,8 @@ int viewCommand(Args& args) {
             std::fputs(kHelp, stdout);
             return kOk;
         }
-        if (parseBackendFlag(f, args, o.backend)) continue;
-        if (f == "--set")
-            addSet(o.sets, args.value(f));
-        else if (f == "--no-vsync")
+        if (common.take(f, args)) continue;
+        if (f == "--no-vsync")
             o.vsync = false;
         else if (f == "--frames")
             o.frames = int(args.positiveInt(f));
@@ -66,6 +70,7 @@ int viewCommand(Args& args) {
     if (!o.screenshot.empty() && o.frames == 0)
         throw InputError("command line", "--screenshot", "--screenshot FILE needs --frames N");
     if (o.frames > 0) o.vsync = false;  // a scripted run need not wait for the display
+    o.doubleAsked = common.doubleAsked();
     return runViewer(o);
 #else
     (void)args;

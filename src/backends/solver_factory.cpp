@@ -18,17 +18,18 @@ struct GpuEntry {
     std::unique_ptr<Solver> (*make)(const Scene&, const GpuOptions&);
     std::string (*describe)();
     std::string (*variant)(const Scene&, const GpuOptions&);
-    std::optional<std::string> (*sizeRefusal)(const Scene&, const GpuOptions&);
+    std::optional<std::string> (*refusal)(const Scene&, const GpuOptions&);
     double (*copyBandwidth)(std::size_t, int);
     std::string (*renderer)();
+    bool (*software)();
     void (*configure)(const GpuSetup&);
 };
 
 const GpuEntry* gpuEntry() {
 #ifdef CLOTH_GPU_BUILT
     static constexpr GpuEntry gpu{
-        makeGpuSolver,           describeGpu,     describeGpuVariant, gpuGridRefusal,
-        measureGpuCopyBandwidth, gpuRendererName, configureGpu};
+        makeGpuSolver,           describeGpu,     describeGpuVariant, gpuSceneRefusal,
+        measureGpuCopyBandwidth, gpuRendererName, gpuIsSoftware,      configureGpu};
     return &gpu;
 #else
     return nullptr;
@@ -40,6 +41,14 @@ constexpr const char* kNoGpuBuilt = "this clothsim was built without the GPU bac
 const GpuEntry& requireGpu() {
     if (gpuEntry() == nullptr) throw GpuUnavailable(kNoGpuBuilt);
     return *gpuEntry();
+}
+
+// docs/performance.md: the GPU backend on llvmpipe against the CPU backend on the same cores.
+constexpr const char* kSoftwareCost = "about 10-30x slower than the CPU backend";
+
+// A GpuUnavailable's first line (the context's tries follow on lines of their own).
+std::string firstLine(const std::string& text) {
+    return text.substr(0, text.find('\n'));
 }
 
 }  // namespace
@@ -54,8 +63,45 @@ std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choi
     return requireGpu().make(scene, choice.gpu);
 }
 
-std::optional<std::string> gpuSizeRefusal(const Scene& scene, const GpuOptions& options) {
-    return requireGpu().sizeRefusal(scene, options);
+BackendPick pickBackend(const Scene* scene, const GpuOptions& options, bool doubleAsked) {
+    if (doubleAsked)
+        return {Backend::Cpu, "as --precision double asks (the GPU computes in float)"};
+    if (gpuEntry() == nullptr) return {Backend::Cpu, std::string("as ") + kNoGpuBuilt};
+    try {
+        const std::string device = "as the OpenGL device, " + gpuEntry()->renderer() + ", is a ";
+        if (gpuEntry()->software())
+            return {Backend::Cpu,
+                    device + "software rasteriser, where the GPU backend runs " + kSoftwareCost};
+        if (scene != nullptr)
+            if (const auto why = gpuEntry()->refusal(*scene, options))
+                return {Backend::Cpu, "as the GPU backend cannot run this scene: " + *why};
+        return {Backend::Gpu, device + "hardware GPU"};
+    } catch (const GpuUnavailable& e) {
+        return {Backend::Cpu,
+                "as the GPU backend has no OpenGL 4.3 context: " + firstLine(e.what())};
+    }
+}
+
+std::string settleBackend(BackendChoice& choice, const Scene& scene, bool doubleAsked) {
+    if (choice.automatic) {
+        const BackendPick pick = pickBackend(&scene, choice.gpu, doubleAsked);
+        choice.backend = pick.backend;
+        choice.automatic = false;
+        return std::string("backend auto: ") + backendName(pick.backend) + ", " + pick.reason;
+    }
+    if (choice.backend != Backend::Gpu || gpuEntry() == nullptr) return "";
+    try {
+        if (gpuEntry()->software())
+            return "note: the GPU backend runs on " + gpuEntry()->renderer() +
+                   ", a software rasteriser, " + kSoftwareCost +
+                   " there (--backend cpu or auto picks the CPU)";
+    } catch (const GpuUnavailable&) {  // makeSolver says why
+    }
+    return "";
+}
+
+std::optional<std::string> gpuRefusal(const Scene& scene, const GpuOptions& options) {
+    return requireGpu().refusal(scene, options);
 }
 
 GpuPassTimes gpuPassTimes(Solver& solver, int repeats) {

@@ -19,18 +19,40 @@ struct BackendChoice {
     int threads = 0;                          // CPU only; 0 = automatic
     GpuOptions gpu{};                         // GPU only: work groups, kernels, read-backs
     CpuIsa isa = CpuIsa::Auto;                // CPU only: the row kernels (cpu/cpu_rows.h)
+    bool automatic = false;                   // --backend auto: settleBackend() picks `backend`
 };
 
 // Hands the process's GPU settings (the app's environment) to the GPU backend when this build has
 // one; before any solver or context is made.
 void configureBackends(const GpuSetup& gpu);
 
-// Throws GpuUnavailable when the GPU backend is asked for and cannot run.
+// Throws GpuUnavailable when the GPU backend is asked for and cannot run. Settle the choice
+// (settleBackend) first: an automatic choice not settled runs on the CPU.
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice);
 
-// Why the GPU cannot hold this scene's grid with these options (a limit of the device, named),
-// or nothing. Throws GpuUnavailable.
-std::optional<std::string> gpuSizeRefusal(const Scene& scene, const GpuOptions& options);
+// The backend --backend auto picks (DESIGN.md §5), and why, in words: the GPU when the OpenGL
+// context the GPU backend computes in (made headless through EGL, hardware devices first, or the
+// window's current one adopted) is on a hardware device, else the CPU. On a software rasteriser
+// (llvmpipe, softpipe, swrast) the GPU backend runs about 10–30× slower than the CPU backend
+// (docs/performance.md); without a context, a GPU backend in this build, or, for `scene`, a GPU
+// that can run it (gpuRefusal), there is no choice; `doubleAsked` (--precision double) needs the
+// CPU too, as the GPU computes in float.
+struct BackendPick {
+    Backend backend = Backend::Cpu;
+    std::string reason;  // "as the OpenGL device, llvmpipe (...), is a software rasteriser, ..."
+};
+BackendPick pickBackend(const Scene* scene, const GpuOptions& options, bool doubleAsked);
+
+// Settles `choice` for `scene` before its solver is made: an automatic choice gets the backend
+// pickBackend() names. Returns the one line the user is to be told, or "": which backend auto
+// picked and why, or, for --backend gpu on a software rasteriser, a notice that the CPU backend
+// is faster there (the GPU backend runs all the same). Makes the GL context (or adopts the
+// current one) only when the choice involves the GPU.
+std::string settleBackend(BackendChoice& choice, const Scene& scene, bool doubleAsked);
+
+// Why the GPU backend cannot run this scene with these options (a limit of the device, named: the
+// grid, a multigrid preconditioner's buffers), or nothing. Throws GpuUnavailable.
+std::optional<std::string> gpuRefusal(const Scene& scene, const GpuOptions& options);
 // Seconds of one forces pass and one integrate pass (Solver::timePasses), and of one copy kernel
 // over as many vec4 as the grid has vertices, each alone, best of `repeats`: what a step's time
 // is made of. Throws GpuUnavailable for the copy kernel.

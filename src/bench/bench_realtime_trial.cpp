@@ -114,7 +114,7 @@ Trial trialAtSize(Scene scene, const BackendChoice& choice, const RealtimeOption
     t.n = scene.cloth.nu;
     t.tightDt = tight;
     if (choice.backend == Backend::Gpu)
-        if (const auto why = gpuSizeRefusal(scene, choice.gpu)) {
+        if (const auto why = gpuRefusal(scene, choice.gpu)) {
             t.status = TrialStatus::DoesNotFit;
             t.reason = *why;
             return t;

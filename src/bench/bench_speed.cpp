@@ -199,7 +199,7 @@ std::set<int> gpuSizesBeyondDevice(const Options& o) {
     for (int side : o.sizes) {
         const Scene sized = loadScene(o.scenePath, withResolution(o.sets, side));
         for (const GpuOptions& g : o.gpuSweep.variants()) {
-            const auto why = gpuSizeRefusal(sized, g);
+            const auto why = gpuRefusal(sized, g);
             if (!why) continue;
             const std::string message =
                 "the GPU cannot hold size " + std::to_string(side) + ": " + *why;

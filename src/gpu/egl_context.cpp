@@ -5,6 +5,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -119,29 +120,40 @@ struct Device {
     bool software;
 };
 
-// The EGL devices in the order to try: the configured one alone (gpuSetup), else hardware first.
-std::vector<Device> listDevices() {
+// "0 (software)": the index EGL and CLOTH_EGL_DEVICE give it, and its kind.
+std::string deviceLabel(const Device& d) {
+    return std::to_string(d.index) + (d.software ? " (software)" : " (hardware)");
+}
+
+// Every EGL device in index order; Mesa marks its software rasterisers with
+// EGL_MESA_device_software.
+std::vector<Device> queryDevices() {
     auto queryDevices = eglProc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
     auto queryString = eglProc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
     EGLint n = 0;
     if (queryDevices == nullptr || !queryDevices(0, nullptr, &n) || n <= 0) return {};
     std::vector<EGLDeviceEXT> handles(n);
     queryDevices(n, handles.data(), &n);
-    std::vector<Device> hardware, software;
+    std::vector<Device> devices;
     for (int i = 0; i < n; ++i) {
         const char* ext = queryString ? queryString(handles[i], EGL_EXTENSIONS) : nullptr;
-        const bool sw = hasExtension(ext, "EGL_MESA_device_software");
-        (sw ? software : hardware).push_back({handles[i], i, sw});
+        devices.push_back({handles[i], i, hasExtension(ext, "EGL_MESA_device_software")});
     }
+    return devices;
+}
+
+// The devices in the order to try: the configured one alone (gpuSetup), else hardware first.
+std::vector<Device> devicesToTry(std::vector<Device> devices) {
     if (const int want = gpuSetup().eglDevice; want >= 0) {
-        if (want >= n)
+        if (want >= int(devices.size()))
             throw InputError("", "CLOTH_EGL_DEVICE",
                              std::to_string(want) + " is not a device index in [0, " +
-                                 std::to_string(n - 1) + "]");
-        return {{handles[want], want, false}};
+                                 std::to_string(int(devices.size()) - 1) + "]");
+        return {devices[size_t(want)]};
     }
-    hardware.insert(hardware.end(), software.begin(), software.end());
-    return hardware;
+    std::stable_partition(devices.begin(), devices.end(),
+                          [](const Device& d) { return !d.software; });
+    return devices;
 }
 
 #ifndef NDEBUG
@@ -196,12 +208,13 @@ void GlContext::createEgl() {
         return false;
     };
     if (platformDisplay != nullptr && hasExtension(client, "EGL_EXT_platform_device")) {
-        for (const Device& d : listDevices()) {
+        const std::vector<Device> devices = queryDevices();
+        for (const Device& d : devices)
+            info_.eglDevices += (info_.eglDevices.empty() ? "" : ", ") + deviceLabel(d);
+        for (const Device& d : devicesToTry(devices)) {
             const Attempt a =
                 tryDisplay(platformDisplay(EGL_PLATFORM_DEVICE_EXT, d.handle, nullptr));
-            const std::string name = "EGL device " + std::to_string(d.index) +
-                                     (d.software ? " (software)" : " (hardware)");
-            if (take(a, name)) return;
+            if (take(a, "EGL device " + deviceLabel(d))) return;
         }
     }
     if (platformDisplay != nullptr && hasExtension(client, "EGL_MESA_platform_surfaceless")) {
@@ -277,6 +290,7 @@ std::string GpuInfo::describe() const {
     char buf[1024];
     std::snprintf(buf, sizeof buf,
                   "platform:          %s\n"
+                  "EGL devices:       %s\n"
                   "EGL:               %s %s\n"
                   "GL renderer:       %s (%s)%s\n"
                   "GL version:        %s, GLSL %s\n"
@@ -287,8 +301,9 @@ std::string GpuInfo::describe() const {
                   "uniform block:     %lld bytes\n"
                   "storage blocks:    %d per compute shader\n"
                   "timer queries:     %s\n",
-                  platform.c_str(), eglVendor.empty() ? "-" : eglVendor.c_str(), eglVersion.c_str(),
-                  renderer.c_str(), vendor.c_str(), software ? " [software]" : "", version.c_str(),
+                  platform.c_str(), eglDevices.empty() ? "-" : eglDevices.c_str(),
+                  eglVendor.empty() ? "-" : eglVendor.c_str(), eglVersion.c_str(), renderer.c_str(),
+                  vendor.c_str(), software ? " [software]" : "", version.c_str(),
                   glslVersion.c_str(), maxWorkGroupCount[0], maxWorkGroupCount[1],
                   maxWorkGroupCount[2], maxWorkGroupSize[0], maxWorkGroupSize[1],
                   maxWorkGroupSize[2], maxInvocations, maxSharedMemory, maxStorageBlockSize,

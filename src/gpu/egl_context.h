@@ -12,8 +12,9 @@ namespace cloth {
 
 // What the context offers; the compute limits decide work-group sizes and the largest grid.
 struct GpuInfo {
-    std::string platform;   // "EGL device 0 (hardware)", "EGL surfaceless (Mesa)", ...
-    std::string eglVendor;  // empty for an adopted context
+    std::string platform;    // "EGL device 0 (hardware)", "EGL surfaceless (Mesa)", ...
+    std::string eglDevices;  // every EGL device: "0 (software), 1 (hardware)"; empty if none
+    std::string eglVendor;   // empty for an adopted context
     std::string eglVersion;
     std::string renderer;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
     std::string vendor;    // GL_VENDOR

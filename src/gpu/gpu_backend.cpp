@@ -28,10 +28,10 @@ std::string describeGpuVariant(const Scene& scene, const GpuOptions& options) {
     return line;
 }
 
-std::optional<std::string> gpuGridRefusal(const Scene& scene, const GpuOptions& options) {
+std::optional<std::string> gpuSceneRefusal(const Scene& scene, const GpuOptions& options) {
     const GpuInfo& info = GlContext::instance().info();
     try {
-        checkGridFits(
+        checkSceneFits(
             scene,
             chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey),
             info);
@@ -43,6 +43,10 @@ std::optional<std::string> gpuGridRefusal(const Scene& scene, const GpuOptions& 
 
 std::string gpuRendererName() {
     return GlContext::instance().info().renderer;
+}
+
+bool gpuIsSoftware() {
+    return GlContext::instance().info().software;
 }
 
 }  // namespace cloth

@@ -20,13 +20,17 @@ std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& opti
 // Multi-line: EGL vendor, platform, GL renderer/version, compute limits. Throws GpuUnavailable.
 std::string describeGpu();
 
-// Why the device cannot hold this scene's grid with these options (a limit of the device, named),
-// or nothing. Throws GpuUnavailable.
-std::optional<std::string> gpuGridRefusal(const Scene& scene, const GpuOptions& options);
+// Why the GPU backend cannot run this scene with these options (a limit of the device, named:
+// checkSceneFits), or nothing. Throws GpuUnavailable.
+std::optional<std::string> gpuSceneRefusal(const Scene& scene, const GpuOptions& options);
 
 // GL_RENDERER of the headless context, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)". Throws
 // GpuUnavailable.
 std::string gpuRendererName();
+
+// Whether that context runs on a software rasteriser (llvmpipe, softpipe, swrast: GpuInfo).
+// Throws GpuUnavailable.
+bool gpuIsSoftware();
 
 // The #defines this scene compiles to, one line; no GL needed.
 std::string describeGpuVariant(const Scene& scene, const GpuOptions& options = {});

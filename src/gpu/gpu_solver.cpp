@@ -108,10 +108,9 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
                          "must be at least 1, not " + std::to_string(checkEvery_));
     workGroup_ =
         chooseWorkGroup({options.workGroupX, options.workGroupY}, &info, options.workGroupKey);
-    checkGridFits(scene, workGroup_, info);
+    checkSceneFits(scene, workGroup_, info);
     const bool multigrid = method_ == Method::ImplicitEuler &&
                            scene.integrator.preconditioner == Preconditioner::Multigrid;
-    if (multigrid) checkMultigridFits(scene, info);
     if (info.maxUniformBlockSize < static_cast<long long>(sizeof(gpu::Params)))
         throw GpuUnavailable(info.renderer + " allows " + std::to_string(info.maxUniformBlockSize) +
                              "-byte uniform blocks; the parameters need " +

@@ -100,6 +100,13 @@ void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
                          " bytes per SSBO: use \"jacobi\", a coarser grid or the CPU backend");
 }
 
+void checkSceneFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
+    checkGridFits(scene, wg, info);
+    if (scene.integrator.method == Method::ImplicitEuler &&
+        scene.integrator.preconditioner == Preconditioner::Multigrid)
+        checkMultigridFits(scene, info);
+}
+
 WorkGroup chooseWorkGroup(WorkGroup wg, const GpuInfo* info, const std::string& key) {
     const std::string size = std::to_string(wg.x) + "x" + std::to_string(wg.y);
     if (wg.x < 1 || wg.y < 1) throw InputError("", key, size + ": sizes must be at least 1");

@@ -12,7 +12,8 @@ namespace cloth::app {
 struct ViewerOptions {
     std::string scenePath = "scenes/drape.json";
     std::vector<std::string> sets;  // --set KEY.PATH=JSON, applied through applyParameters()
-    BackendChoice backend;
+    BackendChoice backend;          // an automatic one is settled once the window's context is made
+    bool doubleAsked = false;       // --precision double: --backend auto picks the CPU
     int width = 1280, height = 800;
     bool vsync = true;
     int frames = 0;          // > 0: run this many frames, then exit (tests, screenshots)

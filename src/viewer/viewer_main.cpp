@@ -164,13 +164,17 @@ int runViewer(const ViewerOptions& o) {
     // The GPU library adopts the window's context and loads GL functions; its renderer is named.
     const std::string device = gpuRenderer();
     initImGui(window);
+    BackendChoice backend = o.backend;  // --backend auto picks for this window's device
+    const std::string pick = settleBackend(backend, edited.value_or(file), o.doubleAsked);
+    if (!pick.empty()) std::fprintf(stderr, "clothsim: %s\n", pick.c_str());
 
     ViewerUi ui;
+    ui.backendPick = pick;
     ui.vsync = o.vsync;
     ui.device = device;
     ui.sceneDirectory = sceneDirectoryOf(o.scenePath);
     ui.sceneFiles = listScenes(ui.sceneDirectory);
-    std::unique_ptr<ViewerSession> session = openScene(file, edited, o.backend);
+    std::unique_ptr<ViewerSession> session = openScene(file, edited, backend);
     auto renderer = std::make_unique<render::Renderer>();
     showScene(*session, *renderer, ui);
     double sampleClock = 0;

@@ -46,6 +46,8 @@ void runControls(ViewerSession& session, ViewerUi& ui) {
         ImGui::SameLine();
         changed |= ImGui::RadioButton("float", &precision, 1);
     }
+    if (changed) ui.backendPick.clear();
+    if (!ui.backendPick.empty()) ImGui::TextWrapped("%s", ui.backendPick.c_str());
     if (!changed) return;
     b.backend = backend == 1 ? Backend::Gpu : Backend::Cpu;
     b.precision = precision == 1 ? Precision::Float : Precision::Double;

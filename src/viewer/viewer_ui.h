@@ -32,6 +32,7 @@ struct ViewerUi {
     std::optional<std::string> loadRequest;
     std::string message;         // the last file written, or an error
     std::string device;          // GL renderer of the window
+    std::string backendPick;     // what --backend auto picked and why, until the backend changes
     int resolution[2] = {0, 0};  // the panel's pending grid size; 0: take the scene's
     int width = 1, height = 1;   // the 3-D view right of the panel, framebuffer [px]
     int viewX = 0;               // its left edge, framebuffer [px]

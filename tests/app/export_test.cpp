@@ -13,12 +13,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "support/csv_positions.h"
 #include "support/process.h"
 
 namespace cloth {
 namespace {
 
 namespace fs = std::filesystem;
+using test::readCsvPositions;
 using test::runProcess;
 
 const std::string kExe = CLOTH_EXE;
@@ -36,21 +38,6 @@ Obj readObj(const fs::path& path) {
     EXPECT_TRUE(tinyobj::LoadObj(&o.attrib, &o.shapes, &materials, &warn, &err, path.c_str()))
         << err;
     return o;
-}
-
-// Rows i,j,x,y,z,... of a CSV the run wrote (DESIGN.md §5), positions only.
-std::vector<std::array<double, 3>> readCsvPositions(const fs::path& path) {
-    std::ifstream in(path);
-    std::string line;
-    std::getline(in, line);
-    std::vector<std::array<double, 3>> p;
-    while (std::getline(in, line)) {
-        int i, j;
-        std::array<double, 3> x;
-        if (std::sscanf(line.c_str(), "%d,%d,%lf,%lf,%lf", &i, &j, &x[0], &x[1], &x[2]) == 5)
-            p.push_back(x);
-    }
-    return p;
 }
 
 std::array<double, 3> diff(const std::array<double, 3>& a, const std::array<double, 3>& b) {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "support/gl_required.h"
 #include "support/process.h"
 
 namespace cloth::test {
@@ -66,20 +67,5 @@ inline ColourCounts countColours(const Picture& p, int x0 = 0) {
     for (const bool s : seen) c.distinct += s;
     return c;
 }
-
-inline bool gpuRequiredByEnvironment() {
-    const char* v = std::getenv("CLOTH_REQUIRE_GPU");
-    return v != nullptr && std::string(v) == "1";
-}
-
-// A child that found no OpenGL context (exit 4) skips the test, unless CLOTH_REQUIRE_GPU=1.
-#define CLOTH_SKIP_IF_NO_GL(result)                                                         \
-    do {                                                                                    \
-        if ((result).exitCode == 4) {                                                       \
-            if (::cloth::test::gpuRequiredByEnvironment())                                  \
-                GTEST_FAIL() << "CLOTH_REQUIRE_GPU=1: " << ::cloth::test::describe(result); \
-            GTEST_SKIP() << "no OpenGL context: " << (result).err;                          \
-        }                                                                                   \
-    } while (0)
 
 }  // namespace cloth::test

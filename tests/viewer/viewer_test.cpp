@@ -230,7 +230,9 @@ std::string xvfbRun() {
 
 // Runs the viewer under its own Xvfb. xvfb-run -a picks a free display number from -n on; two
 // runs starting together may still pick the same one, so a failed server start is retried.
-void viewScreenshot(const std::string& backend, const fs::path& png) {
+// The run's result goes to `result` when given.
+void viewScreenshot(const std::string& backend, const fs::path& png,
+                    test::ProcessResult* result = nullptr) {
     const std::string xvfb = xvfbRun();
     if (xvfb.empty()) {
         if (test::gpuRequiredByEnvironment()) FAIL() << "CLOTH_REQUIRE_GPU=1 but no xvfb-run";
@@ -238,13 +240,15 @@ void viewScreenshot(const std::string& backend, const fs::path& png) {
     }
     test::ProcessResult r;
     for (int attempt = 0; attempt < 3; ++attempt) {
-        const int display = 100 + int(getpid() % 300) * 3 + attempt + (backend == "gpu" ? 1000 : 0);
+        const int offset = backend == "cpu" ? 0 : backend == "gpu" ? 1000 : 2000;
+        const int display = 100 + int(getpid() % 300) * 3 + attempt + offset;
         r = test::runProcess({xvfb, "-a", "-n", std::to_string(display), "-s",
                               "-screen 0 1280x800x24", CLOTH_EXE, "view", kScenes + "drape.json",
                               "--backend", backend, "--frames", "12", "--screenshot", png.string()},
                              120);
         if (r.exitCode == 0 || r.err.find("Xvfb failed to start") == std::string::npos) break;
     }
+    if (result != nullptr) *result = r;
     CLOTH_SKIP_IF_NO_GL(r);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
 }
@@ -272,8 +276,18 @@ TEST_P(ViewerWindow, DrapeScreenshotShowsClothSphereAndGround) {
     fs::remove_all(d);
     fs::create_directories(d);
     const fs::path png = d / "view.png";
-    viewScreenshot(GetParam(), png);
+    test::ProcessResult r;
+    viewScreenshot(GetParam(), png, &r);
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
+    // --backend auto says what it picked for the window's device, and why: the CPU on a software
+    // rasteriser (Xvfb's is Mesa's llvmpipe).
+    if (GetParam() == std::string("auto")) {
+        EXPECT_NE(r.err.find("clothsim: backend auto: "), std::string::npos) << r.err;
+        if (r.err.find("software rasteriser") != std::string::npos) {
+            EXPECT_NE(r.err.find("backend auto: cpu, as the OpenGL device, "), std::string::npos)
+                << r.err;
+        }
+    }
     const test::Picture p = test::loadPng(png.string());
     ASSERT_EQ(p.width, 1280);
     ASSERT_EQ(p.height, 800);
@@ -293,7 +307,7 @@ TEST_P(ViewerWindow, DrapeScreenshotShowsClothSphereAndGround) {
     fs::remove_all(d);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, ViewerWindow, ::testing::Values("cpu", "gpu"));
+INSTANTIATE_TEST_SUITE_P(Backends, ViewerWindow, ::testing::Values("cpu", "gpu", "auto"));
 
 }  // namespace
 }  // namespace cloth
