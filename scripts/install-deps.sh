@@ -11,7 +11,7 @@ PACKAGES=(
     libegl-dev libgl-dev libglew-dev          # GPU backend: headless EGL + OpenGL 4.3 compute
     libegl-mesa0 libgl1-mesa-dri              # Mesa (llvmpipe where there is no GPU)
     libglfw3-dev libimgui-dev libstb-dev      # viewer window, its panel, PNG output
-    xvfb xauth                                # viewer tests without a display (xvfb-run)
+    xvfb xauth xdotool                        # viewer tests without a display, real X input
     clang-14 libfuzzer-14-dev                 # the scene-loader fuzzer
     glslang-tools                             # shaders checked by a second compiler
     gnuplot-nox                               # bench accuracy/stability plots (PNG, SVG)

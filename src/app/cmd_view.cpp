@@ -30,7 +30,9 @@ options:
   --size WxH                window size (default 1280x800)
   --no-vsync                draw as fast as possible
   --frames N                draw N frames, then exit (with --screenshot: for tests)
-  --screenshot FILE         after the last of --frames N, write the window as PNG
+  --screenshot FILE         after the last frame (of --frames N, or when the window closes:
+                            Ctrl+Q), write the window as PNG
+  --out-csv FILE            after the last frame, write the solver's state as run --out-csv
   --help                    this text
 
 exit codes: 0 ok, 1 internal error, 2 invalid input, 4 no window with OpenGL 4.3
@@ -58,6 +60,8 @@ int viewCommand(Args& args) {
             o.frames = int(args.positiveInt(f));
         else if (f == "--screenshot")
             o.screenshot = args.value(f);
+        else if (f == "--out-csv")
+            o.outCsv = args.value(f);
         else if (f == "--size") {
             const std::string v = args.value(f);
             if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 ||
@@ -67,8 +71,8 @@ int viewCommand(Args& args) {
         } else
             args.unknown(f);
     }
-    if (!o.screenshot.empty() && o.frames == 0)
-        throw InputError("command line", "--screenshot", "--screenshot FILE needs --frames N");
+    checkOutputFile("--screenshot", o.screenshot);
+    checkOutputFile("--out-csv", o.outCsv);
     if (o.frames > 0) o.vsync = false;  // a scripted run need not wait for the display
     o.doubleAsked = common.doubleAsked();
     return runViewer(o);

@@ -17,7 +17,10 @@ struct ViewerOptions {
     int width = 1280, height = 800;
     bool vsync = true;
     int frames = 0;          // > 0: run this many frames, then exit (tests, screenshots)
-    std::string screenshot;  // written after the last frame when frames > 0
+    // Written after the last frame: the one `frames` counts to, or the one in which the window
+    // was closed (Ctrl+Q, the window manager).
+    std::string screenshot;  // the window as PNG
+    std::string outCsv;      // the solver's state, as run --out-csv writes it
 };
 
 // Runs the window until it is closed (or `frames` have been drawn). Throws GpuUnavailable when

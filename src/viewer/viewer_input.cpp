@@ -6,6 +6,7 @@
 #include <imgui.h>
 
 #include <stdexcept>
+#include <utility>
 
 #include "render/collider_pick.h"
 #include "viewer/viewer_session.h"
@@ -70,20 +71,45 @@ void moveCollider(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
     }
 }
 
-void keyboard(ViewerSession& session, ViewerUi& ui) {
-    if (ImGui::GetIO().WantCaptureKeyboard) return;
-    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE)) session.setPaused(!session.paused());
-    if (ImGui::IsKeyPressed(GLFW_KEY_N)) ui.stepOnce = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_R)) session.reset();
-    if (ImGui::IsKeyPressed(GLFW_KEY_F)) ui.frameRequested = true;
-    if (ImGui::IsKeyPressed(GLFW_KEY_HOME)) ui.camera = ui.homeCamera;
-    if (ImGui::IsKeyPressed(GLFW_KEY_W)) ui.render.wireframe = !ui.render.wireframe;
-    if (ImGui::IsKeyPressed(GLFW_KEY_C))
-        ui.render.colour = ui.render.colour == render::ColourMode::Strain
-                               ? render::ColourMode::Checker
-                               : render::ColourMode::Strain;
-    if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P))
-        ui.screenshotRequested = true;
+// The keys latched since the last frame (latchKeys), in the order they came.
+void keyboard(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
+    const std::vector<ViewerUi::KeyPress> keys = std::exchange(ui.keysPressed, {});
+    for (const ViewerUi::KeyPress& k : keys) {
+        if (k.key == GLFW_KEY_Q && (k.mods & GLFW_MOD_CONTROL) != 0)
+            glfwSetWindowShouldClose(window, GLFW_TRUE);
+        if (ImGui::GetIO().WantCaptureKeyboard) continue;  // typing into the panel
+        switch (k.key) {
+            case GLFW_KEY_SPACE:
+                session.setPaused(!session.paused());
+                break;
+            case GLFW_KEY_N:
+                ui.stepOnce = true;
+                break;
+            case GLFW_KEY_R:
+                session.reset();
+                break;
+            case GLFW_KEY_F:
+                ui.frameRequested = true;
+                break;
+            case GLFW_KEY_HOME:
+                ui.camera = ui.homeCamera;
+                break;
+            case GLFW_KEY_W:
+                ui.render.wireframe = !ui.render.wireframe;
+                break;
+            case GLFW_KEY_C:
+                ui.render.colour = ui.render.colour == render::ColourMode::Strain
+                                       ? render::ColourMode::Checker
+                                       : render::ColourMode::Strain;
+                break;
+            case GLFW_KEY_F12:
+            case GLFW_KEY_P:
+                ui.screenshotRequested = true;
+                break;
+            default:
+                break;
+        }
+    }
 }
 
 void press(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
@@ -136,8 +162,14 @@ void drag(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
 
 }  // namespace
 
+void latchKeys(GLFWwindow* window, int key, int /*scancode*/, int action, int mods) {
+    if (action != GLFW_PRESS) return;
+    if (auto* ui = static_cast<ViewerUi*>(glfwGetWindowUserPointer(window)))
+        ui->keysPressed.push_back({key, mods});
+}
+
 void handleInput(GLFWwindow* window, ViewerSession& session, ViewerUi& ui) {
-    keyboard(session, ui);
+    keyboard(window, session, ui);
     const ImGuiIO& io = ImGui::GetIO();
     const bool anyDown = io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2];
     if (!anyDown) {

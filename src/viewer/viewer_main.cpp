@@ -15,6 +15,7 @@
 
 #include "model/errors.h"
 #include "scene/scene_loader.h"
+#include "solver/output.h"
 #include "viewer/viewer.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
@@ -139,7 +140,7 @@ void loadRequestedScene(ViewerUi& ui, std::unique_ptr<ViewerSession>& session,
     }
 }
 
-// The scripted screenshot after the last frame (--screenshot), and the panel's when asked.
+// The screenshot after the last frame (--screenshot), and the panel's when asked.
 void takeScreenshots(ViewerUi& ui, const ViewerOptions& o, bool last) {
     if (last && !o.screenshot.empty()) saveScreenshot(ui, o.screenshot);
     if (std::exchange(ui.screenshotRequested, false)) {
@@ -163,12 +164,14 @@ int runViewer(const ViewerOptions& o) {
     GLFWwindow* window = openWindow(o);
     // The GPU library adopts the window's context and loads GL functions; its renderer is named.
     const std::string device = gpuRenderer();
+    ViewerUi ui;
+    glfwSetWindowUserPointer(window, &ui);
+    glfwSetKeyCallback(window, latchKeys);  // before Dear ImGui's, which chains to it
     initImGui(window);
     BackendChoice backend = o.backend;  // --backend auto picks for this window's device
     const std::string pick = settleBackend(backend, edited.value_or(file), o.doubleAsked);
     if (!pick.empty()) std::fprintf(stderr, "clothsim: %s\n", pick.c_str());
 
-    ViewerUi ui;
     ui.backendPick = pick;
     ui.vsync = o.vsync;
     ui.device = device;
@@ -179,8 +182,9 @@ int runViewer(const ViewerOptions& o) {
     showScene(*session, *renderer, ui);
     double sampleClock = 0;
 
-    // Loop.
-    for (int frame = 1; !glfwWindowShouldClose(window); ++frame) {
+    // Loop, until the frame after which the window closes: it is drawn and kept (--screenshot,
+    // --out-csv) like the last of --frames N.
+    for (int frame = 1;; ++frame) {
         glfwPollEvents();
         ImGui_ImplOpenGL3_NewFrame();
         ImGui_ImplGlfw_NewFrame();
@@ -207,12 +211,13 @@ int runViewer(const ViewerOptions& o) {
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        const bool last = o.frames > 0 && frame >= o.frames;
+        const bool last = (o.frames > 0 && frame >= o.frames) || glfwWindowShouldClose(window);
         takeScreenshots(ui, o, last);
         glfwSwapInterval(ui.vsync ? 1 : 0);
         glfwSwapBuffers(window);
         if (last) break;
     }
+    if (!o.outCsv.empty()) writeCsv(o.outCsv, session->solver().read(), effectivePrecision(session->backend()));
 
     // Shutdown: GL objects before the context goes.
     renderer.reset();

@@ -41,6 +41,14 @@ struct ViewerUi {
     // from scene/params.cpp's table (tests check this against the table).
     std::vector<std::string> drawnParams;
 
+    // Keys pressed since the last frame with their modifiers (GLFW_MOD_*), latched by a GLFW
+    // callback (latchKeys): Dear ImGui 1.86 reads the keys' state once a frame, so a key pressed
+    // and released between two frames (a quick tap at a low frame rate) would be lost.
+    struct KeyPress {
+        int key, mods;
+    };
+    std::vector<KeyPress> keysPressed;
+
     // Timing of the last frame.
     double frameSeconds = 0;  // wall time between frames
     double fps = 0;
@@ -75,6 +83,9 @@ void drawInstabilityNotice(ViewerSession& session);
 
 // Mouse and keyboard (viewer_input.cpp): camera, picking, grab, pins, shortcuts.
 void handleInput(GLFWwindow* window, ViewerSession& session, ViewerUi& ui);
+// The GLFW key callback that fills ViewerUi::keysPressed (the window's user pointer is the
+// ViewerUi); installed before Dear ImGui's, which calls it on.
+void latchKeys(GLFWwindow* window, int key, int scancode, int action, int mods);
 
 // Files (viewer_output.cpp); each returns the path written and throws std::runtime_error.
 std::string saveScreenshot(const ViewerUi& ui, const std::string& path = "");

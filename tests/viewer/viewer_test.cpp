@@ -265,8 +265,9 @@ TEST(ViewerCommand, HelpAndBadInputNeedNoDisplay) {
         {CLOTH_EXE, "view", kScenes + "drape.json", "--set", "material.air_damping=-1"}, 30);
     EXPECT_EQ(r.exitCode, 2) << test::describe(r);
     EXPECT_NE(r.err.find("material.air_damping"), std::string::npos) << r.err;
-    r = test::runProcess({CLOTH_EXE, "view", "--screenshot", "x.png"}, 30);
-    EXPECT_EQ(r.exitCode, 2) << "--screenshot needs --frames: " << test::describe(r);
+    r = test::runProcess({CLOTH_EXE, "view", "--out-csv", "/nonexistent-dir/x.csv"}, 30);
+    EXPECT_EQ(r.exitCode, 2) << "an unwritable --out-csv: " << test::describe(r);
+    EXPECT_NE(r.err.find("--out-csv"), std::string::npos) << r.err;
 }
 
 class ViewerWindow : public ::testing::TestWithParam<const char*> {};
