@@ -51,10 +51,11 @@ shaders: build
 	scripts/check-shaders.sh $(BUILD_DIR)/clothsim
 
 # The sanitizer builds, each in its own folder and without the GPU backend (Mesa's own code is
-# not ours to check): AddressSanitizer + UndefinedBehaviorSanitizer over the CPU, scene, model,
+# not ours to check), nor the Python module (a sanitized module needs a sanitized interpreter's
+# preload): AddressSanitizer + UndefinedBehaviorSanitizer over the CPU, scene, model,
 # solver and CLI tests; ThreadSanitizer over the multithreaded CPU tests (the worker pool).
 SANITIZE_FLAGS := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLOTH_GPU=OFF -DCLOTH_BULLET=OFF \
-                  -DCLOTH_WERROR=$(WERROR)
+                  -DCLOTH_PYTHON=OFF -DCLOTH_WERROR=$(WERROR)
 ASAN_LABELS := cpu|scene|model|solver|app
 # ThreadSanitizer slows a step tenfold: of the cpu tests, those that run two or more threads.
 TSAN_LABELS := cpu

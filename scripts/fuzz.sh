@@ -15,7 +15,7 @@ if ! command -v "$cxx" >/dev/null; then
 fi
 
 CXX="$cxx" cmake -S "$root" -B "$build" -DCLOTH_FUZZ=ON -DCLOTH_BUILD_TESTS=OFF \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+    -DCLOTH_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build "$build" --target scene_loader_fuzz -j"$(nproc)"
 
 # Seed with every shipped scene and every known-bad one; the corpus grows across runs.

@@ -16,6 +16,9 @@ PACKAGES=(
     glslang-tools                             # shaders checked by a second compiler
     gnuplot-nox                               # bench accuracy/stability plots (PNG, SVG)
     libbullet-dev                             # bench speed --peer bullet (btSoftBody)
+    python3-dev pybind11-dev                  # the Python module (python/), for Debian's python3
+    python3-numpy python3-pytest              # its arrays and its tests (tests/python/)
+    python3-matplotlib                        # examples/sweep.py's plot
 )
 
 missing=()

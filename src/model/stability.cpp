@@ -186,9 +186,23 @@ double stableDt(const Scene& scene) {
     return estimateStability(scene).safeDt(scene.integrator.method);
 }
 
+namespace {
+
+std::optional<double> halfBound(double bound) {
+    if (std::isinf(bound) || !(bound > 0)) return std::nullopt;
+    return 0.5 * bound;
+}
+
+}  // namespace
+
+std::optional<double> suggestedDt(const Scene& scene) {
+    return halfBound(stableDt(scene));
+}
+
 std::string stabilityAdvice(const Scene& scene) {
     const StabilityBound b = estimateStability(scene);
     const double bound = stableDt(scene), dt = scene.integrator.dt;
+    const double suggested = halfBound(bound).value_or(0);  // where the advice names a Δt
     char buf[400];
     if (std::isinf(bound)) {
         std::snprintf(buf, sizeof buf,
@@ -200,13 +214,13 @@ std::string stabilityAdvice(const Scene& scene) {
                       "predicted stable dt < %.3g s for %s (omega_max^2 <= %.4g 1/s^2, "
                       "air_damping %g 1/s, spring_damping %g s); try --set integrator.dt=%.2g",
                       bound, methodName(scene.integrator.method), b.omega2Max, b.dampingRate,
-                      b.springDamping, 0.5 * bound);
+                      b.springDamping, suggested);
     } else if (bound > 0) {
         std::snprintf(buf, sizeof buf,
                       "predicted stable dt < %.3g s for %s (lambda_max <= %.4g N/m, damping %g); "
                       "try --set integrator.dt=%.2g",
                       bound, methodName(scene.integrator.method), b.lambdaMax, scene.damping,
-                      0.5 * bound);
+                      suggested);
     } else if (scene.material) {  // explicit Euler is stable iff c/ω²_max + β > Δt
         std::snprintf(buf, sizeof buf,
                       "explicit Euler has no stable dt without damping (every spring mode grows); "

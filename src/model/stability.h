@@ -77,6 +77,11 @@ double stableDt(const Scene& scene);
 // One line a user can act on: a Δt inside the bound, or the damping that makes the Δt stable.
 std::string stabilityAdvice(const Scene& scene);
 
+// The Δt that advice suggests [s]: half the safe bound, a margin for the nonlinear terms the
+// bound leaves out. Nothing where every Δt is predicted stable (the instability is not the
+// step's) or none is (explicit Euler without damping: the damping must change).
+std::optional<double> suggestedDt(const Scene& scene);
+
 // When the scene's Δt is beyond its integrator's predicted (safe) bound, or explicit Euler has no
 // stable Δt at its damping: one line naming Δt, the bound and the key to change, which `run`,
 // `render` and the viewer show before stepping. Nothing inside the bound.

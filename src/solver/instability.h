@@ -1,0 +1,43 @@
+// What a run does about instability beyond the solvers' own checks (DESIGN.md §2): the strain
+// check on the state every so many steps, and the advice that goes with an unstable step. The
+// command line and the Python module both step by these rules.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "model/scene.h"
+#include "solver/solver.h"
+
+namespace cloth {
+
+// Steps between the strain checks of a run: a read of the state every 1000 steps costs well under
+// 1% of them (docs/performance.md), and a run that left physics stops soon after.
+inline constexpr long kStrainCheckSteps = 1000;
+
+// Whether a run at step `done` of `total`, last checked at step `checked`, checks its strain now:
+// every kStrainCheckSteps steps and at the end.
+inline bool strainCheckDue(long checked, long done, long total) {
+    return done - checked >= kStrainCheckSteps || done == total;
+}
+
+// DESIGN.md §2's strain check on the solver's state (solver/diagnostics.h strainBreach), last
+// checked at step `before`: the unstable StepResult, with the steps since as the range the first
+// bad step lies in, or nothing.
+std::optional<StepResult> strainInstability(const Scene& scene, const Solver& solver, long before);
+
+// Where `r` went unstable: "unstable at step 12 (t = 0.012 s): <reason>", or "unstable between
+// steps 65 and 128 (t = 0.065..0.128 s): <reason>" where a backend checks every few steps.
+std::string describeInstability(const Scene& scene, const StepResult& r);
+
+// What to change after the unstable step `r`: one line a user can act on, and the Δt it
+// suggests, if a smaller step is the cure (model/stability.h suggestedDt). A spring past
+// max_strain at a Δt inside the bound is a cloth too soft for its load, not a step too long:
+// then the line says so and no Δt is suggested.
+struct InstabilityAdvice {
+    std::string text;
+    std::optional<double> dt;  // [s]
+};
+InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r);
+
+}  // namespace cloth

@@ -1,0 +1,178 @@
+"""Errors reach Python as exceptions carrying what the command line prints: SceneError with the
+file, key path and reason; UnstableError with the step and the suggested time step."""
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import clothsim
+
+
+def scene_doc(root, name="hanging"):
+    with open(root / "scenes" / f"{name}.json") as f:
+        return json.load(f)
+
+
+def test_missing_file(root):
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(root / "scenes" / "no_such.json")
+    assert e.value.file.endswith("no_such.json")
+    assert e.value.key == ""
+    assert e.value.reason == "no such file"
+    assert isinstance(e.value, ValueError)
+
+
+def test_bad_value_in_a_dict_names_its_key_path(root):
+    doc = scene_doc(root)
+    doc["cloth"]["size"] = [1.0, -2.0]
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(doc)
+    assert e.value.file == "<dict>"
+    assert e.value.key.startswith("cloth.size")
+    assert "> 0" in e.value.reason
+    assert str(e.value) == f"<dict>: {e.value.key}: {e.value.reason}"
+
+
+def test_unknown_key_is_an_error(root):
+    doc = scene_doc(root)
+    doc["integrator"]["dtt"] = 0.1
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(doc)
+    assert e.value.key == "integrator.dtt"
+
+
+def test_the_same_message_as_validate(root, exe, tmp_path):
+    """The message is the command line's (stderr of `clothsim validate`) word for word."""
+    doc = scene_doc(root)
+    doc["material"]["stretch"] = -5
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(path)
+    cli = subprocess.run([exe, "validate", path], capture_output=True, text=True, timeout=60)
+    assert cli.returncode == 2
+    assert str(e.value) in cli.stderr
+    assert (e.value.file, e.value.key) == (str(path), "material.stretch")
+
+
+def test_override_is_validated_like_the_file(root):
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(root / "scenes/hanging.json", set={"integrator.dt": -1})
+    assert e.value.key == "integrator.dt"
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(root / "scenes/hanging.json", integrator="leapfrog")
+    assert e.value.key == "integrator.method"
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(root / "scenes/hanging.json", set={"cloth.colour": "red"})
+    assert e.value.key == "cloth.colour"
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(root / "scenes/hanging.json", set={"springs.bend": math.nan})
+    assert e.value.key == "springs.bend" and "JSON" in e.value.reason
+
+
+def test_overrides_apply(root):
+    sim = clothsim.Simulation(root / "scenes/hanging.json", integrator="vbd",
+                              set={"cloth.resolution": [7, 4], "integrator.dt": 1e-3})
+    assert sim.shape == (7, 4) and sim.dt == 1e-3 and sim.integrator == "vbd"
+    # numpy's scalars and arrays are values too
+    sim = clothsim.Simulation(root / "scenes/hanging.json",
+                              set={"cloth.resolution": np.array([5, 6]), "integrator.dt": np.float32(1e-4),
+                                   "material.bend": np.int64(0)})
+    assert sim.shape == (5, 6) and sim.dt == float(np.float32(1e-4))
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(root / "scenes/hanging.json", set={"integrator.dt": object()})
+    assert e.value.key == "integrator.dt" and "not a JSON value" in e.value.reason
+
+
+def test_a_key_set_twice_keeps_the_later_and_warns(root):
+    with pytest.warns(UserWarning, match="integrator.method"):
+        sim = clothsim.Simulation(root / "scenes/hanging.json", integrator="vbd",
+                                  set={"integrator.method": "verlet"})
+    assert sim.integrator == "verlet"
+
+
+@pytest.mark.parametrize("kwargs,key", [
+    ({"backend": "cuda"}, "backend"), ({"precision": "half"}, "precision"),
+    ({"threads": 0}, "threads"), ({"backend": "gpu", "precision": "double"}, "--precision"),
+])
+def test_bad_options_are_value_errors(root, kwargs, key):
+    with pytest.raises(ValueError, match=key) as e:
+        clothsim.Simulation(root / "scenes/hanging.json", **kwargs)
+    assert not isinstance(e.value, clothsim.SceneError)
+
+
+def test_bad_environment_variables_are_value_errors(root, monkeypatch):
+    monkeypatch.setenv("CLOTH_CPU_ISA", "sse9")
+    with pytest.raises(ValueError, match="CLOTH_CPU_ISA: expected") as e:
+        clothsim.Simulation(root / "scenes/hanging.json")
+    assert not isinstance(e.value, clothsim.SceneError)
+
+
+def test_a_bad_gpu_device_is_a_value_error(gpu, root):
+    # The process's GPU settings are read once, at its first Simulation: a new process.
+    code = ("import clothsim\n"
+            "try:\n"
+            f"    clothsim.Simulation({str(root / 'scenes/hanging.json')!r}, backend='gpu')\n"
+            "except clothsim.SceneError:\n"
+            "    print('SceneError')\n"
+            "except ValueError as e:\n"
+            "    print('ValueError', e)\n")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60,
+                          env={**os.environ, "CLOTH_EGL_DEVICE": "999"})
+    assert done.stdout.startswith("ValueError CLOTH_EGL_DEVICE: "), done.stdout + done.stderr
+
+
+def test_wrong_argument_types(root):
+    with pytest.raises(TypeError):
+        clothsim.Simulation(42)
+    with pytest.raises(TypeError):
+        clothsim.Simulation(root / "scenes/hanging.json", set=[("integrator.dt", 1e-3)])
+
+
+UNSTABLE = {"cloth.resolution": [8, 8], "integrator.dt": 0.01}  # 7x the bound
+
+
+def test_instability_raises_with_the_step_and_a_stable_dt(root, exe):
+    with pytest.warns(RuntimeWarning, match="beyond"):
+        sim = clothsim.Simulation(root / "scenes/hanging.json", set=UNSTABLE)
+    with pytest.raises(clothsim.UnstableError) as e:
+        sim.step(500)
+    err = e.value
+    assert 1 <= err.step <= err.last_step == sim.steps < 500
+    assert err.time == pytest.approx(err.step * 0.01)
+    assert err.reason
+    assert err.suggested_dt == pytest.approx(err.stable_dt / 2)
+    assert 0 < err.suggested_dt < 0.01
+    assert err.stable_dt == sim.stable_dt
+    assert "integrator.dt" in err.advice
+    # The command line says the same.
+    cli = subprocess.run([exe, "run", root / "scenes/hanging.json", "--steps", "500", "--quiet"]
+                         + [a for k, v in UNSTABLE.items() for a in ("--set", f"{k}={json.dumps(v)}")],
+                         capture_output=True, text=True, timeout=60)
+    assert cli.returncode == 3
+    assert f"unstable at step {err.step} " in cli.stderr
+    assert err.reason in cli.stderr and err.advice in cli.stderr
+
+
+@pytest.mark.filterwarnings("ignore:.*beyond")
+def test_instability_on_the_gpu_names_a_step_range(gpu, root):
+    sim = clothsim.Simulation(root / "scenes/hanging.json", backend="gpu", set=UNSTABLE)
+    with pytest.raises(clothsim.UnstableError) as e:
+        sim.step(2000)
+    assert 1 <= e.value.step <= e.value.last_step <= sim.steps
+    assert e.value.suggested_dt < 0.01
+
+
+@pytest.mark.filterwarnings("ignore:.*beyond")
+def test_writing_a_state_goes_on_after_instability(root):
+    sim = clothsim.Simulation(root / "scenes/hanging.json", set=UNSTABLE)
+    start = sim.positions
+    with pytest.raises(clothsim.UnstableError):
+        sim.step(500)
+    sim.set_positions(start)
+    sim.set_velocities(0 * start)
+    sim.step(1)
