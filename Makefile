@@ -57,6 +57,10 @@ shaders: build
 SANITIZE_FLAGS := -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLOTH_GPU=OFF -DCLOTH_BULLET=OFF \
                   -DCLOTH_PYTHON=OFF -DCLOTH_WERROR=$(WERROR)
 ASAN_LABELS := cpu|scene|model|solver|app
+# Left to make test: the two longest runs under AddressSanitizer (196 s and 99 s of a 41-minute
+# CI run), a stiffness sweep of VBD and every integrator's long everything-scene run, whose code
+# paths the shorter vbd and parity tests take too.
+ASAN_EXCLUDE := Vbd.StableFromSilkToAStretchOfOneMillion|IntegratorParity.SmallEverythingSceneReachesItsColliders
 # ThreadSanitizer slows a step tenfold: of the cpu tests, those that run two or more threads.
 TSAN_LABELS := cpu
 TSAN_TESTS  := Thread|RowBands|RowColliders|CpuMemory|IntegratorParity.DoubleMatches
@@ -70,7 +74,7 @@ asan: deps
 	cd build-asan && env -u CLOTH_REQUIRE_GPU \
 	    ASAN_OPTIONS=detect_stack_use_after_return=1 \
 	    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-	    ctest -L '^($(ASAN_LABELS))$$' --output-on-failure -j$(JOBS)
+	    ctest -L '^($(ASAN_LABELS))$$' -E '$(ASAN_EXCLUDE)' --output-on-failure -j$(JOBS)
 
 tsan: deps
 	@cmake -S . -B build-tsan $(SANITIZE_FLAGS) -DCLOTH_TSAN=ON \
