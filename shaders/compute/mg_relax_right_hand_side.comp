@@ -16,15 +16,5 @@ void main() {
     if (line >= (direction == 0 ? nv : nu) || a >= lineLength(l, direction)) return;
     ivec2 ij = onLine(direction, line, a);
     int k = ij.y * nu + ij.x;
-    dvec3 sum = dvec3(0.0lf);
-    if (!pinnedAt(l, ij)) {
-        sum = loadVector(l, k, kMgR);
-        for (int dj = max(-2, -ij.y); dj <= min(2, nv - 1 - ij.y); ++dj)
-            for (int di = max(-2, -ij.x); di <= min(2, nu - 1 - ij.x); ++di) {
-                if (direction == 0 ? dj == 0 : di == 0) continue;  // on the line
-                sum -= times(loadBlock(blockAt(l, k, stencilSlot(di, dj))),
-                             loadVector(l, k + dj * nu + di, kMgZ));
-            }
-    }
-    storeVector(l, k, kMgT, sum);
+    storeVector(l, k, kMgT, residualAt(l, ij, k, direction));
 }

@@ -8,16 +8,9 @@ layout(local_size_x = WX, local_size_y = WY) in;
 
 void main() {
     if (cg.done != 0u) return;
-    int l = uLevel, nu = levelU(l), nv = levelV(l);
+    int l = uLevel;
     ivec2 ij;
     int k;
     if (!levelVertex(l, ij, k)) return;
-    dvec3 sum = loadVector(l, k, kMgR);
-    if (!pinnedAt(l, ij)) {
-        for (int dj = max(-2, -ij.y); dj <= min(2, nv - 1 - ij.y); ++dj)
-            for (int di = max(-2, -ij.x); di <= min(2, nu - 1 - ij.x); ++di)
-                sum -= times(loadBlock(blockAt(l, k, stencilSlot(di, dj))),
-                             loadVector(l, k + dj * nu + di, kMgZ));
-    }
-    storeVector(l, k, kMgT, sum);
+    storeVector(l, k, kMgT, residualAt(l, ij, k, -1));  // r is 0 on pinned vertices
 }

@@ -154,6 +154,22 @@ ivec2 interpolationSpan(int I, int n, int c) {
     return ivec2(first, last);
 }
 
+// r − Σ A_kq z_q at vertex k = (i, j) of level l over its stencil, leaving out the blocks on
+// the line through it in direction `skip` (0 its row, 1 its column; −1 none): the residual
+// t = r − A z, or a line's right-hand side for the line smoother. 0 on a pinned vertex.
+dvec3 residualAt(int l, ivec2 ij, int k, int skip) {
+    if (pinnedAt(l, ij)) return dvec3(0.0lf);
+    int nu = levelU(l), nv = levelV(l);
+    dvec3 sum = loadVector(l, k, kMgR);
+    for (int dj = max(-2, -ij.y); dj <= min(2, nv - 1 - ij.y); ++dj)
+        for (int di = max(-2, -ij.x); di <= min(2, nu - 1 - ij.x); ++di) {
+            if ((skip == 0 && dj == 0) || (skip == 1 && di == 0)) continue;
+            sum -= times(loadBlock(blockAt(l, k, stencilSlot(di, dj))),
+                         loadVector(l, k + dj * nu + di, kMgZ));
+        }
+    return sum;
+}
+
 // The dispatch's vertex of level l (a 2-D dispatch of WX × WY groups over the level's grid).
 bool levelVertex(int l, out ivec2 ij, out int k) {
     ij = ivec2(gl_GlobalInvocationID.xy);
