@@ -202,6 +202,14 @@ void printSummary(const RunOptions& o, const Scene& scene, const Solver& solver,
             "most %d\n",
             cg.solves, preconditionerName(scene.integrator.preconditioner),
             double(cg.iterations) / double(cg.solves), cg.mostIterations);
+    const SelfCollisionStats self = solver.selfCollisionStats();
+    if (self.steps > 0)
+        std::printf(
+            "self-collision: %.2f substeps per step (at most %d; %ld steps over the cap), %.2f "
+            "iterations per substep, %.1f contacts per iteration\n",
+            double(self.substeps) / double(self.steps), self.mostSubsteps, self.stepsOverBound,
+            double(self.iterations) / double(self.substeps),
+            self.iterations ? double(self.contacts) / double(self.iterations) : 0.0);
     for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
         if (!f->empty()) std::printf("wrote %s\n", f->c_str());
     if (!o.pc2.empty())

@@ -162,6 +162,11 @@ void printModel(const Scene& s) {
                     s.wind->strength);
     else
         std::printf("             wind not modelled\n");
+    if (s.selfCollision)
+        std::printf("contacts     self-collision, thickness %g m, friction %g\n",
+                    s.selfCollision->thickness, s.selfCollision->friction);
+    else
+        std::printf("contacts     self-collision not modelled\n");
     if (s.pins.empty())
         std::printf("pins         none");
     else

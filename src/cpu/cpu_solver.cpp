@@ -145,6 +145,24 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
                            : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
     colliders_.take(scene);
+    if (scene.selfCollision) {
+        if (!self_.active()) {
+            self_ = CpuSelfCollision<T>(grid_, *scene.selfCollision);
+            selfStart_ = x_;
+        }
+        self_.setParameters(*scene.selfCollision);
+    }
+}
+
+// Self-collision after a step (cpu/cpu_self_collision.h), from the step's start in selfStart_,
+// which then becomes the next step's start.
+template <typename T>
+void CpuSolver<T>::resolveSelfContacts() {
+    self_.resolve(selfStart_, x_, v_, inverseMass_, pinned_, dt_t_, [this](Vec3<T>& p) {
+        Vec3<T> v(0);
+        colliders_.apply(p, v);
+    });
+    selfStart_ = x_;
 }
 
 template <typename T>
@@ -176,6 +194,7 @@ void CpuSolver<T>::write(const SimState& state) {
     forcesValid_ = false;
     std::fill(dv_.begin(), dv_.end(), Vec3<T>(0));  // no last solution to start from
     vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor
+    if (self_.active()) selfStart_ = x_;            // the next step starts from here
     for (Band& b : bands_) {                        // a written state starts afresh, as on the GPU
         b.badVertex = -1;
         b.reason.clear();
@@ -219,6 +238,7 @@ StepResult CpuSolver<T>::step(long n) {
             const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
             if (fused()) swapFused();  // the fused sweep always completes its step
             if (!ok) break;
+            if (self_.active()) resolveSelfContacts();
         }
     } else {
         result = stepThreaded(n);
@@ -247,12 +267,13 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     // The moving colliders are posed for the next step there too, while every thread waits.
     long posed = steps_ + 1;
     poseColliders(posed);
-    auto swapPositions = [this, &posed]() noexcept {
+    std::atomic<bool> bad{false};
+    auto swapPositions = [this, &posed, &bad]() noexcept {
         if (fused()) swapFused();
+        if (self_.active() && !bad.load(std::memory_order_relaxed)) resolveSelfContacts();
         poseColliders(++posed);
     };
     std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
-    std::atomic<bool> bad{false};
     long taken = 0;
     const bool forcesValid = forcesValid_;
     pool_->run([&](int t) {

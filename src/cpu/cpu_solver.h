@@ -16,6 +16,7 @@
 #include "cpu/cpu_colliders.h"
 #include "cpu/cpu_multigrid.h"
 #include "cpu/cpu_rows.h"
+#include "cpu/cpu_self_collision.h"
 #include "cpu/cpu_soa.h"
 #include "cpu/worker_pool.h"
 #include "model/bending.h"
@@ -49,6 +50,9 @@ public:
     void setColliderDrag(int index, const glm::dvec3& offset, const glm::dvec3& velocity) override {
         colliders_.drag(index, {offset, velocity, time()});
     }
+    SelfCollisionStats selfCollisionStats() const override { return self_.stats(); }
+    // 1 for the vertices in a self-contact in the last step (empty without self-collision).
+    const std::vector<std::uint8_t>& selfContacts() const { return self_.inContact(); }
 
 private:
     using Spring = StencilSpring<T>;
@@ -223,6 +227,10 @@ private:
         if (colliders_.anyMoving()) colliders_.pose(t);
         if (!follows_.empty()) poseFollowPins(t);
     }
+    // Self-collision (cpu/cpu_self_collision.h) and the positions at the step's start it needs.
+    CpuSelfCollision<T> self_;
+    Soa3<T> selfStart_;
+    void resolveSelfContacts();
     double maxSpeed_;
     std::optional<GrabT> grab_;
     std::vector<Band> bands_;

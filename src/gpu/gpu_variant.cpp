@@ -101,6 +101,10 @@ void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
 }
 
 void checkSceneFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
+    if (scene.selfCollision)
+        throw InputError(scene.source, "self_collision",
+                         "the GPU backend does not model self-collision yet: run it with "
+                         "--backend cpu");
     checkGridFits(scene, wg, info);
     if (scene.integrator.method == Method::ImplicitEuler &&
         scene.integrator.preconditioner == Preconditioner::Multigrid)

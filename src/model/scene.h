@@ -163,6 +163,13 @@ struct Collider {
 
 const char* colliderTypeName(const ColliderShape& shape);  // "plane", "sphere", "box", ...
 
+// Contacts of the cloth with itself (docs/physics.md "Self-collision"): non-neighbouring
+// elements are kept `thickness` apart; `friction` is the Coulomb coefficient of their sliding.
+struct SelfCollision {
+    double thickness = 0.004;  // h [m]
+    double friction = 0;       // μ
+};
+
 struct Wind {
     glm::dvec3 direction{1, 0, 0};  // unit length
     double strength = 0;            // K_w [N]
@@ -189,6 +196,7 @@ struct Scene {
     IntegratorSpec integrator;
     std::vector<Collider> colliders;
     std::optional<Wind> wind;
+    std::optional<SelfCollision> selfCollision;
     double maxSpeed = 1e4;  // [m/s]; faster is reported as unstable
     // A modelled spring stretched or squeezed by more than this fraction of its rest length is
     // reported as unstable: the run has left the physics a mass-spring cloth stands for.

@@ -110,6 +110,20 @@ constexpr ParamSpec kParams[] = {
      {PanelSection::Wind, SliderScale::Log, 0, 100, "strength"},
      [](const Scene& s) { return s.wind ? std::optional(s.wind->strength) : std::nullopt; },
      [](Scene& s, double v) { if (s.wind) s.wind->strength = v; }},
+    {"self_collision.thickness", "m", 0, 1, true, false, 0.004, true,
+     "distance kept between non-neighbouring elements of the cloth; below the grid's cell size",
+     {PanelSection::Forces, SliderScale::Log, 1e-4, 0.05, "self thickness [m]", "%.4f"},
+     [](const Scene& s) {
+         return s.selfCollision ? std::optional(s.selfCollision->thickness) : std::nullopt;
+     },
+     [](Scene& s, double v) { if (s.selfCollision) s.selfCollision->thickness = v; }},
+    {"self_collision.friction", "", 0, kInf, false, false, 0, false,
+     "Coulomb friction μ of the cloth sliding on itself",
+     {PanelSection::Forces, SliderScale::Linear, 0, 2, "self friction"},
+     [](const Scene& s) {
+         return s.selfCollision ? std::optional(s.selfCollision->friction) : std::nullopt;
+     },
+     [](Scene& s, double v) { if (s.selfCollision) s.selfCollision->friction = v; }},
     {"max_speed", "m/s", 0, kInf, true, false, 1e4, false,
      "a faster vertex means the run is unstable", kHidden,
      [](const Scene& s) -> std::optional<double> { return s.maxSpeed; },

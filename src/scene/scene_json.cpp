@@ -120,6 +120,9 @@ std::string sceneToJson(const Scene& s) {
     for (const Collider& c : s.colliders) colliders.push_back(collider(c));
     j["colliders"] = colliders;
     if (s.wind) j["wind"] = {{"direction", vec(s.wind->direction)}, {"strength", s.wind->strength}};
+    if (s.selfCollision)
+        j["self_collision"] = {{"thickness", s.selfCollision->thickness},
+                               {"friction", s.selfCollision->friction}};
     j["max_speed"] = s.maxSpeed;
     j["max_strain"] = s.maxStrain;
     j["duration"] = s.duration;

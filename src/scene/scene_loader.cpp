@@ -278,10 +278,32 @@ Wind SceneReader::readWind(const Json& j) const {
     return wind;
 }
 
+// docs/physics.md "Self-collision": a sheet whose elements beyond two rings of each other are
+// further apart at rest than the thickness, or its rest state would already be in contact.
+SelfCollision SceneReader::readSelfCollision(const Json& j, const ClothSpec& cloth) const {
+    expectObject(j, "self_collision", {"thickness", "friction"});
+    if (cloth.nu < 2 || cloth.nv < 2)
+        fail("self_collision", "needs a sheet of at least 2 x 2 vertices (a chain has no faces)");
+    SelfCollision self;
+    self.thickness = param(j, "thickness", "self_collision.thickness", "self_collision.thickness");
+    self.friction = param(j, "friction", "self_collision.friction", "self_collision.friction");
+    const double cell = std::min(cloth.size.x / (cloth.nu - 1), cloth.size.y / (cloth.nv - 1));
+    if (!(self.thickness < cell)) {
+        char buf[200];
+        std::snprintf(buf, sizeof buf,
+                      "%g m is not below the grid's cell size %g m: the sheet at rest would "
+                      "already be in contact with itself",
+                      self.thickness, cell);
+        fail("self_collision.thickness", buf);
+    }
+    return self;
+}
+
 Scene SceneReader::read(const Json& doc) {
     expectObject(doc, "",
                  {"name", "cloth", "material", "springs", "damping", "gravity", "pins",
-                  "integrator", "colliders", "wind", "max_speed", "max_strain", "duration"});
+                  "integrator", "colliders", "wind", "self_collision", "max_speed", "max_strain",
+                  "duration"});
     Scene scene;
     scene.source = source_;
     scene.name = std::filesystem::path(source_).stem().string();
@@ -324,6 +346,8 @@ Scene SceneReader::read(const Json& doc) {
     checkFollowPins(scene);
     checkColliderMotionStep(scene);  // docs/colliders.md §7: no collider outruns the limit
     if (doc.contains("wind")) scene.wind = readWind(doc["wind"]);
+    if (doc.contains("self_collision"))
+        scene.selfCollision = readSelfCollision(doc["self_collision"], scene.cloth);
     scene.maxSpeed = param(doc, "max_speed", "max_speed", "max_speed");
     scene.maxStrain = param(doc, "max_strain", "max_strain", "max_strain");
     scene.duration = param(doc, "duration", "duration", "duration");

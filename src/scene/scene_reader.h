@@ -60,6 +60,7 @@ private:
     AxisAngle readRotation(const Json& j, const std::string& path) const;
     ColliderMotion readMotion(const Json& j, const std::string& path) const;
     Wind readWind(const Json& j) const;
+    SelfCollision readSelfCollision(const Json& j, const ClothSpec& cloth) const;
     void checkDerivedFinite(const Scene& scene) const;  // scene_loader_finite.cpp
 
     std::string source_;

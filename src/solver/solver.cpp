@@ -30,6 +30,7 @@ Features Features::of(const Scene& scene) {
     f.capsules = scene.count<Capsule>();
     f.meshes = scene.count<MeshCollider>();
     for (const Collider& c : scene.colliders) f.contactExtras += !c.plain();
+    f.selfCollision = scene.selfCollision.has_value();
     return f;
 }
 
@@ -52,6 +53,7 @@ std::string Features::describe() const {
         if (n) s += ", " + std::to_string(n) + " " + (n == 1 ? one : many);
     if (contactExtras)
         s += ", " + std::to_string(contactExtras) + " with thickness, friction or motion";
+    if (selfCollision) s += ", self-collision";
     return s;
 }
 

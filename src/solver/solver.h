@@ -50,6 +50,7 @@ struct Features {
     int planes = 0, spheres = 0, boxes = 0, capsules = 0, meshes = 0;
     // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
     int contactExtras = 0;
+    bool selfCollision = false;  // Scene::selfCollision (docs/physics.md "Self-collision")
     static Features of(const Scene& scene);
     bool operator==(const Features&) const = default;
     std::string describe() const;  // "structural+shear+bend, wind, 1 plane, 1 sphere, 2 boxes"
@@ -90,6 +91,18 @@ struct SolveStats {
         if (misses++ == 0) firstMissStep = step;
         worstResidual = std::max(worstResidual, residual);
     }
+};
+
+// Self-collision's work since the solver was made (docs/physics.md "Self-collision"); all zero
+// when the scene does not model it.
+struct SelfCollisionStats {
+    long steps = 0;           // steps it resolved
+    long substeps = 0;        // summed over steps
+    int mostSubsteps = 0;     // in one step
+    long stepsOverBound = 0;  // steps that needed more than the substep cap
+    long iterations = 0;      // Jacobi iterations, summed
+    long contacts = 0;        // contacts corrected, summed over iterations
+    int lastContacts = 0;     // in the first iteration of the last step's last substep
 };
 
 // GL buffer names of a backend that keeps its state in GL buffers (vec4 per vertex, k = j·nu + i):
@@ -156,6 +169,7 @@ public:
     // moving colliders, follow pins and drags posed by it go on continuously.
     double time() const { return timeAt(steps_); }
     const SolveStats& solveStats() const { return solveStats_; }
+    virtual SelfCollisionStats selfCollisionStats() const { return {}; }
 
 protected:
     // The time at the end of step `step` (1-based): the poses of that step. Bit for bit

@@ -169,10 +169,14 @@ TEST(ReferenceParity, EveryShippedSceneMatchesTheReference) {
     // implementations' rounding (drape 7.7e-17 of the extent at 600 steps, 4.6e-16 at 700,
     // 5.9e-14 at 800, 5.1e-10 at 1000, and 1.5e-9 without friction: the fold, not the
     // friction's stick-or-slip decisions; table 3e-13 at 600, 1.0e-11 at 700, 1.2e-10 at 1000).
+    // The pile (without its self-collision, which the reference does not model) lands at step
+    // 587 and crumples: 2.6e-9 at 1000; compared for 550.
     for (const std::string& name : names)
-        expectMatchesReference(loadShippedScene(name),
+        expectMatchesReference(withoutSelfCollision(loadShippedScene(name)),
                                name == "flag" || name == "windsock" ? kSteps / 4 : kSteps,
-                               name == "drape" || name == "table" ? kSteps * 7 / 10 : kSteps);
+                               name == "drape" || name == "table" ? kSteps * 7 / 10
+                               : name == "pile"                   ? kSteps * 55 / 100
+                                                                  : kSteps);
 }
 
 TEST(ReferenceParity, NonSquareGridWithEveryFeatureMatchesTheReference) {

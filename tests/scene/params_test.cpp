@@ -27,6 +27,7 @@ const nlohmann::json kFull = nlohmann::json::parse(R"({
                  "max_iterations": 50, "iterations": 20, "chebyshev_rho": 0.5},
   "wind": {"direction": [1, 0, 0], "strength": 0.5},
   "colliders": [{"type": "sphere", "center": [0, -2, 0], "radius": 0.3}],
+  "self_collision": {"thickness": 0.01, "friction": 0.2},
   "max_speed": 100,
   "max_strain": 2.5,
   "duration": 2

@@ -19,6 +19,13 @@ double maxDeviationOverExtent(const SimState& s, const ref::Simulation& r, doubl
 // CLOTH_SOURCE_DIR "/scenes/" name ".json", loaded and validated.
 Scene loadShippedScene(const std::string& name);
 
+// The scene as the reference and the GPU backend model it: without self-collision, which
+// neither has (tests/cpu/self_collision_test.cpp checks it on the CPU backend).
+inline Scene withoutSelfCollision(Scene scene) {
+    scene.selfCollision.reset();
+    return scene;
+}
+
 // The solver's state as reference vectors, e.g. to evaluate the reference's energies on it.
 std::vector<ref::V3> toReferenceVectors(const std::vector<glm::dvec3>& v);
 
