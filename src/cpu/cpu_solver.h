@@ -51,8 +51,13 @@ public:
         colliders_.drag(index, {offset, velocity, time()});
     }
     SelfCollisionStats selfCollisionStats() const override { return self_.stats(); }
-    // 1 for the vertices in a self-contact in the last step (empty without self-collision).
-    const std::vector<std::uint8_t>& selfContacts() const { return self_.inContact(); }
+    std::vector<std::int64_t> selfContactVertices() const override {
+        std::vector<std::int64_t> k;
+        const std::vector<std::uint8_t>& in = self_.inContact();
+        for (std::size_t i = 0; i < in.size(); ++i)
+            if (in[i]) k.push_back(std::int64_t(i));
+        return k;
+    }
 
 private:
     using Spring = StencilSpring<T>;

@@ -18,6 +18,7 @@ const glm::vec3 kFront0{0.86f, 0.36f, 0.16f}, kFront1{0.97f, 0.66f, 0.32f};
 const glm::vec3 kBack0{0.16f, 0.34f, 0.72f}, kBack1{0.36f, 0.58f, 0.92f};
 const glm::vec3 kWire{0.08f, 0.08f, 0.1f};
 const glm::vec3 kPin{0.95f, 0.15f, 0.2f};
+const glm::vec3 kContact{0.2f, 0.9f, 0.85f};
 const glm::vec3 kWind{0.35f, 0.9f, 1.0f};
 const glm::vec3 kFamilyColours[3] = {{1.0f, 0.3f, 0.25f}, {0.3f, 1.0f, 0.35f}, {1.0f, 0.4f, 1.0f}};
 constexpr float kCheckers = 10;
@@ -54,9 +55,9 @@ struct Renderer::Impl {
     GlProgram springs{"render/springs.vert", "render/lines.frag"};
     GlProgram points{"render/points.vert", "render/points.frag"};
 
-    GLuint clothVao = 0, clothIndices = 0, pinIndices = 0, ownPositions = 0, ownNormals = 0;
+    GLuint clothVao = 0, clothIndices = 0, pinIndices = 0, contactIndices = 0, ownPositions = 0, ownNormals = 0;
     GLuint linesVao = 0, linesBuffer = 0;
-    GLsizei clothIndexCount = 0, pinCount = 0;
+    GLsizei clothIndexCount = 0, pinCount = 0, contactCount = 0;
     bool clothLines = false;
     GLuint positions = 0, normals = 0;  // the buffers drawn from now
     Scene scene;
@@ -80,6 +81,7 @@ Renderer::Impl::Impl() {
     glGenVertexArrays(1, &linesVao);
     clothIndices = makeBuffer();
     pinIndices = makeBuffer();
+    contactIndices = makeBuffer();
     ownPositions = makeBuffer();
     ownNormals = makeBuffer();
     linesBuffer = makeBuffer();
@@ -104,7 +106,7 @@ Renderer::Impl::Impl() {
 Renderer::Impl::~Impl() {
     const GLuint arrays[] = {clothVao, linesVao};
     glDeleteVertexArrays(2, arrays);
-    const GLuint buffers[] = {clothIndices, pinIndices, ownPositions, ownNormals, linesBuffer};
+    const GLuint buffers[] = {clothIndices, pinIndices, contactIndices, ownPositions, ownNormals, linesBuffer};
     glDeleteBuffers(5, buffers);
 }
 
@@ -131,6 +133,12 @@ void Renderer::setPins(const std::vector<std::int64_t>& vertices) {
     std::vector<std::uint32_t> indices(vertices.begin(), vertices.end());
     upload(GL_ARRAY_BUFFER, impl_->pinIndices, indices);
     impl_->pinCount = GLsizei(indices.size());
+}
+
+void Renderer::setContacts(const std::vector<std::int64_t>& vertices) {
+    std::vector<std::uint32_t> indices(vertices.begin(), vertices.end());
+    upload(GL_ARRAY_BUFFER, impl_->contactIndices, indices);
+    impl_->contactCount = GLsizei(indices.size());
 }
 
 void Renderer::setColliderDrags(const std::vector<ColliderDrag>& drags) {
@@ -232,11 +240,18 @@ void Renderer::Impl::drawMarkers(const glm::mat4& viewProj, const RenderOptions&
         points.set("uColour", kFront0);
         glDrawElements(GL_POINTS, clothIndexCount, GL_UNSIGNED_INT, nullptr);
     }
-    if (!o.pins || pinCount == 0) return;
-    points.set("uPointSize", 11.0f);
-    points.set("uColour", kPin);
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pinIndices);
-    glDrawElements(GL_POINTS, pinCount, GL_UNSIGNED_INT, nullptr);
+    if (o.contacts && contactCount > 0) {
+        points.set("uPointSize", 6.0f);
+        points.set("uColour", kContact);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, contactIndices);
+        glDrawElements(GL_POINTS, contactCount, GL_UNSIGNED_INT, nullptr);
+    }
+    if (o.pins && pinCount > 0) {
+        points.set("uPointSize", 11.0f);
+        points.set("uColour", kPin);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, pinIndices);
+        glDrawElements(GL_POINTS, pinCount, GL_UNSIGNED_INT, nullptr);
+    }
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, clothIndices);
 }
 

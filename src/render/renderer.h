@@ -23,6 +23,7 @@ struct RenderOptions {
     ColourMode colour = ColourMode::Checker;
     bool wireframe = false;
     bool pins = true;
+    bool contacts = true;  // markers on the vertices in a self-contact (setContacts)
     bool colliders = true;
     bool wind = true;
     bool springs = false;                      // the overlay, for springVertices
@@ -47,6 +48,8 @@ public:
     void setScene(const Scene& scene);
     // Vertex indices k = j·nu + i to mark as pinned.
     void setPins(const std::vector<std::int64_t>& vertices);
+    // Vertex indices to mark as in a self-contact (Solver::selfContactVertices).
+    void setContacts(const std::vector<std::int64_t>& vertices);
     // The viewer's collider drags (model/collider_pose.h), by the scene's collider order.
     void setColliderDrags(const std::vector<ColliderDrag>& drags);
     // Takes the solver's current state and time (colliders are drawn at their pose then): binds the

@@ -170,6 +170,8 @@ public:
     double time() const { return timeAt(steps_); }
     const SolveStats& solveStats() const { return solveStats_; }
     virtual SelfCollisionStats selfCollisionStats() const { return {}; }
+    // The vertices k = j·nu + i in a self-contact in the last step (the viewer marks them).
+    virtual std::vector<std::int64_t> selfContactVertices() const { return {}; }
 
 protected:
     // The time at the end of step `step` (1-based): the poses of that step. Bit for bit

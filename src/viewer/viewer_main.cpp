@@ -96,6 +96,8 @@ void layoutView(GLFWwindow* window, ViewerUi& ui) {
 void drawScene(ViewerSession& session, render::Renderer& renderer, ViewerUi& ui) {
     renderer.setScene(session.params().effective());
     renderer.setPins(session.pinnedVertices());
+    renderer.setContacts(ui.render.contacts ? session.solver().selfContactVertices()
+                                            : std::vector<std::int64_t>{});
     renderer.setColliderDrags(session.effectiveDrags());
     if (session.unstable() || !renderer.updateCloth(session.solver())) renderer.clearCloth();
     ui.render.highlightCollider.reset();

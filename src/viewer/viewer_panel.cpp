@@ -121,6 +121,17 @@ bool forcesSection(ViewerParams& p, std::vector<std::string>& drawn) {
         }
     }
     changed |= drawParamSliders(s, PanelSection::Wind, drawn);
+    // Self-collision: on with half a cell's thickness (the loader's bound is one cell), off; its
+    // thickness and friction sliders are the table's, above, while it is on.
+    bool self = s.selfCollision.has_value();
+    if (s.cloth.nu >= 2 && s.cloth.nv >= 2 && ImGui::Checkbox("self-collision", &self)) {
+        const double cell = std::min(s.cloth.size.x / (s.cloth.nu - 1),
+                                     s.cloth.size.y / (s.cloth.nv - 1));
+        s.selfCollision = self ? std::optional<SelfCollision>(SelfCollision{
+                                     std::min(0.004, 0.5 * cell), 0.3})
+                               : std::nullopt;
+        changed = true;
+    }
     return changed;
 }
 

@@ -43,6 +43,8 @@ void drawDisplaySection(ViewerUi& ui) {
     ImGui::Checkbox("colliders", &r.colliders);
     ImGui::SameLine();
     ImGui::Checkbox("wind", &r.wind);
+    ImGui::SameLine();
+    ImGui::Checkbox("contacts", &r.contacts);
     if (r.springs)
         ImGui::TextDisabled("springs: structural red, shear green, bend magenta (hover a vertex)");
     if (ImGui::Button("Frame cloth (F)")) ui.frameRequested = true;
