@@ -1,6 +1,7 @@
 #include "cpu/cpu_self_collision.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -25,7 +26,8 @@ CpuSelfCollision<T>::CpuSelfCollision(const Grid& grid, const SelfCollision& spe
     : nu_(grid.nu), nv_(grid.nv) {
     setParameters(spec);
     const std::size_t n = std::size_t(grid.count());
-    for (auto* a : {&y_, &ref_, &z_, &step_, &delta_}) a->assign(n, Vec3<T>(0));
+    for (auto* a : {&y_, &ref_, &z_, &step_}) a->assign(n, Vec3<T>(0));
+    sum_.assign(3 * n, 0);
     touches_.assign(n, 0);
     inContact_.assign(n, 0);
     cellOf_.assign(n, glm::ivec3(0));
@@ -46,6 +48,9 @@ template <typename T>
 void CpuSelfCollision<T>::setParameters(const SelfCollision& spec) {
     thickness_ = T(spec.thickness);
     friction_ = T(spec.friction);
+    // The fixed point's unit: a power of two such that 64 contacts of ±4h each fit in 31 bits
+    // (1 nm at h = 4 mm, below a float position's rounding at 1 m).
+    fixedScale_ = T(std::exp2(std::floor(std::log2(double(1u << 31) / (256.0 * spec.thickness)))));
 }
 
 // The cell size covers every pair within reach of each other: an element lies within L (its
@@ -113,9 +118,18 @@ void CpuSelfCollision<T>::addContact(const ContactGeometry<T>& g,
     std::array<Vec3<T>, 4> dx;
     if (!contactCorrection(g, w, count, slip, thickness_, friction_, dx)) return;
     ++contacts;
+    // Summed in fixed point with integer atomics: the same sum in any order, so any number of
+    // threads (and a GPU's work groups) get the same bits. A correction is clamped to ±4h
+    // (a contact's is at most 2h along the normal plus its friction).
+    const T limit = T(4) * thickness_;
     for (int j = 0; j < count; ++j) {
-        delta_[std::size_t(vertex[j])] += dx[j];
-        ++touches_[std::size_t(vertex[j])];
+        const std::size_t k = std::size_t(vertex[j]);
+        for (int c = 0; c < 3; ++c) {
+            const T fixed = std::round(std::clamp(dx[j][c], -limit, limit) * fixedScale_);
+            std::atomic_ref<std::int32_t>(sum_[3 * k + std::size_t(c)])
+                .fetch_add(std::int32_t(fixed), std::memory_order_relaxed);
+        }
+        std::atomic_ref<std::int32_t>(touches_[k]).fetch_add(1, std::memory_order_relaxed);
     }
 }
 
@@ -179,14 +193,20 @@ void CpuSelfCollision<T>::visitOwners(std::int64_t p, std::int64_t q, int& conta
     }
 }
 
+// One Jacobi iteration, thread `t` of `threads` taking the points of its range.
 template <typename T>
-int CpuSelfCollision<T>::correct() {
-    buildCells();
-    std::fill(delta_.begin(), delta_.end(), Vec3<T>(0));
-    std::fill(touches_.begin(), touches_.end(), 0);
-    int contacts = 0;
+int CpuSelfCollision<T>::correct(int t, int threads, const std::function<void()>& sync) {
     const std::int64_t n = std::int64_t(y_.size());
-    for (std::int64_t p = 0; p < n; ++p) {
+    const std::int64_t begin = n * t / threads, end = n * (t + 1) / threads;
+    if (t == 0) {
+        buildCells();
+        contacts_ = 0;
+    }
+    std::fill(sum_.begin() + 3 * begin, sum_.begin() + 3 * end, 0);
+    std::fill(touches_.begin() + begin, touches_.begin() + end, 0);
+    sync();
+    int contacts = 0;
+    for (std::int64_t p = begin; p < end; ++p) {
         const glm::ivec3 home = cellOf_[std::size_t(p)];
         for (int dz = -1; dz <= 1; ++dz)
             for (int dy = -1; dy <= 1; ++dy)
@@ -200,71 +220,92 @@ int CpuSelfCollision<T>::correct() {
                     }
                 }
     }
+    std::atomic_ref<int>(contacts_).fetch_add(contacts, std::memory_order_relaxed);
+    sync();
     // Jacobi with averaging: each vertex takes the mean of its contacts' corrections.
-    for (std::size_t k = 0; k < y_.size(); ++k)
-        if (touches_[k] > 0) {
-            y_[k] += delta_[k] / T(touches_[k]);
-            inContact_[k] = 1;
-        }
-    return contacts;
+    for (std::int64_t k = begin; k < end; ++k) {
+        const std::size_t i = std::size_t(k);
+        if (touches_[i] == 0) continue;
+        const Vec3<T> sum(T(sum_[3 * i]), T(sum_[3 * i + 1]), T(sum_[3 * i + 2]));
+        y_[i] += sum / (fixedScale_ * T(touches_[i]));
+        inContact_[i] = 1;
+        (*collide_)(y_[i]);
+    }
+    const int found = contacts_;
+    sync();
+    return found;
 }
 
 template <typename T>
 void CpuSelfCollision<T>::resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v,
                                   const AlignedVector<T>& inverseMass,
                                   const std::vector<std::uint8_t>& pinned, T dt,
-                                  const std::function<void(Vec3<T>&)>& collide) {
-    const std::size_t n = y_.size();
-    inverseMass_ = &inverseMass;
-    pinned_ = &pinned;
-    // The substeps (docs/physics.md "Self-collision", the step bound): every vertex's motion
-    // differs from the common one by at most R, so two elements approach by at most 2R over
-    // the step, 2R/m per substep; m > 4R/h keeps that below h/2, the separation each substep
-    // leaves, and no pair can meet within a substep unseen.
+                                  const std::function<void(Vec3<T>&)>& collide, int t,
+                                  int threads, const std::function<void()>& sync) {
+    const std::int64_t n = std::int64_t(y_.size());
+    const std::int64_t begin = n * t / threads, end = n * (t + 1) / threads;
+    if (t == 0) {
+        inverseMass_ = &inverseMass;
+        pinned_ = &pinned;
+        collide_ = &collide;
+        chooseSubsteps(start, x);
+    }
+    sync();
+    const int substeps = substeps_;
+    const T share = T(1) / T(substeps);
+    for (std::int64_t k = begin; k < end; ++k) {
+        y_[std::size_t(k)] = start.get(k);
+        inContact_[std::size_t(k)] = 0;
+    }
+    for (int s = 1; s <= substeps; ++s) {
+        for (std::int64_t k = begin; k < end; ++k) {
+            const std::size_t i = std::size_t(k);
+            z_[i] = y_[i];
+            y_[i] += share * step_[i];
+            if (pinned[i]) y_[i] = x.get(k);  // pins sit at their end pose
+            ref_[i] = y_[i];
+        }
+        sync();
+        for (int it = 0; it < kIterations; ++it) {
+            const int found = correct(t, threads, sync);
+            if (t == 0) {
+                ++stats_.iterations;
+                stats_.contacts += found;
+                if (it == 0 && s == substeps) stats_.lastContacts = found;
+            }
+            if (found == 0) break;  // every thread read the same count before the last sync
+        }
+    }
+    const T rate = T(1) / dt;
+    for (std::int64_t k = begin; k < end; ++k) {
+        const Vec3<T> change = y_[std::size_t(k)] - x.get(k);
+        if (change == Vec3<T>(0)) continue;
+        x.set(k, y_[std::size_t(k)]);
+        v.set(k, v.get(k) + rate * change);
+    }
+    sync();
+}
+
+// The substeps (docs/physics.md "Self-collision", the step bound): every vertex's motion lies
+// within R of the middle of the motions' bounding box, R at most half its diagonal, so two
+// elements approach by at most 2R over the step, 2R/m per substep; m > 4R/h keeps that below
+// h/2, the separation each substep leaves, and no pair can meet within a substep unseen.
+template <typename T>
+void CpuSelfCollision<T>::chooseSubsteps(const Soa3<T>& start, const Soa3<T>& x) {
     Vec3<T> low(std::numeric_limits<T>::max()), high(std::numeric_limits<T>::lowest());
-    for (std::size_t k = 0; k < n; ++k) {
+    for (std::size_t k = 0; k < step_.size(); ++k) {
         step_[k] = x.get(std::int64_t(k)) - start.get(std::int64_t(k));
         low = glm::min(low, step_[k]);
         high = glm::max(high, step_[k]);
     }
-    const Vec3<T> middle = T(0.5) * (low + high);
-    T radius = 0;
-    for (std::size_t k = 0; k < n; ++k) radius = std::max(radius, glm::length(step_[k] - middle));
-    const double needed = std::ceil(4.0 * double(radius) / double(thickness_));
-    int substeps = std::isfinite(needed) ? int(std::clamp(needed, 1.0, double(kMaxSubsteps)))
-                                         : kMaxSubsteps;
+    const double radius = 0.5 * double(glm::length(high - low));
+    const double needed = std::ceil(4.0 * radius / double(thickness_));
+    substeps_ = std::isfinite(needed) ? int(std::clamp(needed, 1.0, double(kMaxSubsteps)))
+                                      : kMaxSubsteps;
     ++stats_.steps;
     stats_.stepsOverBound += !(needed <= double(kMaxSubsteps));
-    stats_.substeps += substeps;
-    stats_.mostSubsteps = std::max(stats_.mostSubsteps, substeps);
-    std::fill(inContact_.begin(), inContact_.end(), 0);
-    for (std::size_t k = 0; k < n; ++k) y_[k] = start.get(std::int64_t(k));
-    for (int s = 1; s <= substeps; ++s) {
-        z_ = y_;
-        const T share = T(1) / T(substeps);
-        for (std::size_t k = 0; k < n; ++k) {
-            y_[k] += share * step_[k];
-            if (pinned[k]) y_[k] = x.get(std::int64_t(k));  // pins sit at their end pose
-        }
-        ref_ = y_;
-        for (int it = 0; it < kIterations; ++it) {
-            const int found = correct();
-            ++stats_.iterations;
-            stats_.contacts += found;
-            if (it == 0 && s == substeps) stats_.lastContacts = found;
-            if (found == 0) break;
-            for (std::size_t k = 0; k < n; ++k)
-                if (touches_[k] > 0) collide(y_[k]);
-        }
-    }
-    const T rate = T(1) / dt;
-    for (std::size_t k = 0; k < n; ++k) {
-        const std::int64_t i = std::int64_t(k);
-        const Vec3<T> change = y_[k] - x.get(i);
-        if (change == Vec3<T>(0)) continue;
-        x.set(i, y_[k]);
-        v.set(i, v.get(i) + rate * change);
-    }
+    stats_.substeps += substeps_;
+    stats_.mostSubsteps = std::max(stats_.mostSubsteps, substeps_);
 }
 
 template class CpuSelfCollision<float>;

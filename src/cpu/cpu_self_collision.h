@@ -34,18 +34,23 @@ public:
     void setParameters(const SelfCollision& spec);
 
     // One step from the positions `start` to x (the integrator's result, pins and colliders
-    // applied): x moves out of contact and v by the same change over dt. inverseMass: 0 where
-    // pinned. collide(p): the colliders' position projection, applied to the moved vertices.
+    // applied): x moves out of contact and v by the same change over dt. collide(p): the
+    // colliders' position projection, applied to the moved vertices. Called by each of
+    // `threads` threads (t = 0 … threads − 1) at once, sync() a barrier between them; the
+    // result has the same bits for any number of threads.
     void resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v, const AlignedVector<T>& inverseMass,
                  const std::vector<std::uint8_t>& pinned, T dt,
-                 const std::function<void(Vec3<T>&)>& collide);
+                 const std::function<void(Vec3<T>&)>& collide, int t, int threads,
+                 const std::function<void()>& sync);
     const SelfCollisionStats& stats() const { return stats_; }
     // 1 for the vertices in a contact in the last step's corrections.
     const std::vector<std::uint8_t>& inContact() const { return inContact_; }
 
 private:
     void buildCells();  // the spatial hash of y_
-    int correct();  // one Jacobi iteration over y_; the contacts it corrected
+    void chooseSubsteps(const Soa3<T>& start, const Soa3<T>& x);
+    // One Jacobi iteration over y_, thread t's share; the contacts all threads corrected.
+    int correct(int t, int threads, const std::function<void()>& sync);
     void visitOwners(std::int64_t p, std::int64_t q, int& contacts);
     void pointAgainstTriangles(std::int64_t p, std::int64_t q, int& contacts);
     void addContact(const ContactGeometry<T>& g, const std::array<std::int64_t, 4>& vertex,
@@ -57,8 +62,12 @@ private:
     // y_: positions being corrected; ref_: where the substep's motion took them (the sides);
     // z_: the substep's start (the slip friction acts on); target_: the integrator's result.
     std::vector<Vec3<T>> y_, ref_, z_, step_;
-    std::vector<Vec3<T>> delta_;  // Σ of one iteration's corrections per vertex
-    std::vector<int> touches_;    // contacts per vertex in that iteration
+    // One iteration's corrections per vertex (x, y, z), summed in fixed point: units of
+    // 1/fixedScale_ m. And the contacts per vertex.
+    std::vector<std::int32_t> sum_, touches_;
+    T fixedScale_ = 0;
+    int substeps_ = 1;
+    int contacts_ = 0;  // an iteration's contacts, summed over the threads (atomic_ref)
     std::vector<std::uint8_t> inContact_;
     // The spatial hash: cell of each vertex, its bucket, the buckets' starts (counting sort)
     // and the vertices sorted by bucket.
@@ -70,6 +79,7 @@ private:
     // resolve()'s inverse masses and pins (a pinned vertex's correction weight is 0).
     const AlignedVector<T>* inverseMass_ = nullptr;
     const std::vector<std::uint8_t>* pinned_ = nullptr;
+    const std::function<void(Vec3<T>&)>* collide_ = nullptr;
     SelfCollisionStats stats_;
 };
 

@@ -19,6 +19,9 @@ Vec3<T> cast(const glm::dvec3& v) {
 
 // Vertices below this count run on one thread: a barrier costs more than their whole step.
 constexpr std::int64_t kMinVerticesPerThread = 4096;
+// Self-collision costs some 50 times a step's work per vertex (docs/performance.md): its
+// scenes are threaded from a fiftieth of that count.
+constexpr std::int64_t kSelfCollisionWork = 50;
 
 int chooseThreads(int requested, std::int64_t vertices) {
     if (requested > 0) return requested;
@@ -59,11 +62,14 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
         for (auto* a : {&inertial_, &vPrevious_}) a->assign(n, Vec3<T>(0));
     }  // (its Chebyshev iterates are takeParameters': a new ρ may ask for them)
     // Bands of whole rows, on chunk boundaries (reduce()), so each row's sweep is one thread's.
-    const int chunkRows = int(std::max<std::int64_t>(1, kChunk / nu));
+    // (Self-collision's threads need bands: a chunk of at most a sixteenth of the rows.)
+    const std::int64_t chunk = scene.selfCollision ? std::min(kChunk, n / 16) : kChunk;
+    const int chunkRows = int(std::max<std::int64_t>(1, chunk / nu));
     chunk_ = std::int64_t(chunkRows) * nu;
     const int chunks = (nv + chunkRows - 1) / chunkRows;
     for (auto& p : partials_) p.assign(2 * std::size_t(chunks), 0.0);
-    const int t = int(std::min<std::int64_t>(chooseThreads(threads, n), chunks));
+    const int t = int(std::min<std::int64_t>(
+        chooseThreads(threads, scene.selfCollision ? n * kSelfCollisionWork : n), chunks));
     bands_.resize(std::size_t(t));
     for (int b = 0; b < t; ++b) {
         Band& band = bands_[std::size_t(b)];
@@ -157,12 +163,12 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
 // Self-collision after a step (cpu/cpu_self_collision.h), from the step's start in selfStart_,
 // which then becomes the next step's start.
 template <typename T>
-void CpuSolver<T>::resolveSelfContacts() {
-    self_.resolve(selfStart_, x_, v_, inverseMass_, pinned_, dt_t_, [this](Vec3<T>& p) {
+void CpuSolver<T>::resolveSelfContacts(int t, int threads, const std::function<void()>& sync) {
+    const std::function<void(Vec3<T>&)> collide = [this](Vec3<T>& p) {
         Vec3<T> v(0);
         colliders_.apply(p, v);
-    });
-    selfStart_ = x_;
+    };
+    self_.resolve(selfStart_, x_, v_, inverseMass_, pinned_, dt_t_, collide, t, threads, sync);
 }
 
 template <typename T>
@@ -238,7 +244,10 @@ StepResult CpuSolver<T>::step(long n) {
             const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
             if (fused()) swapFused();  // the fused sweep always completes its step
             if (!ok) break;
-            if (self_.active()) resolveSelfContacts();
+            if (self_.active()) {
+                resolveSelfContacts(0, 1, [] {});
+                selfStart_ = x_;
+            }
         }
     } else {
         result = stepThreaded(n);
@@ -268,12 +277,20 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     long posed = steps_ + 1;
     poseColliders(posed);
     std::atomic<bool> bad{false};
-    auto swapPositions = [this, &posed, &bad]() noexcept {
+    // With self-collision the threads resolve the step's contacts between the two barriers,
+    // with the colliders still at the step's pose; the second poses them for the next.
+    const bool self = self_.active();
+    auto swapPositions = [this, &posed, self]() noexcept {
         if (fused()) swapFused();
-        if (self_.active() && !bad.load(std::memory_order_relaxed)) resolveSelfContacts();
+        if (!self) poseColliders(++posed);
+    };
+    auto selfDone = [this, &posed]() noexcept {
+        selfStart_ = x_;
         poseColliders(++posed);
     };
     std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
+    std::barrier selfEnd(std::ptrdiff_t(bands_.size()), selfDone);
+    const std::function<void()> selfSync = [&sync] { sync.arrive_and_wait(); };
     long taken = 0;
     const bool forcesValid = forcesValid_;
     pool_->run([&](int t) {
@@ -286,6 +303,10 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
             ++s;
             stepEnd.arrive_and_wait();
             if (bad.load(std::memory_order_relaxed)) break;
+            if (self) {
+                resolveSelfContacts(t, int(bands_.size()), selfSync);
+                selfEnd.arrive_and_wait();
+            }
         }
         if (t == 0) taken = s;
     });

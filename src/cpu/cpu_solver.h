@@ -8,6 +8,7 @@
 #include <array>
 #include <atomic>
 #include <barrier>
+#include <functional>
 #include <memory>
 #include <utility>
 #include <variant>
@@ -235,7 +236,8 @@ private:
     // Self-collision (cpu/cpu_self_collision.h) and the positions at the step's start it needs.
     CpuSelfCollision<T> self_;
     Soa3<T> selfStart_;
-    void resolveSelfContacts();
+    // Thread t of `threads` (sync: their barrier).
+    void resolveSelfContacts(int t, int threads, const std::function<void()>& sync);
     double maxSpeed_;
     std::optional<GrabT> grab_;
     std::vector<Band> bands_;
