@@ -42,7 +42,11 @@ enum Binding : unsigned {
     kVbdPrevious = 10,
     kVbdBefore = 11,
     kVbdBeforeLast = 12,
-    kBindingCount = 15
+    // Self-collision (self_contact.glsl): seven vec4 per vertex, and its integers (the hash, the
+    // fixed-point sums, the header); any integrator's scene may declare it.
+    kSelfVectors = 15,
+    kSelfInts = 16,
+    kBindingCount = 17
 };
 
 // Uniform locations. The kernels that end a step (step_end.glsl): the 1-based global step
@@ -58,6 +62,11 @@ inline constexpr int kReductionLocation = 0;
 inline constexpr int kVbdLocation = 3;
 // cg_preconditioned.comp: whether it starts the solve (int; p = z).
 inline constexpr int kPreconditionedStartLocation = 6;
+// self_contact.glsl: h [m], μ, the fixed point's units per metre, a substep's share of the step.
+inline constexpr int kSelfThicknessLocation = 20, kSelfFrictionLocation = 21,
+                     kSelfFixedScaleLocation = 22, kSelfShareLocation = 23;
+// Self-collision's integers: the header's ints, the vertex arrays' (per vertex), the buckets'.
+inline constexpr std::size_t kSelfHeaderInts = 16, kSelfIntsPerVertex = 10;
 enum CgReduction : int {
     kReduceStart = 0,
     kReduceAlpha = 1,

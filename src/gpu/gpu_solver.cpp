@@ -49,6 +49,8 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
         kernels.push_back(Kernel::ManySteps);
         extra.push_back({"MANY_STEPS_GROUP", std::to_string(manyStepsGroup)});
     }
+    if (scene.selfCollision)
+        for (Kernel k : selfCollisionKernels()) kernels.push_back(k);
     try {
         for (Kernel k : kernels) {
             const ShaderSource source =
@@ -118,8 +120,11 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     gpu::ColliderTable(scene).checkFits(info.maxStorageBlockSize, scene.source);
     if (forces_ == ForcesKernel::Tiled) checkTileFits(workGroup_, info);
     const long long vertices = static_cast<long long>(nu_) * nv_;
-    if (usesManySteps(options.dispatch, method_, vertices, info.software))
+    // Self-collision runs between steps: one step a dispatch.
+    if (!features_.selfCollision &&
+        usesManySteps(options.dispatch, method_, vertices, info.software))
         manyStepsGroup_ = manyStepsGroupSize(vertices, info);
+    if (features_.selfCollision) checkSelfCollisionFits(scene);
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
     setStepDt(scene.integrator.dt);
@@ -132,6 +137,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
         glGenBuffers(1, &buffers_[b]);
     if (multigrid) multigrid_ = std::make_unique<GpuMultigrid>(nu_, nv_, workGroup_);
     upload(scene);
+    if (features_.selfCollision) allocateSelfCollision(scene);
     setGrabUniforms(std::nullopt);
     // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
     // the wall clock.

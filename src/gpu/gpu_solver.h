@@ -71,6 +71,8 @@ public:
     // the integrator's own (RK4's stages, the CG's vectors), which only a scene with that
     // integrator allocates.
     std::size_t bufferBytes() const;
+    SelfCollisionStats selfCollisionStats() const override { return selfStats_; }
+    std::vector<std::int64_t> selfContactVertices() const override;
 
 private:
     struct PinSlot {
@@ -115,6 +117,15 @@ private:
     gpu::CgState readCgState() const;
     void recordSolve(long stepNumber, const gpu::CgState& cg);
     StepResult reportUnstable(const gpu::Status& status, long stepsBefore);
+    // Self-collision (gpu_self_collision.cpp, docs/physics.md "Self-collision").
+    void checkSelfCollisionFits(const Scene& scene) const;
+    void allocateSelfCollision(const Scene& scene);
+    void setSelfUniforms(const Scene& scene) const;
+    void storeSelfStart() const;  // the positions as the next step's start
+    void resolveSelfContacts(long stepNumber);
+    void runSelfPass(Kernel k, std::size_t invocations) const;
+    SelfCollisionStats selfStats_;
+    std::size_t selfBuckets_ = 0;
 
     const GlContext& context_;
     Features features_;

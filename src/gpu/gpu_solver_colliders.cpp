@@ -71,6 +71,7 @@ void GpuSolver::setColliderDrag(int index, const glm::dvec3& offset, const glm::
             throw;
         }
         setGrabUniforms(grab_);
+        setSelfUniforms(scene_);
         sampleSources_.clear();  // the samples region starts elsewhere now
         uploadColliders(scene_);
     }
@@ -86,7 +87,10 @@ void GpuSolver::runSteps(long first, long count) {
         if (manySteps())
             runManySteps(s, run);
         else
-            for (long k = s; k < s + run; ++k) dispatchStep(k);
+            for (long k = s; k < s + run; ++k) {
+                dispatchStep(k);
+                if (features_.selfCollision) resolveSelfContacts(k);
+            }
         s += run;
     }
 }

@@ -45,6 +45,7 @@ void GpuSolver::write(const SimState& state) {
     subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
     subData(buffers_[gpu::kVelocities], 0, v.data(), n * kVec4);
     subData(buffers_[gpu::kPins], 0, pins_.data(), pins_.size() * kVec4);
+    if (features_.selfCollision) storeSelfStart();  // the next step starts here
     if (method_ == Method::ImplicitEuler) {  // no last solution to start from, as on the CPU
         const std::vector<glm::vec4> zero(n, glm::vec4(0));
         subData(buffers_[gpu::kCgVelocityChange], 0, zero.data(), n * kVec4);
@@ -147,6 +148,7 @@ void GpuSolver::setParameters(const Scene& scene) {
     chebyshevRho_ = scene.integrator.chebyshevRho;
     forcesKept_ = false;
     uploadParams(scene);
+    setSelfUniforms(scene);
     uploadColliders(scene);
     updateInverseMass(scene);
 }

@@ -101,10 +101,6 @@ void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
 }
 
 void checkSceneFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
-    if (scene.selfCollision)
-        throw InputError(scene.source, "self_collision",
-                         "the GPU backend does not model self-collision yet: run it with "
-                         "--backend cpu");
     checkGridFits(scene, wg, info);
     if (scene.integrator.method == Method::ImplicitEuler &&
         scene.integrator.preconditioner == Preconditioner::Multigrid)
@@ -200,14 +196,27 @@ const char* kernelFile(Kernel k) {
         "compute/mg_begin.comp",        "compute/mg_relax_right_hand_side.comp",
         "compute/mg_relax.comp",
         "compute/mg_residual.comp",     "compute/mg_restrict.comp",
-        "compute/mg_prolong.comp",      "compute/mg_coarsest_solve.comp"};
+        "compute/mg_prolong.comp",      "compute/mg_coarsest_solve.comp",
+        "compute/self_begin.comp",      "compute/self_substep.comp",
+        "compute/self_boxes.comp",      "compute/self_count.comp",
+        "compute/self_scan_blocks.comp", "compute/self_scan_sums.comp",
+        "compute/self_scan_add.comp",   "compute/self_scatter.comp",
+        "compute/self_contacts.comp",   "compute/self_apply.comp",
+        "compute/self_finish.comp"};
     return kFiles[int(k)];
+}
+
+std::vector<Kernel> selfCollisionKernels() {
+    std::vector<Kernel> kernels;
+    for (int k = int(Kernel::SelfBegin); k <= int(Kernel::SelfFinish); ++k)
+        kernels.push_back(Kernel(k));
+    return kernels;
 }
 
 std::vector<Kernel> kernelsOf(Method m, Preconditioner p) {
     if (m == Method::ImplicitEuler && p == Preconditioner::Multigrid) {
         std::vector<Kernel> kernels = kernelsOf(m);
-        for (int k = int(Kernel::CgPreconditioned); k < kKernelCount; ++k)
+        for (int k = int(Kernel::CgPreconditioned); k <= int(Kernel::MgCoarsestSolve); ++k)
             kernels.push_back(Kernel(k));
         return kernels;
     }

@@ -71,8 +71,22 @@ enum class Kernel {
     MgRestrict,         // r_c = Pᵀ t, z_c = 0
     MgProlong,          // z += P z_c
     MgCoarsestSolve,    // the coarsest grid solved
+    // Self-collision (self_contact.glsl), after any integrator's step, when the scene declares it:
+    SelfBegin,       // the step's motion and its box, y = x₀
+    SelfSubstep,     // a substep's share of the motion, the sides' reference
+    SelfBoxes,       // the owners' boxes, the longest edge, the buckets emptied
+    SelfCount,       // the cells and the count per bucket
+    SelfScanBlocks,  // the prefix sum per work group
+    SelfScanSums,    // the prefix sum of the work groups' totals
+    SelfScanAdd,     // the totals added
+    SelfScatter,     // the vertices sorted by bucket
+    SelfContacts,    // the contacts' corrections, summed in fixed point
+    SelfApply,       // the mean correction, the colliders
+    SelfFinish,      // the state, the velocities, the next step's start
 };
-inline constexpr int kKernelCount = int(Kernel::MgCoarsestSolve) + 1;
+inline constexpr int kKernelCount = int(Kernel::SelfFinish) + 1;
+// The self-collision kernels, in the order above.
+std::vector<Kernel> selfCollisionKernels();
 
 const char* kernelFile(Kernel k);  // "compute/forces.comp", ...
 // The kernels of an integrator, and with implicit_euler's multigrid preconditioner its own.

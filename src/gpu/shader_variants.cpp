@@ -42,6 +42,11 @@ std::vector<ShaderVariant> computeShaderVariants(const std::string& dir, const S
                 for (Kernel k : kernelsOf(method))
                     add(prefix + "." + stem(kernelFile(k)) + ".comp", kernelFile(k), s, {}, extra,
                         dragSets[d]);
+                if (s.selfCollision)  // the same for every integrator: once per drag set
+                    for (Kernel k : selfCollisionKernels())
+                        add(std::string(drag.empty() ? "" : "dragged.") + stem(kernelFile(k)) +
+                                ".comp",
+                            kernelFile(k), s, {}, {}, dragSets[d]);
                 if (method == Method::ImplicitEuler) {  // the preconditioners' variants
                     for (Preconditioner p : {Preconditioner::Jacobi, Preconditioner::Multigrid}) {
                         Scene preconditioned = s;

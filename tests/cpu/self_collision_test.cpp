@@ -11,51 +11,21 @@
 
 #include "cpu/cpu_backend.h"
 #include "model/self_contact.h"
-#include "reference/self_intersection.h"
+#include "support/self_collision_check.h"
 #include "scene/scene_loader.h"
 #include "solver/solver.h"
 
 namespace cloth {
 namespace {
 
-// The state as a triangle mesh, triangulated as the OBJ writer does (docs/physics.md): quad
-// (i, j) is (a, b, c) and (a, c, d), a = (i, j), b = (i+1, j), c = (i+1, j+1), d = (i, j+1).
-ref::TriangleMesh meshOf(const SimState& s) {
-    ref::TriangleMesh m;
-    for (const glm::dvec3& p : s.positions) m.positions.push_back({p.x, p.y, p.z});
-    for (int j = 0; j + 1 < s.nv; ++j)
-        for (int i = 0; i + 1 < s.nu; ++i) {
-            const int a = j * s.nu + i, b = a + 1, c = a + s.nu + 1, d = a + s.nu;
-            m.triangles.push_back({a, b, c});
-            m.triangles.push_back({a, c, d});
-        }
-    return m;
-}
+using test::runAndCheck;
+using Outcome = test::SelfCheck;
 
-struct Outcome {
-    long worstCrossings = 0;  // most edge–triangle crossings in one checked frame
-    double closest = 1e300;   // smallest separation over the checked frames [m]
-    long crossedFrames = 0;
-    SelfCollisionStats stats;
-};
-
-// Runs `scene` for `steps`, checking every `every` steps.
+// Runs `scene` on the CPU backend for `steps`, checking every `every` steps.
 Outcome runAndCheck(const Scene& scene, Precision precision, long steps, long every) {
     auto solver = makeCpuSolver(scene, CpuOptions{precision, 0});
-    Outcome o;
     const double cutoff = scene.selfCollision ? scene.selfCollision->thickness : 0.01;
-    for (long done = 0; done < steps; done += every) {
-        const StepResult r = solver->step(every);
-        EXPECT_FALSE(r.unstable) << r.reason;
-        if (r.unstable) break;
-        const ref::TriangleMesh m = meshOf(solver->read());
-        const long crossings = ref::countEdgeTriangleCrossings(m);
-        o.worstCrossings = std::max(o.worstCrossings, crossings);
-        o.crossedFrames += crossings > 0;
-        o.closest = std::min(o.closest, ref::minimumSeparation(m, 0, cutoff).distance);
-    }
-    o.stats = solver->selfCollisionStats();
-    return o;
+    return runAndCheck(*solver, steps, every, cutoff);
 }
 
 Scene shipped(const std::string& name, const std::vector<std::string>& sets = {}) {

@@ -81,9 +81,10 @@ constexpr std::size_t kMotionWindow = 10;
 constexpr double kSigmas = 4;
 
 // The shipped scenes, by file name without ".json", sorted: a scene added later is compared too,
-// except the pile and the fold: they show self-collision, which the GPU backend does not model
-// yet, and without it they crumple through themselves, a chaotic motion no observable of which
-// the two backends share for long (the pile's mean height differed by 0.014 m at step 2000).
+// except the pile and the fold. Compared without self-collision (its threshold decisions part
+// the backends' trajectories within steps, gpu_self_collision_test.cpp), they crumple through
+// themselves, a chaotic motion no observable of which the two backends share for long (the
+// pile's mean height differed by 0.014 m at step 2000).
 std::vector<std::string> shippedSceneNames() {
     std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(CLOTH_SOURCE_DIR "/scenes"))

@@ -19,8 +19,9 @@ double maxDeviationOverExtent(const SimState& s, const ref::Simulation& r, doubl
 // CLOTH_SOURCE_DIR "/scenes/" name ".json", loaded and validated.
 Scene loadShippedScene(const std::string& name);
 
-// The scene as the reference and the GPU backend model it: without self-collision, which
-// neither has (tests/cpu/self_collision_test.cpp checks it on the CPU backend).
+// The scene without self-collision: as the reference models it (it has none), and as the GPU
+// tests compare it where its contacts' threshold decisions would part the backends
+// (tests/cpu/self_collision_test.cpp and tests/gpu/gpu_self_collision_test.cpp test it).
 inline Scene withoutSelfCollision(Scene scene) {
     scene.selfCollision.reset();
     return scene;
