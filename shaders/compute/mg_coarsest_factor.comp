@@ -21,7 +21,7 @@ void main() {
             for (int di = -2; di <= 2; ++di) {
                 if (i + di < 0 || i + di >= nu || j + dj < 0 || j + dj >= nv) continue;
                 int q = k + dj * nu + di;
-                Sym3 b = loadBlock(blockAt(l, k, stencilSlot(di, dj)));
+                dmat3 b = loadBlock(blockAt(l, k, stencilSlot(di, dj)));
                 for (int row = 0; row < 3; ++row)
                     for (int col = 0; col < 3; ++col)
                         mgWork[a + (3 * k + row) * dofs + 3 * q + col] = blockEntry(b, row, col);

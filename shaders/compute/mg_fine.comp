@@ -18,36 +18,25 @@ ivec2 gProbe;  // the vertex whose unit field the bending stencil reads
 
 layout(local_size_x = WX, local_size_y = WY) in;
 
-void addScaled(inout Sym3 b, double s, dvec3 n, double along, double transverse) {
-    b.xx += s * (transverse + along * n.x * n.x);
-    b.xy += s * along * n.x * n.y;
-    b.xz += s * along * n.x * n.z;
-    b.yy += s * (transverse + along * n.y * n.y);
-    b.yz += s * along * n.y * n.z;
-    b.zz += s * (transverse + along * n.z * n.z);
+void addScaled(inout dmat3 b, double s, dvec3 n, double along, double transverse) {
+    b += s * (dmat3(transverse) + along * outerProduct(n, n));
 }
 
 void main() {
     ivec2 ij;
     int k;
     if (!levelVertex(0, ij, k)) return;
-    Sym3 zero = Sym3(0.0lf, 0.0lf, 0.0lf, 0.0lf, 0.0lf, 0.0lf);
-    for (int o = 0; o < 25; ++o) storeBlock(blockAt(0, k, o), zero);
+    for (int o = 0; o < 25; ++o) storeBlock(blockAt(0, k, o), dmat3(0.0lf));
     float inverseMass = positions[k].w;
     if (inverseMass == 0.0) {
-        storeBlock(blockAt(0, k, stencilSlot(0, 0)), Sym3(1.0lf, 0.0lf, 0.0lf, 1.0lf, 0.0lf, 1.0lf));
+        storeBlock(blockAt(0, k, stencilSlot(0, 0)), dmat3(1.0lf));
         return;
     }
     double h = double(params.dt), h2 = h * h;
     float drag = 1.0 + params.dt * params.dampingRate;
     double m = divide(double(drag), double(inverseMass));
-    Sym3 centre = Sym3(m, 0.0lf, 0.0lf, m, 0.0lf, m);
-    if (grabbed(uint(k))) {
-        double g = h2 * double(uGrab.w);
-        centre.xx += g;
-        centre.yy += g;
-        centre.zz += g;
-    }
+    dmat3 centre = dmat3(m);
+    if (grabbed(uint(k))) centre += dmat3(h2 * double(uGrab.w));
 #if NUM_SPRING_OFFSETS > 0
     dvec3 xk = dvec3(positions[k].xyz);
     for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
@@ -68,7 +57,7 @@ void main() {
         addScaled(centre, h2, n, along, transverse);
         if (positions[kq].w == 0.0) continue;  // a pinned column
         int at = blockAt(0, k, stencilSlot(s.x, s.y));
-        Sym3 b = loadBlock(at);
+        dmat3 b = loadBlock(at);
         addScaled(b, -h2, n, along, transverse);
         storeBlock(at, b);
     }
@@ -81,17 +70,11 @@ void main() {
             double w = -double(bendingForce(ij, params.bending.xyz).x);
             if (w == 0.0lf) continue;
             if (di == 0 && dj == 0) {
-                centre.xx += h2 * w;
-                centre.yy += h2 * w;
-                centre.zz += h2 * w;
+                centre += dmat3(h2 * w);
                 continue;
             }
             int at = blockAt(0, k, stencilSlot(di, dj));
-            Sym3 b = loadBlock(at);
-            b.xx += h2 * w;
-            b.yy += h2 * w;
-            b.zz += h2 * w;
-            storeBlock(at, b);
+            storeBlock(at, loadBlock(at) + dmat3(h2 * w));
         }
 #endif
     storeBlock(blockAt(0, k, stencilSlot(0, 0)), centre);

@@ -22,7 +22,7 @@ void main() {
         int k = ij.y * nu + ij.x;
         for (int b = max(0, a - 2); b <= a; ++b) {
             int d = b - a;
-            Sym3 block = loadBlock(blockAt(l, k, direction == 0 ? stencilSlot(d, 0) : stencilSlot(0, d)));
+            dmat3 block = loadBlock(blockAt(l, k, direction == 0 ? stencilSlot(d, 0) : stencilSlot(0, d)));
             for (int row = 0; row < 3; ++row)
                 for (int col = 0; col < 3; ++col) {
                     int R = 3 * a + row, C = 3 * b + col;

@@ -12,20 +12,15 @@ void main() {
     ivec2 ij;
     int k;
     if (!levelVertex(l, ij, k) || pinnedAt(l, ij)) return;
-    int cu = levelU(c);
-    int I, J;
-    double wu, wv;
-    interpolationRow(ij.x, levelU(l), cu, I, wu);
-    interpolationRow(ij.y, levelV(l), levelV(c), J, wv);
+    int cu = levelU(c), cv = levelV(c);
+    ivec2 cell;
+    dmat3 p[4];
+    prolongationBlocks(c, ij, cell, p);
     dvec3 sum = dvec3(0.0lf);
-    for (int b = 0; b < 2; ++b) {
-        double wj = b == 0 ? 1.0lf - wv : wv;
-        if (wj == 0.0lf) continue;
-        for (int a = 0; a < 2; ++a) {
-            double wi = a == 0 ? 1.0lf - wu : wu;
-            if (wi == 0.0lf) continue;
-            sum += (wi * wj) * loadVector(c, (J + b) * cu + I + a, kMgZ);
-        }
+    for (int corner = 0; corner < 4; ++corner) {
+        ivec2 Q = cell + ivec2(corner & 1, corner >> 1);
+        if (Q.x >= cu || Q.y >= cv) continue;
+        sum += p[corner] * loadVector(c, Q.y * cu + Q.x, kMgZ);
     }
     storeVector(l, k, kMgZ, loadVector(l, k, kMgZ) + sum);
 }

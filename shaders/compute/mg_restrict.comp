@@ -16,12 +16,19 @@ void main() {
     int nu = levelU(f), nv = levelV(f), cu = levelU(l), cv = levelV(l);
     dvec3 sum = dvec3(0.0lf);
     if (!pinnedAt(l, IJ)) {
-        ivec2 spanU = interpolationSpan(IJ.x, nu, cu), spanV = interpolationSpan(IJ.y, nv, cv);
-        for (int j = spanV.x; j <= spanV.y; ++j) {
-            double wj = interpolationWeight(IJ.y, j, nv, cv);
-            for (int i = spanU.x; i <= spanU.y; ++i)
-                sum += (interpolationWeight(IJ.x, i, nu, cu) * wj) * loadVector(f, j * nu + i, kMgT);
-        }
+        ivec2 cellsU = cellsOf(IJ.x, cu), cellsV = cellsOf(IJ.y, cv);
+        for (int Cv = cellsV.x; Cv <= cellsV.y; ++Cv)
+            for (int Cu = cellsU.x; Cu <= cellsU.y; ++Cu) {
+                int corner = (IJ.x - Cu) + 2 * (IJ.y - Cv);
+                ivec2 spanU = cellSpan(Cu, nu, cu), spanV = cellSpan(Cv, nv, cv);
+                for (int j = spanV.x; j <= spanV.y; ++j)
+                    for (int i = spanU.x; i <= spanU.y; ++i) {
+                        ivec2 cell;
+                        dmat3 p[4];
+                        prolongationBlocks(l, ivec2(i, j), cell, p);
+                        sum += loadVector(f, j * nu + i, kMgT) * p[corner];  // P_kKᵀ t_k
+                    }
+            }
     }
     storeVector(l, K, kMgR, sum);
     storeVector(l, K, kMgZ, dvec3(0.0lf));

@@ -6,8 +6,9 @@
 //
 // Two storage blocks (bindings the other implicit_euler kernels leave free with this
 // preconditioner):
-//   mgStencil: every level's system, 25 symmetric 3×3 blocks per vertex (offsets (−2..2)², slot
-//              5(dj + 2) + di + 2), six doubles each (xx, xy, xz, yy, yz, zz);
+//   mgStencil: every level's system, 25 3×3 blocks per vertex (offsets (−2..2)², slot
+//              5(dj + 2) + di + 2), nine doubles each, column by column (a coarse block is not
+//              symmetric: P has a rotation term, see prolongationBlocks);
 //   mgWork:    the line smoother's banded Cholesky factors (54 doubles per vertex: every row and
 //              every column of a grid as one band of half-width 8 unknowns, 9 entries a row),
 //              then r, z, t of each vertex (9 doubles), then the coarsest grid's dense factor.
@@ -51,34 +52,18 @@ int levelFirst(int l) { return kMgLevels[l].z; }
 int stencilSlot(int di, int dj) { return 5 * (dj + 2) + di + 2; }
 
 // Where block `slot` of vertex k of level l starts in mgStencil.
-int blockAt(int l, int k, int slot) { return ((levelFirst(l) + k) * 25 + slot) * 6; }
+int blockAt(int l, int k, int slot) { return ((levelFirst(l) + k) * 25 + slot) * 9; }
 
-struct Sym3 {
-    double xx, xy, xz, yy, yz, zz;
-};
-
-Sym3 loadBlock(int at) {
-    return Sym3(mgStencil[at], mgStencil[at + 1], mgStencil[at + 2], mgStencil[at + 3],
-                mgStencil[at + 4], mgStencil[at + 5]);
+dmat3 loadBlock(int at) {
+    return dmat3(mgStencil[at], mgStencil[at + 1], mgStencil[at + 2], mgStencil[at + 3],
+                 mgStencil[at + 4], mgStencil[at + 5], mgStencil[at + 6], mgStencil[at + 7],
+                 mgStencil[at + 8]);
 }
-void storeBlock(int at, Sym3 b) {
-    mgStencil[at] = b.xx;
-    mgStencil[at + 1] = b.xy;
-    mgStencil[at + 2] = b.xz;
-    mgStencil[at + 3] = b.yy;
-    mgStencil[at + 4] = b.yz;
-    mgStencil[at + 5] = b.zz;
+void storeBlock(int at, dmat3 b) {
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r) mgStencil[at + 3 * c + r] = b[c][r];
 }
-dvec3 times(Sym3 b, dvec3 w) {
-    return dvec3(b.xx * w.x + b.xy * w.y + b.xz * w.z, b.xy * w.x + b.yy * w.y + b.yz * w.z,
-                 b.xz * w.x + b.yz * w.y + b.zz * w.z);
-}
-double blockEntry(Sym3 b, int row, int col) {
-    int r = min(row, col), c = max(row, col);
-    if (r == 0) return c == 0 ? b.xx : (c == 1 ? b.xy : b.xz);
-    if (r == 1) return c == 1 ? b.yy : b.yz;
-    return b.zz;
-}
+double blockEntry(dmat3 b, int row, int col) { return b[col][row]; }
 
 // The vectors of level l: r (0), z (1), t (2).
 const int kMgR = 0, kMgZ = 1, kMgT = 2;
@@ -109,6 +94,9 @@ ivec2 onLine(int direction, int line, int a) { return direction == 0 ? ivec2(a, 
 
 int coarsestFirst() { return 63 * MG_TOTAL; }
 
+// cross(v, y) = crossMatrix(v) y
+dmat3 crossMatrix(dvec3 v) { return dmat3(0.0lf, v.z, -v.y, -v.z, 0.0lf, v.x, v.y, -v.x, 0.0lf); }
+
 // The fine index of coarse index I on an axis of n fine vertices: min(2I, n − 1).
 int fineOf(int I, int n) { return min(2 * I, n - 1); }
 
@@ -119,39 +107,74 @@ bool pinnedAt(int l, ivec2 ij) {
     return positions[ij.y * gridU() + ij.x].w == 0.0;
 }
 
-// Row i of P along an axis of n fine vertices (coarse count c): the coarse indices I and I + 1
-// and the weights 1 − w and w of fine index i (src/cpu/cpu_multigrid.cpp coarsen).
+// Row i of P along an axis of n fine vertices (coarse count c): i lies in cell I (between coarse
+// I and I + 1) with the weights 1 − w and w (src/cpu/cpu_multigrid.cpp coarsen). A fine index on
+// a coarse one belongs to the cell below it (0 to cell 0), so that P keeps radius 2.
 void interpolationRow(int i, int n, int c, out int I, out double w) {
     if (c == 1) {
         I = 0;
         w = 0.0lf;
         return;
     }
-    I = min(i / 2, c - 2);
+    I = i == 0 ? 0 : min((i - 1) / 2, c - 2);
     int lo = fineOf(I, n), hi = fineOf(I + 1, n);
     w = divide(double(i - lo), double(hi - lo));
 }
-
-// Column I of P along an axis (n fine, c coarse vertices): fine indices [first, last] with
-// weight 1 at fineOf(I), falling linearly to 0 at the neighbours' fine indices.
-double interpolationWeight(int I, int i, int n, int c) {
-    int centre = fineOf(I, n);
-    if (i == centre) return 1.0lf;
-    if (i < centre) {
-        if (I == 0) return 0.0lf;
-        int below = fineOf(I - 1, n);
-        return i > below ? divide(double(i - below), double(centre - below)) : 0.0lf;
-    }
-    if (I == c - 1) return 0.0lf;
-    int above = fineOf(I + 1, n);
-    return i < above ? divide(double(above - i), double(above - centre)) : 0.0lf;
+// The cells with coarse index I as a corner (I − 1 and I, where they exist), and the fine
+// indices [first, last] of cell C.
+ivec2 cellsOf(int I, int c) { return ivec2(max(0, I - 1), min(I, max(1, c - 1) - 1)); }
+ivec2 cellSpan(int C, int n, int c) {
+    if (c == 1) return ivec2(0, n - 1);
+    return ivec2(C == 0 ? 0 : fineOf(C, n) + 1, fineOf(C + 1, n));
 }
-// The fine indices column I of P reaches: (fineOf(I − 1), fineOf(I + 1)) exclusive, centre
-// included.
-ivec2 interpolationSpan(int I, int n, int c) {
-    int first = I == 0 ? fineOf(I, n) : fineOf(I - 1, n) + 1;
-    int last = I == c - 1 ? fineOf(I, n) : fineOf(I + 1, n) - 1;
-    return ivec2(first, last);
+
+// The position of vertex ij of level l: its fine vertex's (in double).
+dvec3 levelPosition(int l, ivec2 ij) {
+    for (int m = l; m > 0; --m) ij = ivec2(fineOf(ij.x, levelU(m - 1)), fineOf(ij.y, levelV(m - 1)));
+    return dvec3(positions[ij.y * gridU() + ij.x].xyz);
+}
+
+// P's blocks of fine vertex ij of level l − 1 (src/cpu/cpu_multigrid.cpp prolongation): one per
+// corner c of its cell (c & 1 along u, c >> 1 along v), the bilinear weight times I minus
+// [d]× G_c: d is how far the vertex lies off the blend of the corners, G_c the corner's share of
+// the cell's least-squares rotation, so that a rigid motion is carried exactly.
+void prolongationBlocks(int l, ivec2 ij, out ivec2 cell, out dmat3 p[4]) {
+    int f = l - 1, cu = levelU(l), cv = levelV(l);
+    double wu, wv;
+    interpolationRow(ij.x, levelU(f), cu, cell.x, wu);
+    interpolationRow(ij.y, levelV(f), cv, cell.y, wv);
+    double w[4] = double[4]((1.0lf - wu) * (1.0lf - wv), wu * (1.0lf - wv), (1.0lf - wu) * wv, wu * wv);
+    for (int c = 0; c < 4; ++c) p[c] = dmat3(w[c]);
+    if (cu == 1 || cv == 1) return;
+    dvec3 X[4], blend = dvec3(0.0lf);
+    for (int c = 0; c < 4; ++c) {
+        X[c] = levelPosition(l, cell + ivec2(c & 1, c >> 1));
+        blend += w[c] * X[c];
+    }
+    dvec3 d = levelPosition(f, ij) - blend;
+    dvec3 a = 0.5lf * ((X[1] - X[0]) + (X[3] - X[2]));
+    dvec3 b = 0.5lf * ((X[2] - X[0]) + (X[3] - X[1]));
+    double aa = dot(a, a), bb = dot(b, b);
+    dmat3 normal = dmat3(aa + bb) - outerProduct(a, a) - outerProduct(b, b);
+    double det = determinant(normal);
+    if (!(det > 1e-12lf * (aa + bb) * (aa + bb) * (aa + bb))) return;  // a degenerate cell
+    // The inverse by the adjugate (glm's order: the transposed cofactors over the determinant).
+    double s = divide(1.0lf, det);
+    dmat3 m = normal, inverse;
+    inverse[0][0] = (m[1][1] * m[2][2] - m[2][1] * m[1][2]) * s;
+    inverse[1][0] = -(m[1][0] * m[2][2] - m[2][0] * m[1][2]) * s;
+    inverse[2][0] = (m[1][0] * m[2][1] - m[2][0] * m[1][1]) * s;
+    inverse[0][1] = -(m[0][1] * m[2][2] - m[2][1] * m[0][2]) * s;
+    inverse[1][1] = (m[0][0] * m[2][2] - m[2][0] * m[0][2]) * s;
+    inverse[2][1] = -(m[0][0] * m[2][1] - m[2][0] * m[0][1]) * s;
+    inverse[0][2] = (m[0][1] * m[1][2] - m[1][1] * m[0][2]) * s;
+    inverse[1][2] = -(m[0][0] * m[1][2] - m[1][0] * m[0][2]) * s;
+    inverse[2][2] = (m[0][0] * m[1][1] - m[1][0] * m[0][1]) * s;
+    dmat3 ca = crossMatrix(a), cb = crossMatrix(b), cd = crossMatrix(d);
+    for (int c = 0; c < 4; ++c) {
+        double sa = (c & 1) != 0 ? 0.5lf : -0.5lf, sb = (c >> 1) != 0 ? 0.5lf : -0.5lf;
+        p[c] -= cd * (inverse * (sa * ca + sb * cb));
+    }
 }
 
 // r − Σ A_kq z_q at vertex k = (i, j) of level l over its stencil, leaving out the blocks on
@@ -164,8 +187,7 @@ dvec3 residualAt(int l, ivec2 ij, int k, int skip) {
     for (int dj = max(-2, -ij.y); dj <= min(2, nv - 1 - ij.y); ++dj)
         for (int di = max(-2, -ij.x); di <= min(2, nu - 1 - ij.x); ++di) {
             if ((skip == 0 && dj == 0) || (skip == 1 && di == 0)) continue;
-            sum -= times(loadBlock(blockAt(l, k, stencilSlot(di, dj))),
-                         loadVector(l, k + dj * nu + di, kMgZ));
+            sum -= loadBlock(blockAt(l, k, stencilSlot(di, dj))) * loadVector(l, k + dj * nu + di, kMgZ);
         }
     return sum;
 }

@@ -21,6 +21,7 @@
 // does not depend on the thread count.
 #pragma once
 
+#include <algorithm>
 #include <barrier>
 #include <cstdint>
 #include <utility>
@@ -48,6 +49,8 @@ public:
     // The cycle's arithmetic, in float too: a stiff membrane's A = m I + h²K holds m at 1e-6 of
     // h²K, under float's rounding of the Galerkin sums (its coarse grids went indefinite).
     using S = double;
+    // A block of a stencil or of P: full 3×3 (P's rotation term makes coarse blocks asymmetric).
+    using Block = glm::mat<3, 3, S, glm::defaultp>;
 
     // The hierarchy under an nu × nv grid: coarse grids down to at most kCoarsest vertices.
     void configure(int nu, int nv);
@@ -62,22 +65,45 @@ public:
     // ends with a sync.
     void apply(const std::vector<Vec3<T>>& r, std::vector<Vec3<T>>& z, const CycleThreads& threads);
 
+    // For tests: the positions of grid l's vertices (as of the last linearise), and P applied to
+    // a field of grid l (l ≥ 1) on every vertex of grid l − 1.
+    const std::vector<Vec3<S>>& positions(int l) const { return levels_[std::size_t(l)].x; }
+    std::vector<Vec3<S>> interpolate(int l, const std::vector<Vec3<S>>& coarse) const;
+
     static constexpr int kCoarsest = kMultigridCoarsest;  // vertices of the grid solved exactly
     static constexpr int kSerialBelow = 4096;  // grids smaller than this run on one thread
     static constexpr int kSweeps = 1;          // smoothing sweeps before and after
     static constexpr int kStencil = 25;        // blocks per vertex: offsets (−2..2)²
 
 private:
-    // One axis of a coarsening: coarse index I sits on fine index at[I]; fine index i takes
-    // (1 − w) of coarse lower[i] and w of lower[i] + 1.
+    // One axis of a coarsening: coarse index I sits on fine index at[I]; fine index i lies in
+    // cell lower[i] (between coarse lower[i] and lower[i] + 1) and takes (1 − w) of the one and
+    // w of the other; cell C holds fine indices [first[C], first[C + 1]). A fine index on a
+    // coarse one belongs to the cell below it (but 0 to cell 0), so that P keeps radius 2.
     struct Axis {
-        std::vector<int> at, lower;
-        std::vector<T> weight;
+        std::vector<int> at, lower, first;
+        std::vector<S> weight;
+        int cells() const { return int(first.size()) - 1; }
     };
     struct Level {
         int nu = 0, nv = 0;
-        Axis u, v;               // from the grid above (unused on the fine grid)
-        std::vector<Sym3<S>> a;  // kStencil blocks per vertex, offset (di, dj) at 5(dj+2)+di+2
+        Axis u, v;             // from the grid above (unused on the fine grid)
+        // kStencil blocks per vertex, offset (di, dj) at 5(dj+2)+di+2: the fine grid's are
+        // symmetric (half the memory traffic of the sweeps), a coarse grid's full.
+        std::vector<Sym3<S>> symmetric;
+        std::vector<Block> a;
+        Block block(std::int64_t k, int slot) const {
+            const std::size_t at = std::size_t(k * kStencil + slot);
+            return symmetric.empty() ? a[at] : symmetric[at].matrix();
+        }
+        Vec3<S> times(std::int64_t k, int slot, const Vec3<S>& w) const {
+            const std::size_t at = std::size_t(k * kStencil + slot);
+            return symmetric.empty() ? a[at] * w : symmetric[at] * w;
+        }
+        std::vector<Vec3<S>> x;  // the vertices' positions (a coarse one: its fine vertex's)
+        // P from this grid to the one above (unused on the fine grid): 4 blocks per vertex of
+        // the grid above, one per corner of the coarse cell it lies in (see prolongation).
+        std::vector<Block> p;
         // The smoother's factors: every row (direction 0) and column (1) of the grid as one
         // banded system (3 unknowns a vertex, the stencil's blocks along it), A_line = L Lᵀ,
         // L's band stored row by row, kBand + 1 entries (the diagonal last).
@@ -88,9 +114,17 @@ private:
     };
 
     static Axis coarsen(int n);
+    static constexpr int stencilSlot(int di, int dj) { return 5 * (dj + 2) + di + 2; }
+    // The cells of an axis that have coarse index I as a corner: I − 1 and I, where they exist.
+    template <typename Fn>
+    static void forEachCellOf(const Axis& axis, int I, const Fn& fn) {
+        for (int C = std::max(0, I - 1); C <= std::min(I, axis.cells() - 1); ++C) fn(C);
+    }
     using ProbeSystem = ImplicitSystem<S, Soa3<S>>;  // the fine system in the cycle's arithmetic
     void probeFine(const ProbeSystem& fine, const CycleThreads& threads);
     void galerkin(int l, const CycleThreads& threads);  // level l from level l − 1
+    void prolongation(int l, const CycleThreads& threads);  // level l's P, from its positions
+    Vec3<S> prolongAt(int l, std::int64_t k, const Vec3<S>* coarse) const;  // (P z_c)_k
     void smoother(int l, const CycleThreads& threads);
     void relaxLine(Level& g, int direction, int line, const Vec3<S>* r, Vec3<S>* z);
     static constexpr int kBand = 8;  // a line's half bandwidth in unknowns: 3 × 2 + 2
@@ -108,6 +142,9 @@ private:
     Soa3<S> x_;
     std::vector<StencilSpring<S>> springs_;
     std::vector<S> inverseMass_;
+    // The Galerkin product's first half, (A P)_kQ for every fine vertex k of the grid above and
+    // the 4 × 4 coarse vertices Q around its cell: slot (Q − cell + 1) along u, + 4 × that along v.
+    std::vector<Block> product_;
     std::vector<double> cholesky_;  // the coarsest system's factor L (row-major, lower)
     std::vector<double> solve_;
 };

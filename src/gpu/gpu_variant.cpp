@@ -84,7 +84,7 @@ MultigridBytes multigridBytes(int nu, int nv) {
     for (const MultigridLevel& l : levels) total += l.count();
     const long long coarsestDofs = 3 * levels.back().count();
     constexpr long long kDouble = 8;
-    return {total * 25 * 6 * kDouble, (63 * total + coarsestDofs * coarsestDofs) * kDouble};
+    return {total * 25 * 9 * kDouble, (63 * total + coarsestDofs * coarsestDofs) * kDouble};
 }
 
 void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
@@ -94,7 +94,7 @@ void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
     throw InputError(scene.source, "integrator.preconditioner",
                      "\"multigrid\" on the " + std::to_string(scene.cloth.nu) + "x" +
                          std::to_string(scene.cloth.nv) + " grid needs a " +
-                         std::to_string(largest) + "-byte buffer of its stencils (1.6 kB a vertex); " +
+                         std::to_string(largest) + "-byte buffer of its stencils (2.4 kB a vertex); " +
                          info.renderer + " allows at most " +
                          std::to_string(info.maxStorageBlockSize) +
                          " bytes per SSBO: use \"jacobi\", a coarser grid or the CPU backend");

@@ -1,0 +1,433 @@
+// The multigrid hierarchy of cpu/cpu_multigrid.h, rebuilt every step: the grids' axes, the fine
+// stencil probed off the matrix-free product, P, the Galerkin products, the line factors and the
+// coarsest factor.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cpu/cpu_multigrid.h"
+
+namespace cloth {
+namespace {
+
+// The cross-product matrix: cross(v, y) = crossMatrix(v) y.
+template <typename M, typename V>
+M crossMatrix(const V& v) {
+    return M(0, v.z, -v.y, -v.z, 0, v.x, v.y, -v.x, 0);
+}
+
+}  // namespace
+
+template <typename T>
+typename CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int n) {
+    Axis a;
+    const int coarse = coarsenedCount(n);
+    for (int I = 0; I < coarse; ++I) a.at.push_back(std::min(2 * I, n - 1));
+    for (int i = 0; i < n; ++i) {
+        if (coarse == 1) {
+            a.lower.push_back(0);
+            a.weight.push_back(0);
+            continue;
+        }
+        int I = 0;  // the cell: the last one whose lower corner lies below i
+        while (I + 2 < coarse && a.at[std::size_t(I + 1)] < i) ++I;
+        const int lo = a.at[std::size_t(I)], hi = a.at[std::size_t(I + 1)];
+        a.lower.push_back(I);
+        a.weight.push_back(S(i - lo) / S(hi - lo));
+    }
+    a.first.push_back(0);
+    for (int i = 1; i < n; ++i)
+        if (a.lower[std::size_t(i)] != a.lower[std::size_t(i - 1)]) a.first.push_back(i);
+    a.first.push_back(n);
+    return a;
+}
+
+template <typename T>
+void CpuMultigrid<T>::configure(int nu, int nv) {
+    levels_.clear();
+    configured_ = true;
+    for (const MultigridLevel& size : multigridLevels(nu, nv)) {
+        Level level;
+        level.nu = size.nu;
+        level.nv = size.nv;
+        if (!levels_.empty()) {
+            level.u = coarsen(levels_.back().nu);
+            level.v = coarsen(levels_.back().nv);
+        }
+        levels_.push_back(std::move(level));
+    }
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+        Level& level = levels_[l];
+        const std::size_t n = std::size_t(level.count());
+        if (l == 0)
+            level.symmetric.assign(n * kStencil, Sym3<S>{});
+        else
+            level.a.assign(n * kStencil, Block(0));
+        level.x.assign(n, Vec3<S>(0));
+        if (l > 0) level.p.assign(4 * std::size_t(levels_[l - 1].count()), Block(0));
+        level.lines[0].assign(std::size_t(level.nv) * 3 * std::size_t(level.nu) * (kBand + 1), 0.0);
+        level.lines[1].assign(std::size_t(level.nu) * 3 * std::size_t(level.nv) * (kBand + 1), 0.0);
+        level.pinned.assign(n, 0);
+        level.t.assign(n, Vec3<S>(0));
+        level.r.assign(n, Vec3<S>(0));
+        level.z.assign(n, Vec3<S>(0));
+    }
+    product_.assign(levels_.size() > 1 ? 16 * std::size_t(levels_[0].count()) : 0, Block(0));
+    const std::size_t dofs = 3 * std::size_t(levels_.back().count());
+    cholesky_.assign(dofs * dofs, 0.0);
+    solve_.assign(dofs, 0.0);
+}
+
+template <typename T>
+std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int nu, int nv,
+                                                             const CycleThreads& threads) {
+    const int rowBegin = int(std::int64_t(nv) * threads.index / threads.count);
+    const int rowEnd = int(std::int64_t(nv) * (threads.index + 1) / threads.count);
+    return {std::int64_t(rowBegin) * nu, std::int64_t(rowEnd) * nu};
+}
+
+// The fine stencil read off the matrix-free product: p = e_d on every unpinned vertex of colour
+// (i mod 5, j mod 5) gives (A p)_k = column d of A_kq for the one vertex q of that colour within
+// k's 5×5 window. 75 products on this thread's rows, with its own probe vectors.
+template <typename T>
+void CpuMultigrid<T>::probeFine(const ProbeSystem& fine, const CycleThreads& threads) {
+    Level& level = levels_[0];
+    const int nu = level.nu, nv = level.nv;
+    const std::int64_t n = level.count();
+    std::vector<Vec3<S>>& p = probe_[std::size_t(threads.index)];
+    std::vector<Vec3<S>>& out = probed_[std::size_t(threads.index)];
+    if (std::int64_t(p.size()) != n) {
+        p.assign(std::size_t(n), Vec3<S>(0));
+        out.assign(std::size_t(n), Vec3<S>(0));
+    }
+    const auto [begin, end] = slice(nu, nv, threads);
+    const int rowBegin = int(begin / nu), rowEnd = int(end / nu);
+    const int probeBegin = std::max(0, rowBegin - 2), probeEnd = std::min(nv, rowEnd + 2);
+    for (std::int64_t k = begin; k < end; ++k) {
+        level.pinned[std::size_t(k)] = fine.pinned[k];
+        for (int o = 0; o < kStencil; ++o) level.symmetric[std::size_t(k * kStencil + o)] = {};
+    }
+    for (int cj = 0; cj < 5; ++cj)
+        for (int ci = 0; ci < 5; ++ci)
+            for (int d = 0; d < 3; ++d) {
+                for (int j = probeBegin + ((cj - probeBegin) % 5 + 5) % 5; j < probeEnd; j += 5)
+                    for (int i = ci; i < nu; i += 5) {
+                        const std::int64_t q = std::int64_t(j) * nu + i;
+                        if (!fine.pinned[q]) p[std::size_t(q)][d] = S(1);
+                    }
+                if (begin < end) fine.apply(p.data(), out.data(), begin, end);
+                for (std::int64_t k = begin; k < end; ++k) {
+                    if (fine.pinned[k]) continue;
+                    const int i = int(k % nu), j = int(k / nu);
+                    int di = ((ci - i) % 5 + 5) % 5, dj = ((cj - j) % 5 + 5) % 5;
+                    if (di > 2) di -= 5;
+                    if (dj > 2) dj -= 5;
+                    if (i + di < 0 || i + di >= nu || j + dj < 0 || j + dj >= nv) continue;
+                    if (fine.pinned[k + std::int64_t(dj) * nu + di]) continue;
+                    Sym3<S>& b = level.symmetric[std::size_t(k * kStencil + stencilSlot(di, dj))];
+                    const Vec3<S> c(out[std::size_t(k)]);
+                    if (d == 0) b.xx = c.x, b.xy = c.y, b.xz = c.z;
+                    if (d == 1) b.yy = c.y, b.yz = c.z;
+                    if (d == 2) b.zz = c.z;
+                }
+                for (int j = probeBegin + ((cj - probeBegin) % 5 + 5) % 5; j < probeEnd; j += 5)
+                    for (int i = ci; i < nu; i += 5)
+                        p[std::size_t(std::int64_t(j) * nu + i)][d] = S(0);
+            }
+    for (std::int64_t k = begin; k < end; ++k)
+        if (fine.pinned[k])
+            level.symmetric[std::size_t(k * kStencil + stencilSlot(0, 0))] = Sym3<S>::identity(1);
+}
+
+// Level l's P on this thread's rows of level l − 1 (docs/integrators.md, "Preconditioners"). A
+// fine vertex k in the coarse cell with corners X_c takes the bilinear blend Σ w_c z_c of the
+// corners' corrections plus the rotation the cell's corrections describe, ω × d_k, where
+// d_k = x_k − Σ w_c X_c is how far the curved sheet lies off the blended corners and ω is
+// the least-squares rotation of the cell's two mean edge differences (exact for a rigid motion,
+// z = ω × X + t, which P then carries to every fine vertex exactly). Bilinear interpolation alone
+// moves a sagged vertex by ω × (Σ w_c X_c), not ω × x_k: on a curved sheet it stretches the stiff
+// membrane under the rotations the soft bending modes are made of.
+template <typename T>
+void CpuMultigrid<T>::prolongation(int l, const CycleThreads& threads) {
+    const Level& f = levels_[std::size_t(l - 1)];
+    Level& c = levels_[std::size_t(l)];
+    const auto [begin, end] = slice(f.nu, f.nv, threads);
+    const bool cells = c.nu > 1 && c.nv > 1;  // a rotation needs two directions
+    for (std::int64_t k = begin; k < end; ++k) {
+        const int i = int(k % f.nu), j = int(k / f.nu);
+        const int I = c.u.lower[std::size_t(i)], J = c.v.lower[std::size_t(j)];
+        const S wu = c.u.weight[std::size_t(i)], wv = c.v.weight[std::size_t(j)];
+        const S w[4] = {(1 - wu) * (1 - wv), wu * (1 - wv), (1 - wu) * wv, wu * wv};
+        Block* p = &c.p[4 * std::size_t(k)];
+        for (int corner = 0; corner < 4; ++corner) p[corner] = Block(w[corner]);
+        if (!cells) continue;
+        Vec3<S> X[4], blend(0);
+        for (int corner = 0; corner < 4; ++corner) {
+            X[corner] = c.x[std::size_t(std::int64_t(J + (corner >> 1)) * c.nu + I + (corner & 1))];
+            blend += w[corner] * X[corner];
+        }
+        const Vec3<S> d = f.x[std::size_t(k)] - blend;
+        const Vec3<S> a = S(0.5) * ((X[1] - X[0]) + (X[3] - X[2]));
+        const Vec3<S> b = S(0.5) * ((X[2] - X[0]) + (X[3] - X[1]));
+        const S aa = glm::dot(a, a), bb = glm::dot(b, b);
+        // ω minimises |ω × a − Δz_a|² + |ω × b − Δz_b|²: (|a|² + |b|² − a aᵀ − b bᵀ) ω =
+        // a × Δz_a + b × Δz_b, with Δz_a, Δz_b the cell's mean differences along a and b.
+        const Block normal = Block(aa + bb) - glm::outerProduct(a, a) - glm::outerProduct(b, b);
+        const S det = glm::determinant(normal);
+        if (!(det > S(1e-12) * (aa + bb) * (aa + bb) * (aa + bb))) continue;  // a degenerate cell
+        const Block inverse = glm::inverse(normal);
+        const Block ca = crossMatrix<Block>(a), cb = crossMatrix<Block>(b);
+        const Block cd = crossMatrix<Block>(d);
+        for (int corner = 0; corner < 4; ++corner) {
+            const S sa = (corner & 1) ? S(0.5) : S(-0.5), sb = (corner >> 1) ? S(0.5) : S(-0.5);
+            // ω × d = −d × ω
+            p[corner] -= cd * (inverse * (sa * ca + sb * cb));
+        }
+    }
+}
+
+// Level l's stencil A_l = Pᵀ (A_{l−1} P) in two passes: (A P)_kQ = Σ_q A_kq P_qQ on this thread's
+// rows of level l − 1, then (A_l)_KQ = Σ_k P_kKᵀ (A P)_kQ on its coarse rows over the fine
+// vertices k in the cells with corner K. Pinned vertices on either grid take no part.
+template <typename T>
+void CpuMultigrid<T>::galerkin(int l, const CycleThreads& threads) {
+    const Level& f = levels_[std::size_t(l - 1)];
+    Level& c = levels_[std::size_t(l)];
+    const auto [begin, end] = slice(c.nu, c.nv, threads);
+    for (std::int64_t K = begin; K < end; ++K) {
+        const int I = int(K % c.nu), J = int(K / c.nu);
+        const std::int64_t centre =
+            std::int64_t(c.v.at[std::size_t(J)]) * f.nu + c.u.at[std::size_t(I)];
+        c.pinned[std::size_t(K)] = f.pinned[std::size_t(centre)];
+        c.x[std::size_t(K)] = f.x[std::size_t(centre)];
+    }
+    threads.sync();  // the pins and positions of the neighbours' rows
+    prolongation(l, threads);
+    threads.sync();  // P's rows of the neighbours
+    const auto [fineBegin, fineEnd] = slice(f.nu, f.nv, threads);
+    for (std::int64_t k = fineBegin; k < fineEnd; ++k) {
+        Block* out = &product_[16 * std::size_t(k)];
+        for (int s = 0; s < 16; ++s) out[s] = Block(0);
+        if (f.pinned[std::size_t(k)]) continue;
+        const int i = int(k % f.nu), j = int(k / f.nu);
+        const int cellU = c.u.lower[std::size_t(i)], cellV = c.v.lower[std::size_t(j)];
+        for (int dj = -2; dj <= 2; ++dj) {
+            const int qj = j + dj;
+            if (qj < 0 || qj >= f.nv) continue;
+            for (int di = -2; di <= 2; ++di) {
+                const int qi = i + di;
+                if (qi < 0 || qi >= f.nu) continue;
+                const std::int64_t q = std::int64_t(qj) * f.nu + qi;
+                if (f.pinned[std::size_t(q)]) continue;
+                const Block a = f.block(k, stencilSlot(di, dj));
+                const int Qi = c.u.lower[std::size_t(qi)], Qj = c.v.lower[std::size_t(qj)];
+                for (int cq = 0; cq < 4; ++cq) {
+                    const int U = Qi + (cq & 1), V = Qj + (cq >> 1);
+                    if (U >= c.nu || V >= c.nv) continue;
+                    const Block& pq = c.p[4 * std::size_t(q) + std::size_t(cq)];
+                    if (pq == Block(0) || c.pinned[std::size_t(std::int64_t(V) * c.nu + U)])
+                        continue;
+                    const int su = U - cellU + 1, sv = V - cellV + 1;
+                    if (su < 0 || su > 3 || sv < 0 || sv > 3)
+                        throw std::logic_error("multigrid: P reaches past the cell's neighbours");
+                    out[su + 4 * sv] += a * pq;
+                }
+            }
+        }
+    }
+    threads.sync();  // the products of the neighbours' rows
+    for (std::int64_t K = begin; K < end; ++K) {
+        Block* row = &c.a[std::size_t(K * kStencil)];
+        for (int o = 0; o < kStencil; ++o) row[o] = Block(0);
+        if (c.pinned[std::size_t(K)]) {
+            row[stencilSlot(0, 0)] = Block(1);
+            continue;
+        }
+        const int I = int(K % c.nu), J = int(K / c.nu);
+        forEachCellOf(c.v, J, [&](int Cv) {
+            forEachCellOf(c.u, I, [&](int Cu) {
+                const int corner = (I - Cu) + 2 * (J - Cv);
+                for (int j = c.v.first[std::size_t(Cv)]; j < c.v.first[std::size_t(Cv + 1)]; ++j)
+                    for (int i = c.u.first[std::size_t(Cu)]; i < c.u.first[std::size_t(Cu + 1)];
+                         ++i) {
+                        const std::int64_t k = std::int64_t(j) * f.nu + i;
+                        if (f.pinned[std::size_t(k)]) continue;
+                        const Block& pk = c.p[4 * std::size_t(k) + std::size_t(corner)];
+                        if (pk == Block(0)) continue;
+                        const Block pkT = glm::transpose(pk);
+                        const Block* product = &product_[16 * std::size_t(k)];
+                        for (int s = 0; s < 16; ++s) {
+                            const int dI = Cu - 1 + (s & 3) - I, dJ = Cv - 1 + (s >> 2) - J;
+                            if (product[s] == Block(0)) continue;
+                            if (dI < -2 || dI > 2 || dJ < -2 || dJ > 2)
+                                throw std::logic_error("multigrid: coarse stencil radius > 2");
+                            row[stencilSlot(dI, dJ)] += pkT * product[s];
+                        }
+                    }
+            });
+        });
+    }
+}
+
+// Level l's line factors: this thread's rows (direction 0) and columns (1).
+template <typename T>
+void CpuMultigrid<T>::smoother(int l, const CycleThreads& threads) {
+    Level& g = levels_[std::size_t(l)];
+    const int nu = g.nu, nv = g.nv;
+    for (int direction = 0; direction < 2; ++direction) {
+        const int count = direction == 0 ? nv : nu, m = direction == 0 ? nu : nv;
+        const int first = int(std::int64_t(count) * threads.index / threads.count);
+        const int last = int(std::int64_t(count) * (threads.index + 1) / threads.count);
+        const std::size_t dofs = 3 * std::size_t(m), width = kBand + 1;
+        for (int line = first; line < last; ++line) {
+            double* f = &g.lines[direction][std::size_t(line) * dofs * width];
+            auto entry = [&](std::size_t row, std::size_t col) -> double& {
+                return f[row * width + (kBand - (row - col))];
+            };
+            for (std::size_t e = 0; e < dofs * width; ++e) f[e] = 0;
+            for (int a = 0; a < m; ++a) {  // A's lower band: blocks (a, b), b = a − 2 … a
+                const std::int64_t k =
+                    direction == 0 ? std::int64_t(line) * nu + a : std::int64_t(a) * nu + line;
+                for (int b = std::max(0, a - 2); b <= a; ++b) {
+                    const int di = direction == 0 ? b - a : 0, dj = direction == 0 ? 0 : b - a;
+                    const Block block = g.block(k, stencilSlot(di, dj));
+                    for (int row = 0; row < 3; ++row)
+                        for (int col = 0; col < 3; ++col) {
+                            const std::size_t R = 3 * std::size_t(a) + std::size_t(row);
+                            const std::size_t C = 3 * std::size_t(b) + std::size_t(col);
+                            if (C <= R) entry(R, C) = block[col][row];
+                        }
+                }
+            }
+            for (std::size_t i = 0; i < dofs; ++i) {  // banded Cholesky in place
+                const std::size_t lo = i >= kBand ? i - kBand : 0;
+                const double diagonal = entry(i, i);
+                for (std::size_t j = lo; j <= i; ++j) {
+                    double s = entry(i, j);
+                    for (std::size_t q = lo; q < j; ++q)
+                        if (j - q <= kBand) s -= entry(i, q) * entry(j, q);
+                    // A pivot at or under float's rounding of the stiff blocks (float: the mass
+                    // is 1e-7 of h²K at 128², stretch 1e6) is held at 1e-6 of the diagonal.
+                    entry(i, j) =
+                        i == j ? std::sqrt(std::max(s, 1e-6 * diagonal + 1e-300)) : s / entry(j, j);
+                }
+            }
+        }
+    }
+}
+
+template <typename T>
+void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& threads) {
+    if (threads.index == 0) {
+        if (int(probe_.size()) < threads.count) {
+            probe_.resize(std::size_t(threads.count));
+            probed_.resize(std::size_t(threads.count));
+        }
+        springs_.clear();
+        for (const StencilSpring<T>& s : *fine.springs)
+            springs_.push_back({s.di, s.dj, s.indexOffset, S(s.stiffness), S(s.restLength),
+                                s.halvedOnBorder, S(s.damping)});
+        const std::int64_t n = std::int64_t(fine.nu) * fine.nv;
+        if (std::int64_t(inverseMass_.size()) != n) {
+            inverseMass_.assign(std::size_t(n), S(0));
+            x_.assign(n, Vec3<S>(0));
+        }
+    }
+    threads.sync();  // the double copies' storage is in place
+    ProbeSystem system;
+    system.nu = fine.nu;
+    system.nv = fine.nv;
+    system.springs = &springs_;
+    system.bending = fine.bending;
+    system.x = &x_;
+    system.inverseMass = inverseMass_.data();
+    system.pinned = fine.pinned;
+    system.h = S(fine.h);
+    system.drag = S(fine.drag);
+    system.springDamping = fine.springDamping;
+    system.grabVertex = fine.grabVertex;
+    system.grabStiffness = S(fine.grabStiffness);
+    {
+        const auto [begin, end] = slice(fine.nu, fine.nv, threads);
+        for (std::int64_t k = begin; k < end; ++k) {
+            x_.set(k, Vec3<S>(positionAt(*fine.x, k)));
+            levels_[0].x[std::size_t(k)] = x_.get(k);
+            inverseMass_[std::size_t(k)] = S(fine.inverseMass[k]);
+        }
+    }
+    threads.sync();
+    probeFine(system, threads);
+    threads.sync();
+    smoother(0, threads);
+    for (int l = 1; l < levels(); ++l) {
+        const bool serial = threads.count > 1 && levels_[std::size_t(l)].count() < kSerialBelow;
+        if (serial) {
+            if (threads.index == 0) {
+                for (int m = l; m < levels(); ++m) {
+                    galerkin(m, CycleThreads{});
+                    smoother(m, CycleThreads{});
+                }
+            }
+            break;
+        }
+        threads.sync();  // level l − 1 complete
+        galerkin(l, threads);
+        threads.sync();  // the columns' lines cross every thread's rows
+        smoother(l, threads);
+    }
+    if (threads.index == 0) factorCoarsest();
+    threads.sync();
+}
+
+// The coarsest stencil as a dense matrix (pinned rows and columns the identity's), factored
+// A = L Lᵀ in double.
+template <typename T>
+void CpuMultigrid<T>::factorCoarsest() {
+    const Level& c = levels_.back();
+    const std::int64_t n = c.count();
+    const std::size_t dofs = 3 * std::size_t(n);
+    std::vector<double>& a = cholesky_;
+    std::fill(a.begin(), a.end(), 0.0);
+    for (std::int64_t k = 0; k < n; ++k) {
+        const int i = int(k % c.nu), j = int(k / c.nu);
+        for (int dj = -2; dj <= 2; ++dj)
+            for (int di = -2; di <= 2; ++di) {
+                if (i + di < 0 || i + di >= c.nu || j + dj < 0 || j + dj >= c.nv) continue;
+                const std::int64_t q = k + std::int64_t(dj) * c.nu + di;
+                const Block b = c.block(k, stencilSlot(di, dj));
+                for (int row = 0; row < 3; ++row)
+                    for (int col = 0; col < 3; ++col)
+                        a[(3 * std::size_t(k) + std::size_t(row)) * dofs + 3 * std::size_t(q) +
+                          std::size_t(col)] = b[col][row];
+            }
+    }
+    for (std::size_t j = 0; j < dofs; ++j) {  // Cholesky–Banachiewicz, lower triangle in place
+        const double diagonal = a[j * dofs + j];
+        for (std::size_t i = j; i < dofs; ++i) {
+            double s = a[i * dofs + j];
+            for (std::size_t m = 0; m < j; ++m) s -= a[i * dofs + m] * a[j * dofs + m];
+            a[i * dofs + j] =
+                i == j ? std::sqrt(std::max(s, 1e-6 * diagonal + 1e-300)) : s / a[j * dofs + j];
+        }
+    }
+}
+
+
+// cpu_multigrid.h declares the class instantiations extern: this file's members are instantiated
+// here, the cycle's in cpu_multigrid.cpp.
+#define CLOTH_INSTANTIATE(T)                                                                     \
+    template CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int);                                \
+    template void CpuMultigrid<T>::configure(int, int);                                          \
+    template std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int, int,              \
+                                                                          const CycleThreads&);  \
+    template void CpuMultigrid<T>::probeFine(const ProbeSystem&, const CycleThreads&);           \
+    template void CpuMultigrid<T>::prolongation(int, const CycleThreads&);                       \
+    template void CpuMultigrid<T>::galerkin(int, const CycleThreads&);                           \
+    template void CpuMultigrid<T>::smoother(int, const CycleThreads&);                           \
+    template void CpuMultigrid<T>::linearise(const FineSystem&, const CycleThreads&);            \
+    template void CpuMultigrid<T>::factorCoarsest();
+CLOTH_INSTANTIATE(float)
+CLOTH_INSTANTIATE(double)
+#undef CLOTH_INSTANTIATE
+
+}  // namespace cloth
