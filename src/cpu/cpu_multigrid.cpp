@@ -94,7 +94,7 @@ void CpuMultigrid<T>::apply(const std::vector<Vec3<T>>& r, std::vector<Vec3<T>>&
 // (P z_c)_k: vertex k of grid l − 1 from the corners of its cell on grid l.
 template <typename T>
 Vec3<typename CpuMultigrid<T>::S> CpuMultigrid<T>::prolongAt(int l, std::int64_t k,
-                                                          const Vec3<S>* coarse) const {
+                                                             const Vec3<S>* coarse) const {
     const Level& f = levels_[std::size_t(l - 1)];
     const Level& c = levels_[std::size_t(l)];
     const int I = c.u.lower[std::size_t(k % f.nu)], J = c.v.lower[std::size_t(k / f.nu)];
@@ -112,7 +112,8 @@ template <typename T>
 std::vector<Vec3<typename CpuMultigrid<T>::S>> CpuMultigrid<T>::interpolate(
     int l, const std::vector<Vec3<S>>& coarse) const {
     std::vector<Vec3<S>> fine(std::size_t(levels_[std::size_t(l - 1)].count()));
-    for (std::size_t k = 0; k < fine.size(); ++k) fine[k] = prolongAt(l, std::int64_t(k), coarse.data());
+    for (std::size_t k = 0; k < fine.size(); ++k)
+        fine[k] = prolongAt(l, std::int64_t(k), coarse.data());
     return fine;
 }
 
@@ -191,7 +192,7 @@ void CpuMultigrid<T>::cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThre
         threads.sync();
     }
     cycle(l + 1, c.r.data(), c.z.data(), threads);  // ends with a sync
-    for (std::int64_t k = begin; k < end; ++k)  // z += P z_c on unpinned vertices
+    for (std::int64_t k = begin; k < end; ++k)      // z += P z_c on unpinned vertices
         if (!g.pinned[std::size_t(k)]) z[k] += prolongAt(l + 1, k, c.z.data());
     threads.sync();
     for (int s = 0; s < kSweeps; ++s) {  // the adjoint: columns, then rows, colours reversed
@@ -199,7 +200,6 @@ void CpuMultigrid<T>::cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThre
         sweep(0, false);
     }
 }
-
 
 template class CpuMultigrid<float>;
 template class CpuMultigrid<double>;

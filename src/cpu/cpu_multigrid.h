@@ -87,7 +87,7 @@ private:
     };
     struct Level {
         int nu = 0, nv = 0;
-        Axis u, v;             // from the grid above (unused on the fine grid)
+        Axis u, v;  // from the grid above (unused on the fine grid)
         // kStencil blocks per vertex, offset (di, dj) at 5(dj+2)+di+2: the fine grid's are
         // symmetric (half the memory traffic of the sweeps), a coarse grid's full.
         std::vector<Sym3<S>> symmetric;
@@ -122,7 +122,7 @@ private:
     }
     using ProbeSystem = ImplicitSystem<S, Soa3<S>>;  // the fine system in the cycle's arithmetic
     void probeFine(const ProbeSystem& fine, const CycleThreads& threads);
-    void galerkin(int l, const CycleThreads& threads);  // level l from level l − 1
+    void galerkin(int l, const CycleThreads& threads);      // level l from level l − 1
     void prolongation(int l, const CycleThreads& threads);  // level l's P, from its positions
     Vec3<S> prolongAt(int l, std::int64_t k, const Vec3<S>* coarse) const;  // (P z_c)_k
     void smoother(int l, const CycleThreads& threads);

@@ -412,19 +412,18 @@ void CpuMultigrid<T>::factorCoarsest() {
     }
 }
 
-
 // cpu_multigrid.h declares the class instantiations extern: this file's members are instantiated
 // here, the cycle's in cpu_multigrid.cpp.
-#define CLOTH_INSTANTIATE(T)                                                                     \
-    template CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int);                                \
-    template void CpuMultigrid<T>::configure(int, int);                                          \
-    template std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int, int,              \
-                                                                          const CycleThreads&);  \
-    template void CpuMultigrid<T>::probeFine(const ProbeSystem&, const CycleThreads&);           \
-    template void CpuMultigrid<T>::prolongation(int, const CycleThreads&);                       \
-    template void CpuMultigrid<T>::galerkin(int, const CycleThreads&);                           \
-    template void CpuMultigrid<T>::smoother(int, const CycleThreads&);                           \
-    template void CpuMultigrid<T>::linearise(const FineSystem&, const CycleThreads&);            \
+#define CLOTH_INSTANTIATE(T)                                                                    \
+    template CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int);                               \
+    template void CpuMultigrid<T>::configure(int, int);                                         \
+    template std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int, int,             \
+                                                                          const CycleThreads&); \
+    template void CpuMultigrid<T>::probeFine(const ProbeSystem&, const CycleThreads&);          \
+    template void CpuMultigrid<T>::prolongation(int, const CycleThreads&);                      \
+    template void CpuMultigrid<T>::galerkin(int, const CycleThreads&);                          \
+    template void CpuMultigrid<T>::smoother(int, const CycleThreads&);                          \
+    template void CpuMultigrid<T>::linearise(const FineSystem&, const CycleThreads&);           \
     template void CpuMultigrid<T>::factorCoarsest();
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

@@ -94,9 +94,9 @@ void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
     throw InputError(scene.source, "integrator.preconditioner",
                      "\"multigrid\" on the " + std::to_string(scene.cloth.nu) + "x" +
                          std::to_string(scene.cloth.nv) + " grid needs a " +
-                         std::to_string(largest) + "-byte buffer of its stencils (2.4 kB a vertex); " +
-                         info.renderer + " allows at most " +
-                         std::to_string(info.maxStorageBlockSize) +
+                         std::to_string(largest) +
+                         "-byte buffer of its stencils (2.4 kB a vertex); " + info.renderer +
+                         " allows at most " + std::to_string(info.maxStorageBlockSize) +
                          " bytes per SSBO: use \"jacobi\", a coarser grid or the CPU backend");
 }
 
@@ -180,29 +180,48 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
 }
 
 const char* kernelFile(Kernel k) {
-    static constexpr const char* kFiles[kKernelCount] = {
-        "compute/forces.comp",          "compute/integrate.comp",
-        "compute/verlet_drift.comp",    "compute/verlet_kick.comp",
-        "compute/rk4_stage.comp",       "compute/cg_right_hand_side.comp",
-        "compute/cg_warm_start.comp",   "compute/cg_start.comp",
-        "compute/cg_product.comp",      "compute/cg_reduce.comp",
-        "compute/cg_update.comp",       "compute/cg_direction.comp",
-        "compute/implicit_finish.comp", "compute/vbd_start.comp",
-        "compute/vbd_guess.comp",       "compute/vbd_sweep.comp",
-        "compute/vbd_accelerate.comp",  "compute/vbd_finish.comp",
-        "compute/many_steps.comp",      "compute/cg_preconditioned.comp",
-        "compute/mg_fine.comp",         "compute/mg_galerkin.comp",
-        "compute/mg_lines.comp",        "compute/mg_coarsest_factor.comp",
-        "compute/mg_begin.comp",        "compute/mg_relax_right_hand_side.comp",
-        "compute/mg_relax.comp",
-        "compute/mg_residual.comp",     "compute/mg_restrict.comp",
-        "compute/mg_prolong.comp",      "compute/mg_coarsest_solve.comp",
-        "compute/self_begin.comp",      "compute/self_substep.comp",
-        "compute/self_boxes.comp",      "compute/self_count.comp",
-        "compute/self_scan_blocks.comp", "compute/self_scan_sums.comp",
-        "compute/self_scan_add.comp",   "compute/self_scatter.comp",
-        "compute/self_contacts.comp",   "compute/self_apply.comp",
-        "compute/self_finish.comp"};
+    static constexpr const char* kFiles[kKernelCount] = {"compute/forces.comp",
+                                                         "compute/integrate.comp",
+                                                         "compute/verlet_drift.comp",
+                                                         "compute/verlet_kick.comp",
+                                                         "compute/rk4_stage.comp",
+                                                         "compute/cg_right_hand_side.comp",
+                                                         "compute/cg_warm_start.comp",
+                                                         "compute/cg_start.comp",
+                                                         "compute/cg_product.comp",
+                                                         "compute/cg_reduce.comp",
+                                                         "compute/cg_update.comp",
+                                                         "compute/cg_direction.comp",
+                                                         "compute/implicit_finish.comp",
+                                                         "compute/vbd_start.comp",
+                                                         "compute/vbd_guess.comp",
+                                                         "compute/vbd_sweep.comp",
+                                                         "compute/vbd_accelerate.comp",
+                                                         "compute/vbd_finish.comp",
+                                                         "compute/many_steps.comp",
+                                                         "compute/cg_preconditioned.comp",
+                                                         "compute/mg_fine.comp",
+                                                         "compute/mg_galerkin.comp",
+                                                         "compute/mg_lines.comp",
+                                                         "compute/mg_coarsest_factor.comp",
+                                                         "compute/mg_begin.comp",
+                                                         "compute/mg_relax_right_hand_side.comp",
+                                                         "compute/mg_relax.comp",
+                                                         "compute/mg_residual.comp",
+                                                         "compute/mg_restrict.comp",
+                                                         "compute/mg_prolong.comp",
+                                                         "compute/mg_coarsest_solve.comp",
+                                                         "compute/self_begin.comp",
+                                                         "compute/self_substep.comp",
+                                                         "compute/self_boxes.comp",
+                                                         "compute/self_count.comp",
+                                                         "compute/self_scan_blocks.comp",
+                                                         "compute/self_scan_sums.comp",
+                                                         "compute/self_scan_add.comp",
+                                                         "compute/self_scatter.comp",
+                                                         "compute/self_contacts.comp",
+                                                         "compute/self_apply.comp",
+                                                         "compute/self_finish.comp"};
     return kFiles[int(k)];
 }
 

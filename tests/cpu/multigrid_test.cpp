@@ -170,7 +170,7 @@ TEST(Multigrid, InterpolationCarriesRigidMotionsExactly) {
 // 0.25–0.29 and 0.38–0.52; sagged without jitter 0.63–0.70), with or without P's rotation term:
 // short of the 0.3 aimed at. What is left is rough, mostly normal error where the jitter tilts the
 // stiff springs, near-null modes set vertex by vertex by the fine geometry, which interpolation
-// from a coarse grid does not reproduce (docs/performance.md, "Issue 17's stiff case").
+// from a coarse grid does not reproduce (docs/performance.md, "The stiff drape at 128²").
 TEST(Multigrid, VCycleContractsTheErrorAtEveryResolution) {
     for (double stretch : {1e6, 0.0}) {
         const double reached = stretch > 0 ? 0.9 : 0.6;
