@@ -11,5 +11,7 @@ void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (ij.x >= gridU() || ij.y >= gridV()) return;
     uint k = vertexIndex(ij);
-    cgDirection[k].xyz = precondition(k, cgResidual[k].xyz) + cg.beta * cgDirection[k].xyz;
+    // Filtered again with contacts in the solve (src/cpu/cpu_implicit.cpp says why).
+    cgDirection[k].xyz =
+        filterContact(k, precondition(k, cgResidual[k].xyz) + cg.beta * cgDirection[k].xyz);
 }

@@ -5,6 +5,7 @@
 #include "layout.glsl"
 #include "common.glsl"
 #include "multigrid.glsl"
+#include "solve_contact.glsl"
 
 layout(local_size_x = WX, local_size_y = WY) in;
 
@@ -18,7 +19,7 @@ void main() {
     float rr = 0.0, rz = 0.0;
     if (ij.x < gridU() && ij.y < gridV()) {
         uint k = vertexIndex(ij);
-        vec3 r = cgResidual[k].xyz, z = vec3(loadVector(0, int(k), kMgZ));
+        vec3 r = cgResidual[k].xyz, z = filterContact(k, vec3(loadVector(0, int(k), kMgZ)));
         if (uStart != 0) cgDirection[k] = vec4(z, 0.0);
         else cgProduct[k] = vec4(z, 0.0);
         rr = dot(r, r);

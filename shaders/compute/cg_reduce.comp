@@ -11,7 +11,7 @@ layout(local_size_x = 256) in;
 // Which sum this is (gpu::CgReduction): b·b at the start, |b − A Δv₀|² of the warm start, r·z of
 // the start, p·A p (→ α), or the new r·r and r·z (→ β, two sums).
 layout(location = 0) uniform int uReduction;
-const int kStart = 0, kAlpha = 1, kBeta = 2, kWarm = 3, kStartDirection = 4;
+const int kStart = 0, kAlpha = 1, kBeta = 2, kWarm = 3, kStartDirection = 4, kContactStart = 5;
 const uint kRunning = 0u, kConverged = 1u, kStopped = 2u;
 
 // The grid dispatch's work groups, one partial sum each (per sum).
@@ -37,7 +37,8 @@ float total(uint which) {
 }
 
 void main() {
-    bool starting = uReduction == kStart || uReduction == kWarm || uReduction == kStartDirection;
+    bool starting = uReduction == kStart || uReduction == kWarm ||
+                    uReduction == kStartDirection || uReduction == kContactStart;
     if (!starting && cg.done != kRunning) return;
     float sum = total(0u);
     float second = 0.0;
@@ -54,6 +55,11 @@ void main() {
         // The last solution is kept only where it beats Δv = 0 (docs/integrators.md).
         cg.fromZero = sum < cg.bb ? 0u : 1u;
         cg.rr = sum < cg.bb ? sum : cg.bb;
+    } else if (uReduction == kContactStart) {
+        // |S (b − A Δv₀)|² of the first guess with the contacts' z n; the stopping test is
+        // relative to it where it exceeds |b| (src/cpu/cpu_implicit.cpp).
+        cg.rr = sum;
+        cg.bb = max(cg.bb, sum);
     } else if (uReduction == kStartDirection) {
         cg.rz = sum;
         cg.done = judge(cg.rr);

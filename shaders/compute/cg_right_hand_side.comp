@@ -2,12 +2,37 @@
 // b = h (F(x_n) + m_k (g − c v_n) − h H v_n) of (m_k (1 + hc) I + h D + h² H) Δv = b into
 // cgResidual, the work groups' partial sums of b·b, the last solution Δv₀ held 0 on pinned rows
 // (the warm start's product reads it next), and with PRECONDITIONER_JACOBI the inverted diagonal
-// blocks of A. Pinned rows are 0.
+// blocks of A. Pinned rows are 0. With contacts in the solve (solve_contact.glsl) also each
+// vertex's contact, predicted through the colliders at the end of step uStep, the friction's
+// impulse in b.
 #include "layout.glsl"
 #include "common.glsl"
 #include "grab.glsl"
 #define STIFFNESS_VECTOR velocities
 #include "stiffness.glsl"
+#include "solve_contact.glsl"
+#ifdef HAS_SOLVE_CONTACTS
+layout(location = 2) uniform uint uStep;
+#include "scene_colliders.glsl"
+
+// The contact of a free vertex at (x, v) (src/model/solve_contact.h predictContact): the
+// prediction p* = x + h v*, v* = v + h g through the colliders; pushed out by d ≠ 0, n = d/|d|
+// and z = ⟨n, p' − x⟩/h − ⟨n, v⟩ into cgContacts. Returns the friction's velocity change
+// S (v' − v*).
+vec3 predictContact(uint k, vec3 x, vec3 v) {
+    float h = params.dt;
+    vec3 vStar = v + h * params.gravity, pStar = x + h * vStar;
+    vec3 p = pStar, w = vStar;
+    applyColliders(uStep, p, w);
+    vec3 d = p - pStar;
+    float len = length(d);
+    cgContacts[k] = vec4(0.0);
+    if (!(len > 0.0)) return vec3(0.0);
+    vec3 n = d / len;
+    cgContacts[k] = vec4(n, dot(n, p - x) / h - dot(n, v));
+    return filterContact(k, w - vStar);
+}
+#endif
 
 layout(local_size_x = WX, local_size_y = WY) in;
 
@@ -45,8 +70,14 @@ void main() {
         if (x.w != 0.0) {
             float m = 1.0 / x.w;  // m_k [kg]
             b = h * (forces[k].xyz + m * (params.gravity - params.dampingRate * v) - h * hv);
+#ifdef HAS_SOLVE_CONTACTS
+            b += m * predictContact(k, x.xyz, v);
+#endif
         } else {
             cgVelocityChange[k] = vec4(0.0);  // a new pin: the last solution moved it
+#ifdef HAS_SOLVE_CONTACTS
+            cgContacts[k] = vec4(0.0);
+#endif
         }
         cgResidual[k] = vec4(b, 0.0);
         bb = dot(b, b);

@@ -1,5 +1,6 @@
 // implicit_euler's conjugate gradient: Δv += α p, r −= α A p, and the work groups' partial sums
-// of the new r·r and r·z, z = M⁻¹ r (docs/integrators.md).
+// of the new r·r and r·z, z = M⁻¹ r (docs/integrators.md); with contacts in the solve r stays
+// filtered (solve_contact.glsl, through preconditioner.glsl).
 #include "layout.glsl"
 #include "common.glsl"
 #include "preconditioner.glsl"
@@ -16,7 +17,7 @@ void main() {
         uint k = vertexIndex(ij);
         float alpha = cg.alpha;
         cgVelocityChange[k].xyz += alpha * cgDirection[k].xyz;
-        vec3 r = cgResidual[k].xyz - alpha * cgProduct[k].xyz;
+        vec3 r = filterContact(k, cgResidual[k].xyz - alpha * cgProduct[k].xyz);
         cgResidual[k] = vec4(r, 0.0);
         rr = dot(r, r);
 #ifndef PRECONDITIONER_MULTIGRID

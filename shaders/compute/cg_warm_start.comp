@@ -1,6 +1,7 @@
 // implicit_euler's warm start (docs/integrators.md): A Δv₀ with Δv₀ the last step's solution
 // (held 0 on pinned rows by the right-hand side's pass), into cgProduct, and the work groups'
-// partial sums of |b − A Δv₀|², b in cgResidual.
+// partial sums of |b − A Δv₀|², b in cgResidual (with contacts in the solve, S (b − A Δv₀)). With
+// contacts it runs a second time on the Δv₀ cg_contact_start.comp wrote.
 #include "layout.glsl"
 #include "common.glsl"
 #include "grab.glsl"
@@ -19,7 +20,7 @@ void main() {
         uint k = vertexIndex(ij);
         vec3 ap = systemProduct(ij, k);
         cgProduct[k] = vec4(ap, 0.0);
-        vec3 r = cgResidual[k].xyz - ap;
+        vec3 r = filterContact(k, cgResidual[k].xyz) - ap;
         rr = dot(r, r);
     }
     storeGroupSum(rr);

@@ -106,6 +106,7 @@ layout(std430, binding = 13) buffer CgState {
     float rz;         // r·z, z = M⁻¹ r (= r·r unpreconditioned)
     uint fromZero;    // 1: the warm start was no better than Δv = 0, the solve starts from 0
 } cg;
+// With colliders, binding 17 holds the contacts in the solve (solve_contact.glsl).
 #ifdef PRECONDITIONER_JACOBI
 // The inverted 3×3 diagonal blocks of A (ImplicitSystem::diagonal), two vec4 per vertex:
 // [2k] = (xx, yy, zz, 0), [2k + 1] = (xy, xz, yz, 0); 0 on pinned rows.

@@ -1,7 +1,8 @@
 // implicit_euler's multigrid preconditioner: the fine grid's system A = m (1 + hc) I + h² H
 // (+ h D) (+ h² K_grab at the grabbed vertex) as 25 blocks per vertex, in double, at the state of
 // the right-hand side's pass (multigrid.glsl; src/cpu/cpu_multigrid.cpp probeFine reads the same
-// blocks off the matrix-free product). Per spring s of vertex k to q: −h² J_s − h βK d̂d̂ᵀ at q's
+// blocks off the matrix-free product). With contacts in the solve, their normal springs on the
+// diagonal. Per spring s of vertex k to q: −h² J_s − h βK d̂d̂ᵀ at q's
 // offset, the same on the diagonal with the sign turned; the bending Hessian W ⊗ I, W_kq read off
 // the bending stencil with a field that is 1 at q alone. Pinned vertices are constraints: their
 // row and column are the identity's.
@@ -10,6 +11,7 @@
 #include "grab.glsl"
 #include "springs.glsl"
 #include "multigrid.glsl"
+#include "solve_contact.glsl"
 #ifdef HAS_BENDING
 ivec2 gProbe;  // the vertex whose unit field the bending stencil reads
 #define BENDING_FIELD(q) ((q) == gProbe ? vec3(1.0) : vec3(0.0))
@@ -76,6 +78,14 @@ void main() {
             int at = blockAt(0, k, stencilSlot(di, dj));
             storeBlock(at, loadBlock(at) + dmat3(h2 * w));
         }
+#endif
+#ifdef HAS_SOLVE_CONTACTS
+    // A contact in the solve as a stiff normal spring, 10 times the mean diagonal
+    // (src/cpu/cpu_multigrid.h kContactPenalty says why).
+    dvec3 normal = dvec3(cgContacts[k].xyz);
+    if (normal != dvec3(0.0lf))
+        centre += (1e1lf * (centre[0][0] + centre[1][1] + centre[2][2]) / 3.0lf) *
+                  outerProduct(normal, normal);
 #endif
     storeBlock(blockAt(0, k, stencilSlot(0, 0)), centre);
 }

@@ -40,18 +40,21 @@ inline constexpr const char* kTrafficModel =
 // position buffer (explicit and symplectic Euler: the fused sweep writes the new positions there
 // and keeps no forces) or the forces (the other integrators), and the pinned flag (1 byte); rk4
 // adds x0, v0, ΣX, ΣV and implicit Euler its CG vectors dv, r, p, Ap (4 vec3 each; with the
-// block-Jacobi preconditioner z and the inverted diagonal block, a vec3 and 6 scalars), vbd the
+// block-Jacobi preconditioner z and the inverted diagonal block, a vec3 and 6 scalars; with
+// colliders its contacts in the solve, a vec3 and a scalar), vbd the
 // step's start, the inertial target and the previous velocity (Chebyshev's two iterates and,
 // with a material's bending, its Hessian diagonal, one scalar, are not counted), and the
 // inverse mass 1/m_k (one scalar per vertex); the threads' scratch rows are O(side), not counted.
 inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
-                                     Preconditioner preconditioner = Preconditioner::Jacobi) {
+                                     Preconditioner preconditioner = Preconditioner::Jacobi,
+                                     bool colliders = false) {
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
     std::size_t vectors = 4;
     if (method == Method::Rk4 || method == Method::ImplicitEuler) vectors += 4;
     if (method == Method::Vbd) vectors += 2;  // x_n, y, v_{n−1} in place of the forces
     std::size_t scalars = vectors * 3 + 1;
     if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
+    if (method == Method::ImplicitEuler && colliders) scalars += 4;
     return scalars * scalar + 1;
 }
 
@@ -59,9 +62,10 @@ inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
 inline constexpr std::size_t kBaselineBytesPerVertex = 4 * 3 * sizeof(double);
 
 // A size is refused when the largest of its runs would not fit in `availableBytes`: the most
-// any backend allocates per vertex (taken as 288 B, over the CPU's 273 B for block-Jacobi implicit
-// Euler in double, the GPU's vec4 buffers and the baseline's 96 B) times the vertex count.
-inline constexpr std::size_t kWorstBytesPerVertex = 288;
+// any backend allocates per vertex (taken as 320 B, over the CPU's 305 B for block-Jacobi implicit
+// Euler in double with colliders, the GPU's vec4 buffers and the baseline's 96 B) times the
+// vertex count.
+inline constexpr std::size_t kWorstBytesPerVertex = 320;
 inline std::optional<std::string> sizeRefusal(std::int64_t side, std::uint64_t availableBytes) {
     const std::uint64_t need = std::uint64_t(side) * std::uint64_t(side) * kWorstBytesPerVertex;
     if (need <= availableBytes) return std::nullopt;

@@ -64,12 +64,14 @@ ImplicitSystem<T, Soa3<T>> CpuSolver<T>::system() const {
         a.grabVertex = grab_->vertex;
         a.grabStiffness = grab_->stiffness;
     }
+    if (!contacts_.empty()) a.contacts = contacts_.data();
     return a;
 }
 
 // Backward Euler linearised once (Baraff & Witkin): (m_k (1 + hc) I + h D + h² H) Δv =
 // h (F + m_k (g − c v) − h H v), by preconditioned conjugate gradient from the last step's Δv,
-// with pins as constraints (rows held 0).
+// with pins as constraints (rows held 0) and, with colliders, the contacts' normal velocity
+// changes as constraints too (model/solve_contact.h: S filters r, A p and z).
 template <typename T>
 bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     gatherForces(band);
@@ -78,6 +80,11 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     const bool preconditioned = preconditioner_ != Preconditioner::None;
     const bool jacobi = preconditioner_ == Preconditioner::Jacobi;
     const bool multigrid = preconditioner_ == Preconditioner::Multigrid;
+    const bool contacts = !contacts_.empty();
+    auto filtered = [&](std::int64_t k, const Vec3<T>& w) {
+        return contacts ? filterContact(contacts_[std::size_t(k)].normal, w) : w;
+    };
+    const auto collide = [this](Vec3<T>& p, Vec3<T>& w) { colliders_.apply(p, w); };
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
                      band.end, bending_);
@@ -85,27 +92,48 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         ap_[grab_->vertex] += grab_->stiffness * v_.get(grab_->vertex);
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const T m = T(1) / inverseMass_[std::size_t(k)];
-        const Vec3<T> b =
-            pinned_[k] ? Vec3<T>(0)
-                       : h * (f_.get(k) + m * (gravity_ - dampingRate_ * v_.get(k)) - h * ap_[k]);
+        Vec3<T> b = pinned_[k]
+                        ? Vec3<T>(0)
+                        : h * (f_.get(k) + m * (gravity_ - dampingRate_ * v_.get(k)) - h * ap_[k]);
         if (pinned_[k]) dv_[k] = Vec3<T>(0);  // a new pin: the last solution moved it
+        if (contacts) {
+            SolveContact<T>& c = contacts_[std::size_t(k)];
+            c = {};
+            if (!pinned_[k]) b += m * predictContact(x_.get(k), v_.get(k), gravity_, h, collide, c);
+        }
         r_[k] = b;
         if (jacobi) blockInverse_[k] = pinned_[k] ? Sym3<T>{} : a.diagonal(k).inverse();
     }
-    const double bb = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
+    // |b| scales the stopping test (unfiltered: a sheet at rest on a floor has S b ≈ 0).
+    double bb = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
     // The warm start: r = b − A Δv₀ with Δv₀ the last step's solution. Where it is no better a
     // guess than 0 (|r| ≥ |b|: a state just written, a jolt), the solve starts from 0.
     a.apply(dv_.data(), ap_.data(), band.begin, band.end);
     const double warm = reduce(band, team, [&](std::int64_t k) {
-        const Vec3<T> r = r_[k] - ap_[k];
+        const Vec3<T> r = filtered(k, r_[k]) - ap_[k];
         return dot(r, r);
     });
     const bool fromZero = !(warm < bb);
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        if (fromZero)
-            dv_[k] = Vec3<T>(0);
-        else
-            r_[k] -= ap_[k];
+    if (contacts) {
+        // Δv₀ = S Δv (or 0) + z n on every contact, then r = S (b − A Δv₀).
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            const SolveContact<T>& c = contacts_[std::size_t(k)];
+            dv_[k] = filterContact(c.normal, fromZero ? Vec3<T>(0) : dv_[k]) + c.speed * c.normal;
+        }
+        team.sync();  // the product reads the neighbours' Δv₀
+        a.apply(dv_.data(), ap_.data(), band.begin, band.end);
+        for (std::int64_t k = band.begin; k < band.end; ++k)
+            r_[k] = filtered(k, filtered(k, r_[k]) - ap_[k]);
+        // A new contact's z n can leave a first residual far above |b| (a vertex stopped from
+        // 1 m/s): the test is then relative to that residual, which float can reduce 10⁻⁶ times.
+        bb = std::max(bb, reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); }));
+    } else {
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            if (fromZero)
+                dv_[k] = Vec3<T>(0);
+            else
+                r_[k] -= ap_[k];
+        }
     }
     // The multigrid hierarchy's stencils at this state (every thread; it ends with a sync).
     if (multigrid) multigrid_.linearise(a, cycleThreads(band, team));
@@ -114,7 +142,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     // V-cycle needs the whole r (after the sum r·r, which tells whether it is needed at all).
     const std::vector<Vec3<T>>& z = preconditioned ? z_ : r_;
     auto residualSums = [&](std::int64_t k) {
-        if (jacobi) z_[k] = blockInverse_[k] * r_[k];
+        if (jacobi) z_[k] = filtered(k, blockInverse_[k] * r_[k]);
         return std::array<double, 2>{dot(r_[k], r_[k]), dot(r_[k], z[k])};
     };
     auto residual = [&]() -> std::array<double, 2> {
@@ -123,6 +151,8 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
             reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
         if (squared <= goal) return {squared, 0};
         multigrid_.apply(r_, z_, cycleThreads(band, team));  // ends with a sync
+        if (contacts)
+            for (std::int64_t k = band.begin; k < band.end; ++k) z_[k] = filtered(k, z_[k]);
         return {squared, reduce(band, team, [&](std::int64_t k) { return dot(r_[k], z_[k]); })};
     };
     std::array<double, 2> sums = residual();
@@ -137,14 +167,18 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         const T alpha = T(rz / pap);
         for (std::int64_t k = band.begin; k < band.end; ++k) {
             dv_[k] += alpha * p_[k];
-            r_[k] -= alpha * ap_[k];
+            r_[k] = filtered(k, r_[k] - alpha * ap_[k]);
         }
         ++it;
         sums = residual();
         rr = sums[0];
         if (rr <= goal) break;
         const T beta = T(sums[1] / rz);
-        for (std::int64_t k = band.begin; k < band.end; ++k) p_[k] = z[k] + beta * p_[k];
+        // r and p are filtered again after each sum: rounding leaves a filtered vector a normal
+        // part of ε times its operands, which no S A p can reduce (r) or which β p carries on
+        // and grows until p·A p turns negative (p).
+        for (std::int64_t k = band.begin; k < band.end; ++k)
+            p_[k] = filtered(k, z[k] + beta * p_[k]);
         rz = sums[1];
         team.sync();  // the next product reads the neighbours' p
     }

@@ -74,6 +74,11 @@ public:
     static constexpr int kSerialBelow = 4096;  // grids smaller than this run on one thread
     static constexpr int kSweeps = 1;          // smoothing sweeps before and after
     static constexpr int kStencil = 25;        // blocks per vertex: offsets (−2..2)²
+    // A contact in the solve fixes its vertex's normal velocity (model/solve_contact.h). The
+    // V-cycle keeps the fine grid's symmetric blocks and sees the constraint as a normal spring
+    // this many times the vertex's mean diagonal: coarse corrections then move the cloth along
+    // its contacts rather than into them, where the filter S would throw their work away.
+    static constexpr double kContactPenalty = 1e1;
 
 private:
     // One axis of a coarsening: coarse index I sits on fine index at[I]; fine index i lies in

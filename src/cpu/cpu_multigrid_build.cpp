@@ -357,6 +357,16 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
     }
     threads.sync();
     probeFine(system, threads);
+    if (fine.contacts) {  // the contacts in the solve, as stiff normal springs (see below)
+        Level& level = levels_[0];
+        const auto [begin, end] = slice(fine.nu, fine.nv, threads);
+        for (std::int64_t k = begin; k < end; ++k) {
+            const Vec3<S> n(fine.contacts[k].normal);
+            if (fine.pinned[k] || n == Vec3<S>(0)) continue;
+            Sym3<S>& d = level.symmetric[std::size_t(k * kStencil + stencilSlot(0, 0))];
+            d.addOuter(kContactPenalty * (d.xx + d.yy + d.zz) / 3, n);
+        }
+    }
     threads.sync();
     smoother(0, threads);
     for (int l = 1; l < levels(); ++l) {

@@ -151,6 +151,9 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
                            : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
     colliders_.take(scene);
+    // implicit_euler's contacts in the solve: only a scene with colliders has any.
+    if (method_ == Method::ImplicitEuler)
+        contacts_.assign(colliders_.empty() ? 0 : std::size_t(grid_.count()), SolveContact<T>{});
     if (scene.selfCollision) {
         if (!self_.active()) {
             self_ = CpuSelfCollision<T>(grid_, *scene.selfCollision);
@@ -339,6 +342,7 @@ std::size_t CpuSolver<T>::allocatedBytes() const {
                           &ap_, &z_, &inertial_, &vPrevious_, &xBefore_, &xBeforeLast_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
+           contacts_.size() * sizeof(SolveContact<T>) +
            (inverseMass_.size() + bendingDiagonal_.size()) * sizeof(T) + pinned_.size();
 }
 

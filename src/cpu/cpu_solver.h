@@ -196,6 +196,8 @@ private:
     std::vector<Vec3<T>> dv_, r_, p_, ap_, z_;
     Preconditioner preconditioner_ = Preconditioner::None;
     std::vector<Sym3<T>> blockInverse_;
+    // The contacts in the solve (model/solve_contact.h), per vertex; empty without colliders.
+    std::vector<SolveContact<T>> contacts_;
     CpuMultigrid<T> multigrid_;  // the "multigrid" preconditioner's hierarchy
     CycleThreads cycleThreads(const Band& band, const Team& team) const {
         return {int(&band - bands_.data()), int(bands_.size()), team.barrier};

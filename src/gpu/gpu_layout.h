@@ -46,7 +46,10 @@ enum Binding : unsigned {
     // fixed-point sums, the header); any integrator's scene may declare it.
     kSelfVectors = 15,
     kSelfInts = 16,
-    kBindingCount = 17
+    // implicit_euler with colliders: the contacts in the solve (solve_contact.glsl), (n, z) per
+    // vertex.
+    kCgContacts = 17,
+    kBindingCount = 18
 };
 
 // Uniform locations. The kernels that end a step (step_end.glsl): the 1-based global step
@@ -72,7 +75,8 @@ enum CgReduction : int {
     kReduceAlpha = 1,
     kReduceBeta = 2,
     kReduceWarm = 3,
-    kReduceStartDirection = 4
+    kReduceStartDirection = 4,
+    kReduceContactStart = 5
 };
 
 // The uniform-block binding point of Params (its own namespace, apart from the storage blocks').

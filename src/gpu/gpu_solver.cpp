@@ -41,8 +41,8 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
                                  "/compute (shader directory " + dir.how +
                                  "); set CLOTH_SHADER_DIR to the project's shaders/");
     std::array<unsigned, kKernelCount> programs{};
-    std::vector<Kernel> kernels =
-        kernelsOf(scene.integrator.method, scene.integrator.preconditioner);
+    std::vector<Kernel> kernels = kernelsOf(
+        scene.integrator.method, scene.integrator.preconditioner, !scene.colliders.empty());
     Defines extra;
     if (forces == ForcesKernel::Tiled) extra.push_back({"FORCES_TILED", ""});
     if (manyStepsGroup > 0) {
@@ -66,7 +66,13 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
 }
 
 // The buffers of docs/integrators.md's stage or solver state, beyond the core eight.
-std::vector<gpu::Binding> integratorBindings(Method m, Preconditioner p) {
+// `contacts`: the scene has colliders (implicit_euler's contacts in the solve).
+std::vector<gpu::Binding> integratorBindings(Method m, Preconditioner p, bool contacts) {
+    if (m == Method::ImplicitEuler && contacts) {
+        std::vector<gpu::Binding> bindings = integratorBindings(m, p, false);
+        bindings.push_back(gpu::kCgContacts);
+        return bindings;
+    }
     if (m == Method::ImplicitEuler && p == Preconditioner::Jacobi)
         return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection, gpu::kCgProduct,
                 gpu::kCgPartials,       gpu::kCgState,    gpu::kCgInverse};
@@ -133,7 +139,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
                            gpu::kColliders, gpu::kPins, gpu::kStatus})
         glGenBuffers(1, &buffers_[b]);
     glGenBuffers(1, &paramsBuffer_);
-    for (gpu::Binding b : integratorBindings(method_, preconditioner_))
+    for (gpu::Binding b : integratorBindings(method_, preconditioner_, !scene.colliders.empty()))
         glGenBuffers(1, &buffers_[b]);
     if (multigrid) multigrid_ = std::make_unique<GpuMultigrid>(nu_, nv_, workGroup_);
     upload(scene);
@@ -225,7 +231,7 @@ void GpuSolver::upload(const Scene& scene) {
 // Stage or solver state, as zeros: written by the step before it is read.
 void GpuSolver::allocateIntegratorBuffers() {
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
-    for (gpu::Binding b : integratorBindings(method_, preconditioner_)) {
+    for (gpu::Binding b : integratorBindings(method_, preconditioner_, !scene_.colliders.empty())) {
         if (b == gpu::kCgPartials) {
             // Two floats per work group, rounded up to whole vec4s.
             const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);

@@ -107,14 +107,24 @@ void GpuSolver::stepRk4(long stepNumber) const {
 }
 
 // Backward Euler linearised at x_n: forces, the right-hand side, the warm start from the last
-// step's Δv (or 0 where it is no better), the CG's start, the solve, then the update of v and x.
+// step's Δv (or 0 where it is no better), with colliders the contacts' first guess, the CG's
+// start, the solve, then the update of v and x.
 void GpuSolver::stepImplicit(long stepNumber) {
+    const bool contacts = programs_[int(Kernel::CgContactStart)] != 0;
     runPass(Kernel::Forces);
-    runPass(Kernel::CgRightHandSide);
+    if (contacts)  // the contacts' colliders are the step's
+        runStepPass(Kernel::CgRightHandSide, stepNumber);
+    else
+        runPass(Kernel::CgRightHandSide);
     runReduction(gpu::kReduceStart);
     if (multigrid_) multigrid_->linearise(programs_);
     runPass(Kernel::CgWarmStart);
     runReduction(gpu::kReduceWarm);
+    if (contacts) {  // Δv₀ with the contacts' z n, its product, |r|²
+        runPass(Kernel::CgContactStart);
+        runPass(Kernel::CgWarmStart);
+        runReduction(gpu::kReduceContactStart);
+    }
     runPass(Kernel::CgStart);
     if (multigrid_) precondition(true);
     runReduction(gpu::kReduceStartDirection);

@@ -168,6 +168,8 @@ Defines gpuDefines(const Scene& scene, WorkGroup wg, const std::vector<bool>& dr
     if (scene.integrator.method == Method::ImplicitEuler &&
         scene.integrator.preconditioner == Preconditioner::Jacobi)
         d.push_back({"PRECONDITIONER_JACOBI", ""});
+    if (scene.integrator.method == Method::ImplicitEuler && !scene.colliders.empty())
+        d.push_back({"HAS_SOLVE_CONTACTS", ""});
     if (scene.integrator.method == Method::ImplicitEuler &&
         scene.integrator.preconditioner == Preconditioner::Multigrid)
         appendMultigridDefines(d, scene.cloth.nu, scene.cloth.nv);
@@ -221,7 +223,8 @@ const char* kernelFile(Kernel k) {
                                                          "compute/self_scatter.comp",
                                                          "compute/self_contacts.comp",
                                                          "compute/self_apply.comp",
-                                                         "compute/self_finish.comp"};
+                                                         "compute/self_finish.comp",
+                                                         "compute/cg_contact_start.comp"};
     return kFiles[int(k)];
 }
 
@@ -232,7 +235,12 @@ std::vector<Kernel> selfCollisionKernels() {
     return kernels;
 }
 
-std::vector<Kernel> kernelsOf(Method m, Preconditioner p) {
+std::vector<Kernel> kernelsOf(Method m, Preconditioner p, bool contacts) {
+    if (m == Method::ImplicitEuler && contacts) {
+        std::vector<Kernel> kernels = kernelsOf(m, p);
+        kernels.push_back(Kernel::CgContactStart);
+        return kernels;
+    }
     if (m == Method::ImplicitEuler && p == Preconditioner::Multigrid) {
         std::vector<Kernel> kernels = kernelsOf(m);
         for (int k = int(Kernel::CgPreconditioned); k <= int(Kernel::MgCoarsestSolve); ++k)

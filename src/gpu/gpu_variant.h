@@ -59,18 +59,18 @@ enum class Kernel {
     VbdFinish,        // vbd: v = (x − x_n)/h, pins, colliders, check
     ManySteps,        // explicit/symplectic Euler, small grids: many steps in one work group
     // implicit_euler with the multigrid preconditioner (multigrid.glsl, gpu/gpu_multigrid.h):
-    CgPreconditioned,   // z of the V-cycle into the CG, r·r and r·z (p = z at the start)
-    MgFine,             // the fine grid's stencil
-    MgGalerkin,         // a coarse grid's stencil Pᵀ A P
-    MgLines,            // a grid's line factors
-    MgCoarsestFactor,   // the coarsest grid's dense factor
-    MgBegin,            // the fine r, z = 0
+    CgPreconditioned,      // z of the V-cycle into the CG, r·r and r·z (p = z at the start)
+    MgFine,                // the fine grid's stencil
+    MgGalerkin,            // a coarse grid's stencil Pᵀ A P
+    MgLines,               // a grid's line factors
+    MgCoarsestFactor,      // the coarsest grid's dense factor
+    MgBegin,               // the fine r, z = 0
     MgRelaxRightHandSide,  // their right-hand sides, a vertex an invocation
-    MgRelax,            // one colour of one direction's lines solved
-    MgResidual,         // t = r − A z
-    MgRestrict,         // r_c = Pᵀ t, z_c = 0
-    MgProlong,          // z += P z_c
-    MgCoarsestSolve,    // the coarsest grid solved
+    MgRelax,               // one colour of one direction's lines solved
+    MgResidual,            // t = r − A z
+    MgRestrict,            // r_c = Pᵀ t, z_c = 0
+    MgProlong,             // z += P z_c
+    MgCoarsestSolve,       // the coarsest grid solved
     // Self-collision (self_contact.glsl), after any integrator's step, when the scene declares it:
     SelfBegin,       // the step's motion and its box, y = x₀
     SelfSubstep,     // a substep's share of the motion, the sides' reference
@@ -83,14 +83,18 @@ enum class Kernel {
     SelfContacts,    // the contacts' corrections, summed in fixed point
     SelfApply,       // the mean correction, the colliders
     SelfFinish,      // the state, the velocities, the next step's start
+    // implicit_euler with colliders (contacts in the solve, solve_contact.glsl):
+    CgContactStart,  // Δv₀ = S Δv + z n
 };
-inline constexpr int kKernelCount = int(Kernel::SelfFinish) + 1;
+inline constexpr int kKernelCount = int(Kernel::CgContactStart) + 1;
 // The self-collision kernels, in the order above.
 std::vector<Kernel> selfCollisionKernels();
 
 const char* kernelFile(Kernel k);  // "compute/forces.comp", ...
 // The kernels of an integrator, and with implicit_euler's multigrid preconditioner its own.
-std::vector<Kernel> kernelsOf(Method m, Preconditioner p = Preconditioner::Jacobi);
+// `contacts`: the scene has colliders (implicit_euler solves its contacts).
+std::vector<Kernel> kernelsOf(Method m, Preconditioner p = Preconditioner::Jacobi,
+                              bool contacts = false);
 
 // The bytes of the multigrid preconditioner's two buffers on an nu × nv grid
 // (shaders/compute/multigrid.glsl): every level's 25 blocks of six doubles per vertex, and the

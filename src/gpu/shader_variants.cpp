@@ -39,7 +39,7 @@ std::vector<ShaderVariant> computeShaderVariants(const std::string& dir, const S
                 if (tiled) extra.push_back({"FORCES_TILED", ""});
                 const std::string prefix =
                     std::string(methodName(method)) + drag + (tiled ? ".tiled" : "");
-                for (Kernel k : kernelsOf(method))
+                for (Kernel k : kernelsOf(method, Preconditioner::Jacobi, !s.colliders.empty()))
                     add(prefix + "." + stem(kernelFile(k)) + ".comp", kernelFile(k), s, {}, extra,
                         dragSets[d]);
                 if (s.selfCollision)  // the same for every integrator: once per drag set
@@ -51,9 +51,9 @@ std::vector<ShaderVariant> computeShaderVariants(const std::string& dir, const S
                     for (Preconditioner p : {Preconditioner::Jacobi, Preconditioner::Multigrid}) {
                         Scene preconditioned = s;
                         preconditioned.integrator.preconditioner = p;
-                        for (Kernel k : kernelsOf(method, p))
-                            add(prefix + "." + preconditionerName(p) + "." +
-                                    stem(kernelFile(k)) + ".comp",
+                        for (Kernel k : kernelsOf(method, p, !s.colliders.empty()))
+                            add(prefix + "." + preconditionerName(p) + "." + stem(kernelFile(k)) +
+                                    ".comp",
                                 kernelFile(k), preconditioned, {}, extra, dragSets[d]);
                     }
                 }

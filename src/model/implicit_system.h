@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "model/solve_contact.h"
 #include "model/stiffness.h"
 #include "model/sym3.h"
 
@@ -27,8 +28,11 @@ struct ImplicitSystem {
     bool springDamping = false;
     std::int64_t grabVertex = -1;  // the grab spring's vertex, −1 for none
     T grabStiffness = 0;
+    // The contacts in the solve (model/solve_contact.h), one per vertex, or none.
+    const SolveContact<T>* contacts = nullptr;
 
-    // out = A p on vertices [begin, end); pinned rows 0 (the caller keeps p = 0 there).
+    // out = A p on vertices [begin, end), filtered by the contacts (S A p); pinned rows 0 (the
+    // caller keeps p = 0 there).
     void apply(const Vec3<T>* p, Vec3<T>* out, std::int64_t begin, std::int64_t end) const {
         stiffnessProduct(nu, nv, *springs, *x, p, pinned, out, begin, end, bending);
         const T h2 = h * h;
@@ -43,6 +47,9 @@ struct ImplicitSystem {
         }
         if (grabVertex >= begin && grabVertex < end && !pinned[grabVertex])
             out[grabVertex] += h2 * grabStiffness * p[grabVertex];
+        if (contacts)
+            for (std::int64_t k = begin; k < end; ++k)
+                out[k] = filterContact(contacts[k].normal, out[k]);
     }
 
     // The 3×3 block A_kk of vertex k = (i, j), not pinned.

@@ -188,9 +188,13 @@ TEST(CpuMemory, BytesPerVertexOfTheBenchModelAreWhatTheSolverAllocates) {
         const Scene scene = sized(m, 64, 40, false);
         CpuSolver<float> f(scene, 2);
         CpuSolver<double> d(scene, 2);
-        EXPECT_EQ(f.allocatedBytes(), 64 * 40 * app::cpuBytesPerVertex(Precision::Float, m))
+        const Preconditioner p = scene.integrator.preconditioner;
+        const bool colliders = !scene.colliders.empty();
+        EXPECT_EQ(f.allocatedBytes(),
+                  64 * 40 * app::cpuBytesPerVertex(Precision::Float, m, p, colliders))
             << methodName(m);
-        EXPECT_EQ(d.allocatedBytes(), 64 * 40 * app::cpuBytesPerVertex(Precision::Double, m))
+        EXPECT_EQ(d.allocatedBytes(),
+                  64 * 40 * app::cpuBytesPerVertex(Precision::Double, m, p, colliders))
             << methodName(m);
         EXPECT_LE(d.scratchBytes(), 2 * (3 * 6 + 3) * 64 * sizeof(double)) << methodName(m);
     }

@@ -21,6 +21,11 @@ constexpr double kTolerance = 1e-5;
 // beside a light vertex: model/vbd_local.h): equal to 8e-9 of the extent before the contact, the
 // two then part by the contacts' decisions; seen 1.5e-5 after 1000 steps.
 constexpr double kVbdContactTolerance = 5e-5;
+// implicit_euler's contacts are constraints of its solve (docs/integrators.md, "Contact in the
+// solve"), stopped at |r| ≤ 10⁻⁶ |b| on both: 1.3e-7 m apart at the first contact (step 240),
+// the two part while the cloth slides and sticks on the floor (1.1e-6 m at step 300, 1.1e-4 m at
+// 550, 2.2e-4 m at 1000), in the same 2 iterations a step; seen 1.0e-4 of the extent.
+constexpr double kImplicitContactTolerance = 5e-4;
 
 Scene sceneFor(Method method, double dt = 1e-3) {
     Scene s = everythingScene(method, dt);
@@ -64,7 +69,9 @@ TEST_P(GpuIntegratorParity, MatchesTheCpuFloatBackend) {
                     all.cpuSolves.iterations);
     std::printf("\n");
     EXPECT_LT(freeDiff, kTolerance);
-    EXPECT_LT(allDiff, method == Method::Vbd ? kVbdContactTolerance : kTolerance);
+    EXPECT_LT(allDiff, method == Method::Vbd             ? kVbdContactTolerance
+                       : method == Method::ImplicitEuler ? kImplicitContactTolerance
+                                                         : kTolerance);
     EXPECT_EQ(all.gpuSolves.solves, all.cpuSolves.solves);
 }
 

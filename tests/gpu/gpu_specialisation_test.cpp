@@ -175,8 +175,9 @@ TEST_F(GpuCompiles, EveryIntegratorCompilesWithEveryFeature) {
 }
 
 // A scene allocates its integrator's buffers only: RK4 adds four vec4 per vertex (start and
-// sums), implicit Euler four (Δv, r, p, A p) and one float per work group plus the solve's
-// scalars; the Euler schemes and Verlet nothing beyond the state.
+// sums), implicit Euler four (Δv, r, p, A p), with colliders a fifth (the contacts in the
+// solve), and one float per work group plus the solve's scalars; the Euler schemes and Verlet
+// nothing beyond the state.
 TEST_F(GpuCompiles, OnlyTheScenesIntegratorAllocatesBuffers) {
     Scene scene = fullScene();  // 8×5: one 16×16 work group
     const std::size_t vertexBuffer = 8 * 5 * sizeof(glm::vec4);
@@ -188,9 +189,11 @@ TEST_F(GpuCompiles, OnlyTheScenesIntegratorAllocatesBuffers) {
     EXPECT_EQ(bytes(Method::SymplecticEuler), base);
     EXPECT_EQ(bytes(Method::Verlet), base);
     EXPECT_EQ(bytes(Method::Rk4), base + 4 * vertexBuffer);
-    // Δv, r, p, A p; two partial sums of the one work group in a vec4; the solve's state; and
-    // for the block-Jacobi preconditioner its inverted blocks, two vec4 per vertex.
-    const std::size_t cg = base + 4 * vertexBuffer + sizeof(glm::vec4) + sizeof(gpu::CgState);
+    // Δv, r, p, A p and the contacts (the scene has colliders); two partial sums of the one work
+    // group in a vec4; the solve's state; and for the block-Jacobi preconditioner its inverted
+    // blocks, two vec4 per vertex.
+    ASSERT_FALSE(scene.colliders.empty());
+    const std::size_t cg = base + 5 * vertexBuffer + sizeof(glm::vec4) + sizeof(gpu::CgState);
     EXPECT_EQ(bytes(Method::ImplicitEuler), cg + 2 * vertexBuffer);  // jacobi, the default
     scene.integrator.preconditioner = Preconditioner::None;
     EXPECT_EQ(bytes(Method::ImplicitEuler), cg);

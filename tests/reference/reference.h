@@ -190,9 +190,11 @@ private:
     void stepRk4();
     void stepImplicitEuler();
     void stepBackwardEuler();  // (reference_backward_euler.cpp)
-    // Conjugate gradient on ((m_k + hμ_k) I + h² H(x)) dv = b from dv = 0; records the solve in
-    // cg_.
-    std::vector<V3> solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b);
+    // Conjugate gradient on ((m_k + hμ_k) I + h² H(x)) dv = b from dv = `fixed`, filtered by the
+    // contacts' normals (0: none); records the solve in cg_.
+    std::vector<V3> solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b,
+                                        const std::vector<V3>& normal,
+                                        const std::vector<V3>& fixed);
 
     Params prm_;
     double du_ = 0, dv_ = 0;

@@ -102,12 +102,28 @@ void Simulation::stepImplicitEuler() {
     addSpringDamping(p_, v_, f);
     const std::vector<V3> hv = hessianProduct(p_, v_, true);  // a follow pin's v_n counts
     std::vector<V3> b(p_.size(), V3{0, 0, 0});
+    // Contacts in the solve (docs/integrators.md, "Contact in the solve"): the prediction
+    // p* = x + h (v + h g), v* = v + h g through the colliders; a vertex they push out by d gets
+    // n = d/|d| and ⟨n, Δv⟩ = ⟨n, p' − x⟩/h − ⟨n, v⟩, and the friction they took from v*'s
+    // tangential part enters b as an impulse.
+    std::vector<V3> normal(p_.size(), V3{0, 0, 0}), fixed(p_.size(), V3{0, 0, 0});
     for (std::size_t k = 0; k < p_.size(); ++k) {
         if (pinned_[k]) continue;  // the pinned rows are removed: Δv = 0 there
         const V3 rhs = add(sub(f[k], scale(drag(int(k)), v_[k])), scale(mass_[k], prm_.gravity));
         b[k] = scale(h, sub(rhs, scale(h, hv[k])));
+        const V3 vStar = add(v_[k], scale(h, prm_.gravity));
+        const V3 pStar = add(p_[k], scale(h, vStar));
+        V3 p = pStar, w = vStar;
+        applyColliders(p, w);
+        const V3 d = sub(p, pStar);
+        if (norm(d) == 0) continue;
+        normal[k] = scale(1 / norm(d), d);
+        const double z = dot(normal[k], sub(p, p_[k])) / h - dot(normal[k], v_[k]);
+        fixed[k] = scale(z, normal[k]);
+        const V3 change = sub(w, vStar);
+        b[k] = add(b[k], scale(mass_[k], sub(change, scale(dot(normal[k], change), normal[k]))));
     }
-    const std::vector<V3> dv = solveImplicitSystem(p_, b);
+    const std::vector<V3> dv = solveImplicitSystem(p_, b, normal, fixed);
     for (std::size_t k = 0; k < p_.size(); ++k) {
         v_[k] = add(v_[k], dv[k]);
         p_[k] = add(p_[k], scale(h, v_[k]));
@@ -115,11 +131,13 @@ void Simulation::stepImplicitEuler() {
     pinAndCollide(p_, v_);
 }
 
-// Conjugate gradient from Δv = 0 (r = b, p = r): α = r·r / p·Ap, Δv += α p, r −= α Ap, stop when
-// |r| ≤ tolerance·|b| or after max_iterations, β = r_new·r_new / r·r, p = r + β p. Dot products
-// run over the free vertices only; pinned entries of p and r stay 0.
-std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x,
-                                                const std::vector<V3>& b) {
+// Conjugate gradient from Δv = c (r = S (b − A c), p = r): α = r·r / p·Ap, Δv += α p,
+// r −= α S Ap, stop when |r| ≤ tolerance·max(|b|, |r₀|) or after max_iterations, β = r_new·r_new /
+// r·r, p = r + β p. S w = w − n ⟨n, w⟩ at a contact of normal n, c its fixed velocity change (0
+// elsewhere). Dot products run over the free vertices only; pinned entries of p and r stay 0.
+std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b,
+                                                const std::vector<V3>& normal,
+                                                const std::vector<V3>& fixed) {
     const double h = prm_.dt;
     const std::size_t n = x.size();
     auto dotFree = [&](const std::vector<V3>& a, const std::vector<V3>& c) {
@@ -129,7 +147,12 @@ std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x,
         }
         return s;
     };
-    auto apply = [&](const std::vector<V3>& w) {  // A w = (m_k + hμ_k) w + h D w + h² H w
+    auto filter = [&](std::vector<V3> w) {
+        for (std::size_t k = 0; k < n; ++k)
+            w[k] = sub(w[k], scale(dot(normal[k], w[k]), normal[k]));
+        return w;
+    };
+    auto apply = [&](const std::vector<V3>& w) {  // S A w, A w = (m_k + hμ_k) w + h D w + h² H w
         std::vector<V3> y = hessianProduct(x, w);
         std::vector<V3> damping(n, V3{0, 0, 0});  // −D w: w is 0 on pinned vertices
         addSpringDamping(x, w, damping);
@@ -139,10 +162,13 @@ std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x,
                        ? V3{0, 0, 0}
                        : sub(add(scale(diagonal, w[k]), scale(h * h, y[k])), scale(h, damping[k]));
         }
-        return y;
+        return filter(y);
     };
-    std::vector<V3> dv(n, V3{0, 0, 0}), r = b, p = r;
-    const double bNorm = std::sqrt(dotFree(b, b));
+    std::vector<V3> dv = fixed, r = filter(b);
+    const std::vector<V3> ac = apply(dv);
+    for (std::size_t k = 0; k < n; ++k) r[k] = sub(r[k], ac[k]);
+    const double bNorm = std::sqrt(std::fmax(dotFree(b, b), dotFree(r, r)));
+    std::vector<V3> p = r;
     const double stop = prm_.cgTolerance * bNorm;
     double rr = dotFree(r, r);
     int iterations = 0;
