@@ -1,5 +1,5 @@
 // The multigrid V-cycle of cpu/cpu_multigrid.h (the hierarchy it runs on:
-// cpu_multigrid_build.cpp).
+// cpu_multigrid_build.cpp and cpu_multigrid_galerkin.cpp).
 #include "cpu/cpu_multigrid.h"
 
 #include <algorithm>
