@@ -65,32 +65,6 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
     return programs;
 }
 
-// The buffers of docs/integrators.md's stage or solver state, beyond the core eight.
-// `contacts`: the scene has colliders (implicit_euler's contacts in the solve).
-std::vector<gpu::Binding> integratorBindings(Method m, Preconditioner p, bool contacts) {
-    if (m == Method::ImplicitEuler && contacts) {
-        std::vector<gpu::Binding> bindings = integratorBindings(m, p, false);
-        bindings.push_back(gpu::kCgContacts);
-        return bindings;
-    }
-    if (m == Method::ImplicitEuler && p == Preconditioner::Jacobi)
-        return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection, gpu::kCgProduct,
-                gpu::kCgPartials,       gpu::kCgState,    gpu::kCgInverse};
-    switch (m) {
-        case Method::Rk4:
-            return {gpu::kRk4StartPositions, gpu::kRk4StartVelocities, gpu::kRk4SumPositions,
-                    gpu::kRk4SumVelocities};
-        case Method::ImplicitEuler:
-            return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection,
-                    gpu::kCgProduct,        gpu::kCgPartials, gpu::kCgState};
-        case Method::Vbd:
-            return {gpu::kVbdStart, gpu::kVbdInertial, gpu::kVbdPrevious, gpu::kVbdBefore,
-                    gpu::kVbdBeforeLast};
-        default:
-            return {};
-    }
-}
-
 }  // namespace
 
 GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
@@ -139,8 +113,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
                            gpu::kColliders, gpu::kPins, gpu::kStatus})
         glGenBuffers(1, &buffers_[b]);
     glGenBuffers(1, &paramsBuffer_);
-    for (gpu::Binding b : integratorBindings(method_, preconditioner_, !scene.colliders.empty()))
-        glGenBuffers(1, &buffers_[b]);
+    generateIntegratorBuffers();
     if (multigrid) multigrid_ = std::make_unique<GpuMultigrid>(nu_, nv_, workGroup_);
     upload(scene);
     if (features_.selfCollision) allocateSelfCollision(scene);
@@ -226,27 +199,6 @@ void GpuSolver::upload(const Scene& scene) {
     allocateIntegratorBuffers();
     uploadParams(scene);
     uploadColliders(scene);
-}
-
-// Stage or solver state, as zeros: written by the step before it is read.
-void GpuSolver::allocateIntegratorBuffers() {
-    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
-    for (gpu::Binding b : integratorBindings(method_, preconditioner_, !scene_.colliders.empty())) {
-        if (b == gpu::kCgPartials) {
-            // Two floats per work group, rounded up to whole vec4s.
-            const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
-            bufferData(buffers_[b], nullptr, (2 * groups + 3) / 4 * kVec4);
-        } else if (b == gpu::kCgInverse) {
-            bufferData(buffers_[b], nullptr, 2 * n * kVec4);
-        } else if (b == gpu::kCgVelocityChange) {  // the warm start's first guess: 0
-            bufferData(buffers_[b], std::vector<glm::vec4>(n, glm::vec4(0)));
-        } else if (b == gpu::kCgState) {
-            const gpu::CgState zero{};
-            bufferData(buffers_[b], &zero, sizeof zero);
-        } else {
-            bufferData(buffers_[b], nullptr, n * kVec4);
-        }
-    }
 }
 
 void GpuSolver::uploadParams(const Scene& scene) {

@@ -94,6 +94,7 @@ private:
     void updateInverseMass(const Scene& scene);
     void storePin(int slot);
     void computeNormals() const;
+    void generateIntegratorBuffers();  // gpu_solver_buffers.cpp
     void allocateIntegratorBuffers();
     void bindBuffers() const;
     void setGrabUniforms(const std::optional<Grab>& grab) const;
