@@ -37,12 +37,12 @@ void CpuMultigrid<T>::relaxLine(Level& g, int direction, int line, const Vec3<S>
     for (std::size_t i = 0; i < dofs; ++i) {  // L y' = y
         double s = y[i];
         for (std::size_t q = i >= kBand ? i - kBand : 0; q < i; ++q) s -= entry(i, q) * y[q];
-        y[i] = s / entry(i, i);
+        y[i] = s * entry(i, i);
     }
     for (std::size_t i = dofs; i-- > 0;) {  // Lᵀ z = y'
         double s = y[i];
         for (std::size_t q = i + 1; q < std::min(dofs, i + kBand + 1); ++q) s -= entry(q, i) * y[q];
-        y[i] = s / entry(i, i);
+        y[i] = s * entry(i, i);
     }
     for (int a = 0; a < m; ++a) {
         const int i = direction == 0 ? a : line, j = direction == 0 ? line : a;
@@ -115,6 +115,21 @@ std::vector<Vec3<typename CpuMultigrid<T>::S>> CpuMultigrid<T>::interpolate(
     for (std::size_t k = 0; k < fine.size(); ++k)
         fine[k] = prolongAt(l, std::int64_t(k), coarse.data());
     return fine;
+}
+
+template <typename T>
+std::vector<Vec3<typename CpuMultigrid<T>::S>> CpuMultigrid<T>::stencilTimes(
+    int l, const std::vector<Vec3<S>>& w) const {
+    const Level& g = levels_[std::size_t(l)];
+    std::vector<Vec3<S>> out(w.size(), Vec3<S>(0));
+    for (std::int64_t k = 0; k < g.count(); ++k) {
+        const int i = int(k % g.nu), j = int(k / g.nu);
+        for (int dj = std::max(-2, -j); dj <= std::min(2, g.nv - 1 - j); ++dj)
+            for (int di = std::max(-2, -i); di <= std::min(2, g.nu - 1 - i); ++di)
+                out[std::size_t(k)] += g.times(k, stencilSlot(di, dj),
+                                               w[std::size_t(k + std::int64_t(dj) * g.nu + di)]);
+    }
+    return out;
 }
 
 // z = V r on level l (levels_[l + 1] the next coarser one, none on the coarsest).

@@ -5,8 +5,8 @@
 // A coarse grid keeps every other vertex (the last one always: coarse I sits on fine
 // min(2I, n − 1)); bilinear interpolation P carries coarse corrections to the grid above and
 // its transpose R = Pᵀ restricts residuals. Every grid's system is a 5×5 stencil of 3×3
-// symmetric blocks per vertex: the fine one is read off the matrix-free product by probing it
-// with 25 colours × 3 unit directions (exact, as the fine stencil has radius 2), a coarse one is
+// symmetric blocks per vertex: the fine one is assembled from the system's terms (springs' J_s
+// and damping, the bending weights, mass, drag, grab), a coarse one is
 // the Galerkin product A_c = Pᵀ A P of the grid above (bilinear P keeps radius 2). Pins are
 // constraints on every grid: a coarse vertex is pinned iff the fine vertex it sits on is, its
 // rows and columns are the identity's, restriction gives 0 there and prolongation skips pinned
@@ -69,6 +69,8 @@ public:
     // a field of grid l (l ≥ 1) on every vertex of grid l − 1.
     const std::vector<Vec3<S>>& positions(int l) const { return levels_[std::size_t(l)].x; }
     std::vector<Vec3<S>> interpolate(int l, const std::vector<Vec3<S>>& coarse) const;
+    // For tests: grid l's stencil applied to a field of grid l (the rows of pinned vertices too).
+    std::vector<Vec3<S>> stencilTimes(int l, const std::vector<Vec3<S>>& w) const;
 
     static constexpr int kCoarsest = kMultigridCoarsest;  // vertices of the grid solved exactly
     static constexpr int kSerialBelow = 4096;  // grids smaller than this run on one thread
@@ -111,7 +113,7 @@ private:
         std::vector<Block> p;
         // The smoother's factors: every row (direction 0) and column (1) of the grid as one
         // banded system (3 unknowns a vertex, the stencil's blocks along it), A_line = L Lᵀ,
-        // L's band stored row by row, kBand + 1 entries (the diagonal last).
+        // L's band stored row by row, kBand + 1 entries (the diagonal last, as its reciprocal).
         std::vector<double> lines[2];
         std::vector<std::uint8_t> pinned;
         std::vector<Vec3<S>> r, z, t;  // the fine grid's r, z: copies of the caller's
@@ -125,8 +127,8 @@ private:
     static void forEachCellOf(const Axis& axis, int I, const Fn& fn) {
         for (int C = std::max(0, I - 1); C <= std::min(I, axis.cells() - 1); ++C) fn(C);
     }
-    using ProbeSystem = ImplicitSystem<S, Soa3<S>>;  // the fine system in the cycle's arithmetic
-    void probeFine(const ProbeSystem& fine, const CycleThreads& threads);
+    using FineSystemS = ImplicitSystem<S, Soa3<S>>;  // the fine system in the cycle's arithmetic
+    void assembleFine(const FineSystemS& fine, const CycleThreads& threads);
     void galerkin(int l, const CycleThreads& threads);      // level l from level l − 1
     void prolongation(int l, const CycleThreads& threads);  // level l's P, from its positions
     Vec3<S> prolongAt(int l, std::int64_t k, const Vec3<S>* coarse) const;  // (P z_c)_k
@@ -141,9 +143,8 @@ private:
 
     bool configured_ = false;
     std::vector<Level> levels_;
-    std::vector<std::vector<Vec3<S>>> probe_, probed_;  // per thread: the fine probes
     // The fine system's data in double (float's rounding of h²K's blocks at 1e6 N/m, 128², is
-    // larger than the mass: a float probe gave an indefinite stencil).
+    // larger than the mass: a float stencil was indefinite).
     Soa3<S> x_;
     std::vector<StencilSpring<S>> springs_;
     std::vector<S> inverseMass_;

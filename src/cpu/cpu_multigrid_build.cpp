@@ -1,5 +1,5 @@
 // The multigrid hierarchy of cpu/cpu_multigrid.h, rebuilt every step: the grids' axes, the fine
-// stencil probed off the matrix-free product, the line factors and the coarsest factor (P and the
+// stencil assembled from the system's terms, the line factors and the coarsest factor (P and the
 // Galerkin products: cpu_multigrid_galerkin.cpp).
 #include <algorithm>
 #include <cmath>
@@ -76,57 +76,63 @@ std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int nu, int nv,
     return {std::int64_t(rowBegin) * nu, std::int64_t(rowEnd) * nu};
 }
 
-// The fine stencil read off the matrix-free product: p = e_d on every unpinned vertex of colour
-// (i mod 5, j mod 5) gives (A p)_k = column d of A_kq for the one vertex q of that colour within
-// k's 5×5 window. 75 products on this thread's rows, with its own probe vectors.
+// The fine grid's stencil, assembled block by block from the system's terms (model/
+// implicit_system.h): per spring s from k to q, a = h² J_s + h D_s on the diagonal and −a at q;
+// the bending Hessian's constant weights W_kq (minus the force at k of a unit field at q) times
+// h² I; the mass, drag and grab spring on the diagonal. A pinned column is left out (p = 0
+// there), a pinned row is the identity's. `Multigrid.FineStencilIsTheSystemsMatrix` holds it to
+// the matrix-free product.
 template <typename T>
-void CpuMultigrid<T>::probeFine(const ProbeSystem& fine, const CycleThreads& threads) {
+void CpuMultigrid<T>::assembleFine(const FineSystemS& fine, const CycleThreads& threads) {
     Level& level = levels_[0];
     const int nu = level.nu, nv = level.nv;
-    const std::int64_t n = level.count();
-    std::vector<Vec3<S>>& p = probe_[std::size_t(threads.index)];
-    std::vector<Vec3<S>>& out = probed_[std::size_t(threads.index)];
-    if (std::int64_t(p.size()) != n) {
-        p.assign(std::size_t(n), Vec3<S>(0));
-        out.assign(std::size_t(n), Vec3<S>(0));
-    }
+    const S h = fine.h, h2 = h * h;
+    // The offsets the bending stencil reaches: second differences along u and v, the twists of
+    // the four cells around the vertex.
+    static constexpr int kBendReach[13][2] = {{0, 0},  {-1, 0}, {1, 0},  {-2, 0}, {2, 0},
+                                              {0, -1}, {0, 1},  {0, -2}, {0, 2},  {-1, -1},
+                                              {1, -1}, {-1, 1}, {1, 1}};
+    auto bendWeight = [&](int i, int j, int qi, int qj) {
+        auto unit = [&](int a, int b) { return Vec3<S>(a == qi && b == qj ? 1 : 0); };
+        return -bendingForce<S>(fine.bending, i, j, unit).x;
+    };
     const auto [begin, end] = slice(nu, nv, threads);
-    const int rowBegin = int(begin / nu), rowEnd = int(end / nu);
-    const int probeBegin = std::max(0, rowBegin - 2), probeEnd = std::min(nv, rowEnd + 2);
     for (std::int64_t k = begin; k < end; ++k) {
+        Sym3<S>* blocks = &level.symmetric[std::size_t(k * kStencil)];
+        for (int o = 0; o < kStencil; ++o) blocks[o] = {};
         level.pinned[std::size_t(k)] = fine.pinned[k];
-        for (int o = 0; o < kStencil; ++o) level.symmetric[std::size_t(k * kStencil + o)] = {};
-    }
-    for (int cj = 0; cj < 5; ++cj)
-        for (int ci = 0; ci < 5; ++ci)
-            for (int d = 0; d < 3; ++d) {
-                for (int j = probeBegin + ((cj - probeBegin) % 5 + 5) % 5; j < probeEnd; j += 5)
-                    for (int i = ci; i < nu; i += 5) {
-                        const std::int64_t q = std::int64_t(j) * nu + i;
-                        if (!fine.pinned[q]) p[std::size_t(q)][d] = S(1);
-                    }
-                if (begin < end) fine.apply(p.data(), out.data(), begin, end);
-                for (std::int64_t k = begin; k < end; ++k) {
-                    if (fine.pinned[k]) continue;
-                    const int i = int(k % nu), j = int(k / nu);
-                    int di = ((ci - i) % 5 + 5) % 5, dj = ((cj - j) % 5 + 5) % 5;
-                    if (di > 2) di -= 5;
-                    if (dj > 2) dj -= 5;
-                    if (i + di < 0 || i + di >= nu || j + dj < 0 || j + dj >= nv) continue;
-                    if (fine.pinned[k + std::int64_t(dj) * nu + di]) continue;
-                    Sym3<S>& b = level.symmetric[std::size_t(k * kStencil + stencilSlot(di, dj))];
-                    const Vec3<S> c(out[std::size_t(k)]);
-                    if (d == 0) b.xx = c.x, b.xy = c.y, b.xz = c.z;
-                    if (d == 1) b.yy = c.y, b.yz = c.z;
-                    if (d == 2) b.zz = c.z;
-                }
-                for (int j = probeBegin + ((cj - probeBegin) % 5 + 5) % 5; j < probeEnd; j += 5)
-                    for (int i = ci; i < nu; i += 5)
-                        p[std::size_t(std::int64_t(j) * nu + i)][d] = S(0);
+        Sym3<S>& diagonal = blocks[stencilSlot(0, 0)];
+        if (fine.pinned[k]) {
+            diagonal = Sym3<S>::identity(1);
+            continue;
+        }
+        const int i = int(k % nu), j = int(k / nu);
+        const Vec3<S> xk = x_.get(k);
+        diagonal = Sym3<S>::identity(fine.drag / fine.inverseMass[k]);
+        for (const StencilSpring<S>& s : springs_) {
+            const int qi = i + s.di, qj = j + s.dj;
+            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+            const std::int64_t q = k + s.indexOffset;
+            const Vec3<S> xq = x_.get(q);
+            Sym3<S> a = springJacobian(xk, xq, stiffnessAt(s, i, j, nu, nv), s.restLength) * h2;
+            if (fine.springDamping) {
+                const bool halved = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
+                a += springDampingBlock(xk, xq, halved ? S(0.5) * s.damping : s.damping,
+                                        s.restLength) *
+                     h;
             }
-    for (std::int64_t k = begin; k < end; ++k)
-        if (fine.pinned[k])
-            level.symmetric[std::size_t(k * kStencil + stencilSlot(0, 0))] = Sym3<S>::identity(1);
+            diagonal += a;
+            if (!fine.pinned[q]) blocks[stencilSlot(s.di, s.dj)] += a * S(-1);
+        }
+        if (fine.bending.active())
+            for (const auto& o : kBendReach) {
+                const int qi = i + o[0], qj = j + o[1];
+                if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+                if (fine.pinned[std::int64_t(qj) * nu + qi]) continue;
+                blocks[stencilSlot(o[0], o[1])].addDiagonal(h2 * bendWeight(i, j, qi, qj));
+            }
+        if (k == fine.grabVertex) diagonal.addDiagonal(h2 * fine.grabStiffness);
+    }
 }
 
 // Level l's line factors: this thread's rows (direction 0) and columns (1).
@@ -168,8 +174,9 @@ void CpuMultigrid<T>::smoother(int l, const CycleThreads& threads) {
                         if (j - q <= kBand) s -= entry(i, q) * entry(j, q);
                     // A pivot at or under float's rounding of the stiff blocks (float: the mass
                     // is 1e-7 of h²K at 128², stretch 1e6) is held at 1e-6 of the diagonal.
-                    entry(i, j) =
-                        i == j ? std::sqrt(std::max(s, 1e-6 * diagonal + 1e-300)) : s / entry(j, j);
+                    // The diagonal is kept as its reciprocal: the substitutions multiply.
+                    entry(i, j) = i == j ? 1 / std::sqrt(std::max(s, 1e-6 * diagonal + 1e-300))
+                                         : s * entry(j, j);
                 }
             }
         }
@@ -179,10 +186,6 @@ void CpuMultigrid<T>::smoother(int l, const CycleThreads& threads) {
 template <typename T>
 void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& threads) {
     if (threads.index == 0) {
-        if (int(probe_.size()) < threads.count) {
-            probe_.resize(std::size_t(threads.count));
-            probed_.resize(std::size_t(threads.count));
-        }
         springs_.clear();
         for (const StencilSpring<T>& s : *fine.springs)
             springs_.push_back({s.di, s.dj, s.indexOffset, S(s.stiffness), S(s.restLength),
@@ -194,7 +197,7 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
         }
     }
     threads.sync();  // the double copies' storage is in place
-    ProbeSystem system;
+    FineSystemS system;
     system.nu = fine.nu;
     system.nv = fine.nv;
     system.springs = &springs_;
@@ -216,7 +219,7 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
         }
     }
     threads.sync();
-    probeFine(system, threads);
+    assembleFine(system, threads);
     if (fine.contacts) {  // the contacts in the solve, as stiff normal springs (see below)
         Level& level = levels_[0];
         const auto [begin, end] = slice(fine.nu, fine.nv, threads);
@@ -290,7 +293,7 @@ void CpuMultigrid<T>::factorCoarsest() {
     template void CpuMultigrid<T>::configure(int, int);                                         \
     template std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int, int,             \
                                                                           const CycleThreads&); \
-    template void CpuMultigrid<T>::probeFine(const ProbeSystem&, const CycleThreads&);          \
+    template void CpuMultigrid<T>::assembleFine(const FineSystemS&, const CycleThreads&);       \
     template void CpuMultigrid<T>::smoother(int, const CycleThreads&);                          \
     template void CpuMultigrid<T>::linearise(const FineSystem&, const CycleThreads&);           \
     template void CpuMultigrid<T>::factorCoarsest();

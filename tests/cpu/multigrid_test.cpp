@@ -31,12 +31,13 @@ struct Fixture {
     CpuMultigrid<double>::FineSystem system;
     CpuMultigrid<double> multigrid;
 
-    Fixture(int cells, double stretch) {
+    Fixture(int cells, double stretch, std::vector<std::string> extra = {}) {
         std::ostringstream resolution, material;
         resolution << "cloth.resolution=[" << cells << "," << cells << "]";
         material << "material.stretch=" << stretch;
         std::vector<std::string> sets = {resolution.str(), "integrator.dt=0.016667"};
         if (stretch > 0) sets.push_back(material.str());
+        sets.insert(sets.end(), extra.begin(), extra.end());
         scene = loadScene(CLOTH_SOURCE_DIR "/scenes/drape.json", sets);
         grid = scene.grid();
         springs = activeSprings<double>(scene);
@@ -64,6 +65,7 @@ struct Fixture {
         system.pinned = pinned.data();
         system.h = scene.integrator.dt;
         system.drag = 1 + system.h * scene.dampingRate();
+        system.springDamping = scene.springDamping() > 0;
         multigrid.configure(grid.nu, grid.nv);
         multigrid.linearise(system, CycleThreads{});
     }
@@ -121,6 +123,30 @@ double dot(const std::vector<Vec3<double>>& a, const std::vector<Vec3<double>>& 
 }
 
 // The CG's preconditioner must be a symmetric operator: u·V w = w·V u.
+// The fine grid's stencil is implicit Euler's matrix A: assembled term by term, it must give
+// the matrix-free product A p on every vertex, with every term of A present (springs with their
+// damping, bending, drag, a grab spring, two pins).
+TEST(Multigrid, FineStencilIsTheSystemsMatrix) {
+    Fixture f(24, 0, {"material.spring_damping=0.002"});
+    ASSERT_TRUE(f.system.springDamping);
+    ASSERT_TRUE(f.system.bending.active());
+    f.system.grabVertex = f.grid.index(9, 14);
+    f.system.grabStiffness = 40;
+    f.multigrid.linearise(f.system, CycleThreads{});
+    const auto p = f.random(11);
+    const auto expected = f.product(p);
+    const auto got = f.multigrid.stencilTimes(0, p);
+    double worst = 0, scale = 0;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+        if (f.pinned[k]) continue;
+        worst = std::max(worst, glm::length(got[k] - expected[k]));
+        scale = std::max(scale, glm::length(expected[k]));
+    }
+    std::printf("largest |stencil p - A p| = %.3g of the largest |A p| (%.3g)\n", worst / scale,
+                scale);
+    EXPECT_LT(worst, 1e-12 * scale);
+}
+
 TEST(Multigrid, VCycleIsSymmetric) {
     for (double stretch : {1e6, 0.0}) {
         Fixture f(64, stretch);
