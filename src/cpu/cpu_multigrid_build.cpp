@@ -113,14 +113,10 @@ void CpuMultigrid<T>::assembleFine(const FineSystemS& fine, const CycleThreads& 
             const int qi = i + s.di, qj = j + s.dj;
             if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
             const std::int64_t q = k + s.indexOffset;
-            const Vec3<S> xq = x_.get(q);
-            Sym3<S> a = springJacobian(xk, xq, stiffnessAt(s, i, j, nu, nv), s.restLength) * h2;
-            if (fine.springDamping) {
-                const bool halved = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
-                a += springDampingBlock(xk, xq, halved ? S(0.5) * s.damping : s.damping,
-                                        s.restLength) *
-                     h;
-            }
+            const SpringBlocks<S> b =
+                springBlocks(s, xk, x_.get(q), i, j, nu, nv, fine.springDamping);
+            Sym3<S> a = b.stiffness * h2;
+            if (fine.springDamping) a += b.damping * h;
             diagonal += a;
             if (!fine.pinned[q]) blocks[stencilSlot(s.di, s.dj)] += a * S(-1);
         }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -76,8 +77,10 @@ struct GatherRow {
 // columns before the run to two after. wu, wv, t: bendingForce's weights for row j's vertices.
 template <typename T>
 struct BendingRow {
-    ConstRow3<T> rows[5]{{nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
-                         {nullptr, nullptr, nullptr}, {nullptr, nullptr, nullptr},
+    ConstRow3<T> rows[5]{{nullptr, nullptr, nullptr},
+                         {nullptr, nullptr, nullptr},
+                         {nullptr, nullptr, nullptr},
+                         {nullptr, nullptr, nullptr},
                          {nullptr, nullptr, nullptr}};
     T wu{}, wv{}, t{};
 };
@@ -98,6 +101,31 @@ struct ContactRow {
     T thickness, friction;
     bool moving;
     T lx, ly, lz, ax, ay, az, ox, oy, oz;  // linear [m/s], angular [rad/s], origin [m]
+};
+
+// vbd: the Newton steps of a run of one colour's vertices in an interior row (every vertex two
+// or more from every border), k = first + 5m for m < n, each on its local potential as
+// cpu_vbd.cpp's vbdVertex builds it (model/vbd_lane.h: the same operations, the same bits). The
+// arrays are the whole grid's. A pinned vertex, and `skip` (the grabbed one, which the caller
+// steps), keep their position; moved[m] says whether vertex m took its step (the caller then
+// applies the colliders).
+template <typename T>
+struct VbdRow {
+    Row3<T> x{nullptr, nullptr, nullptr};        // the iterate: read, written after the steps
+    ConstRow3<T> xn{nullptr, nullptr, nullptr};  // the step's start
+    const T* inertial = nullptr;                 // y, three per vertex
+    const T* inverseMass = nullptr;              // 1/m [1/kg]
+    const T* bendDiagonal = nullptr;             // W_kk, with bending
+    const std::uint8_t* pinned = nullptr;
+    std::uint8_t* moved = nullptr;
+    std::int64_t first = 0, skip = -1;  // first: the run's first vertex; skip: −1 for none
+    std::int64_t nu = 0;                // the row stride
+    int springs = 0;                    // the stencil's springs, as the solver's springs_
+    std::int64_t offset[12]{};          // q − k
+    T stiffness[12]{}, restLength[12]{}, damping[12]{};
+    T h{}, dampingRate{};
+    bool bending = false;  // with bending: its weights w_u, w_v, t inside the sheet (bending.h)
+    T wu{}, wv{}, t{};
 };
 
 // Every kernel runs over n elements from the given (already offset) pointers.
@@ -129,6 +157,7 @@ struct RowKernels {
     // add c_i (q_i − p_i) with accumulate.
     void (*dampingCoefficients)(ConstRow3<T> p, ConstRow3<T> q, ConstRow3<T> vp, ConstRow3<T> vq,
                                 T dampingK, T restLength, T* c, int n);
+    void (*vbd)(const VbdRow<T>& row, int n);
 };
 
 template <typename T>

@@ -133,8 +133,11 @@ private:
     bool stepVbd(Band& band, const Team& team, long stepNumber);
     void vbdStart(const Band& band, const Team& team, long stepNumber);
     void vbdSweep(const Band& band, int colour);
+    VbdRow<T> vbdRow();
     void vbdVertex(std::int64_t k, int i, int j);
     void vbdCollide(std::int64_t k, Vec3<T>& x) const;
+    void vbdCollideRun(std::int64_t first, const std::uint8_t* moved, int n);
+    void vbdFriction(Vec3<T>& x, const Vec3<T>& p, const Vec3<T>& before, const Vec3<T>& v) const;
     void vbdAccelerate(const Band& band, double omega);
     // The end of every step: pins, colliders in scene order, then the instability check.
     bool finishStep(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);

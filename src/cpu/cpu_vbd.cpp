@@ -3,6 +3,7 @@
 // one vertex at a time (model/vbd_local.h). The colours of model/vbd_colouring.h run one after
 // another; within a colour every band steps its own vertices, which share no energy term with
 // each other, so the result has the same bits for any number of threads.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -74,17 +75,67 @@ void CpuSolver<T>::vbdStart(const Band& band, const Team& team, long stepNumber)
 }
 
 // The Newton steps of one colour's vertices in this band's rows: in row j the colour's columns
-// are i ≡ colour − 2j (mod 5).
+// are i ≡ colour − 2j (mod 5). With row kernels, the run of them two or more from every border
+// goes through the vbd kernel (cpu/cpu_rows.h), up to kRun at a time; the rest, and the
+// grabbed vertex, vertex by vertex. The colour's vertices share no term, so the order is free.
 template <typename T>
 void CpuSolver<T>::vbdSweep(const Band& band, int colour) {
-    const int nu = grid_.nu;
+    const int nu = grid_.nu, nv = grid_.nv;
+    auto step = [&](int i, int j) {
+        const std::int64_t k = std::int64_t(j) * nu + i;
+        if (!pinned_[k]) vbdVertex(k, i, j);
+    };
+    VbdRow<T> row{};
+    if (kernels_) row = vbdRow();
+    constexpr int kRun = 64;
+    std::uint8_t moved[kRun];
+    row.moved = moved;
     for (int j = band.rowBegin; j < band.rowEnd; ++j) {
-        const int first = ((colour - 2 * j) % kVbdColours + kVbdColours) % kVbdColours;
-        for (int i = first; i < nu; i += kVbdColours) {
-            const std::int64_t k = std::int64_t(j) * nu + i;
-            if (!pinned_[k]) vbdVertex(k, i, j);
+        int i = ((colour - 2 * j) % kVbdColours + kVbdColours) % kVbdColours;
+        if (kernels_ && j >= 2 && j < nv - 2) {
+            for (; i < 2; i += kVbdColours) step(i, j);
+            for (; i <= nu - 3;) {
+                const int n = std::min(kRun, (nu - 3 - i) / kVbdColours + 1);
+                row.first = std::int64_t(j) * nu + i;
+                kernels_->vbd(row, n);
+                if (row.skip >= row.first && row.skip < row.first + kVbdColours * n &&
+                    (row.skip - row.first) % kVbdColours == 0 && !pinned_[row.skip])
+                    vbdVertex(row.skip, int(row.skip % nu), j);
+                if (!colliders_.empty()) vbdCollideRun(row.first, moved, n);
+                i += kVbdColours * n;
+            }
         }
+        for (; i < nu; i += kVbdColours) step(i, j);
     }
+}
+
+// What the vbd kernel reads of the solver, for any run: the arrays, the stencil's springs inside
+// the sheet (no border halving there) and bending's interior weights.
+template <typename T>
+VbdRow<T> CpuSolver<T>::vbdRow() {
+    VbdRow<T> r{};
+    r.x = x_.row(0);
+    r.xn = xStart_.row(0);
+    r.inertial = &inertial_[0].x;
+    r.inverseMass = inverseMass_.data();
+    r.bendDiagonal = bendingDiagonal_.data();
+    r.pinned = pinned_.data();
+    r.skip = grab_ ? grab_->vertex : -1;
+    r.nu = grid_.nu;
+    r.springs = int(springs_.size());
+    for (std::size_t s = 0; s < springs_.size(); ++s) {
+        r.offset[s] = springs_[s].indexOffset;
+        r.stiffness[s] = springs_[s].stiffness;
+        r.restLength[s] = springs_[s].restLength;
+        r.damping[s] = springs_[s].damping;
+    }
+    r.h = dt_t_;
+    r.dampingRate = dampingRate_;
+    r.bending = bending_.active();
+    r.wu = T(bending_.alongU);
+    r.wv = T(bending_.alongV);
+    r.t = T(bending_.twist);
+    return r;
 }
 
 // One vertex's Newton step on its local G, then the colliders' projection of the new position
@@ -104,6 +155,35 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
     x_.set(k, x);
 }
 
+// vbdCollide on the run's vertices that moved (k = first + 5m, moved[m]), the colliders through
+// their row code (CpuColliders::applyRow: the same bits as apply, vertex by vertex) on the moved
+// vertices gathered into contiguous rows.
+template <typename T>
+void CpuSolver<T>::vbdCollideRun(std::int64_t first, const std::uint8_t* moved, int n) {
+    constexpr int kRun = 64;
+    alignas(64) T p[3][kRun], v[3][kRun];
+    Vec3<T> x[kRun], before[kRun];
+    std::int64_t vertex[kRun];
+    const T h = dt_t_;
+    int count = 0;
+    for (int m = 0; m < n; ++m) {
+        if (!moved[m]) continue;
+        const std::int64_t k = first + std::int64_t(kVbdColours) * m;
+        x[count] = x_.get(k);
+        before[count] = (x[count] - xStart_.get(k)) / h;
+        for (int c = 0; c < 3; ++c) p[c][count] = x[count][c], v[c][count] = before[count][c];
+        vertex[count++] = k;
+    }
+    if (count == 0) return;
+    colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, count, *kernels_);
+    for (int m = 0; m < count; ++m) {
+        Vec3<T> y = x[m];
+        vbdFriction(y, Vec3<T>(p[0][m], p[1][m], p[2][m]), before[m],
+                    Vec3<T>(v[0][m], v[1][m], v[2][m]));
+        x_.set(vertex[m], y);
+    }
+}
+
 // The colliders on an iterate (docs/integrators.md "vbd", contact): the position is projected
 // out as at a step's end, and the friction of docs/colliders.md §2 — which takes from the
 // tangential velocity at most c_f times the normal velocity removed — takes the same from the
@@ -116,11 +196,19 @@ void CpuSolver<T>::vbdCollide(std::int64_t k, Vec3<T>& x) const {
     const Vec3<T> before = (x - xStart_.get(k)) / h;
     Vec3<T> p = x, v = before;
     applyColliders(p, v);
+    vbdFriction(x, p, before, v);
+}
+
+// x, moved by the colliders to p while its step's velocity went from `before` to v: x = p less
+// h × the tangential velocity friction took. x is kept where nothing pushed it.
+template <typename T>
+void CpuSolver<T>::vbdFriction(Vec3<T>& x, const Vec3<T>& p, const Vec3<T>& before,
+                               const Vec3<T>& v) const {
     const Vec3<T> push = p - x;
     const T pushed = glm::length(push);
     if (!(pushed > T(0))) return;
     const Vec3<T> n = push / pushed, lost = before - v;
-    x = p - h * (lost - glm::dot(lost, n) * n);  // the tangential part friction took
+    x = p - dt_t_ * (lost - glm::dot(lost, n) * n);  // the tangential part friction took
 }
 
 // Chebyshev acceleration after sweep n (VBD §3.8): x_n ← ω_n (x̄_n − x_{n−2}) + x_{n−2} for the
@@ -143,12 +231,16 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
-#define CLOTH_INSTANTIATE(T)                                              \
-    template bool CpuSolver<T>::stepVbd(Band&, const Team&, long);        \
-    template void CpuSolver<T>::vbdStart(const Band&, const Team&, long); \
-    template void CpuSolver<T>::vbdSweep(const Band&, int);               \
-    template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);        \
-    template void CpuSolver<T>::vbdCollide(std::int64_t, Vec3<T>&) const; \
+#define CLOTH_INSTANTIATE(T)                                                           \
+    template bool CpuSolver<T>::stepVbd(Band&, const Team&, long);                     \
+    template void CpuSolver<T>::vbdStart(const Band&, const Team&, long);              \
+    template void CpuSolver<T>::vbdSweep(const Band&, int);                            \
+    template VbdRow<T> CpuSolver<T>::vbdRow();                                         \
+    template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);                     \
+    template void CpuSolver<T>::vbdCollide(std::int64_t, Vec3<T>&) const;              \
+    template void CpuSolver<T>::vbdCollideRun(std::int64_t, const std::uint8_t*, int); \
+    template void CpuSolver<T>::vbdFriction(Vec3<T>&, const Vec3<T>&, const Vec3<T>&,  \
+                                            const Vec3<T>&) const;                     \
     template void CpuSolver<T>::vbdAccelerate(const Band&, double);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

@@ -16,6 +16,28 @@
 
 namespace cloth {
 
+// One spring's two blocks at its vertex k = (i, j), unscaled: the stiffness Jacobian J_s
+// (model/stiffness.h) and the damping block D_s, with β halved on a border line as the force
+// halves it (zero unless damped). A's off-diagonal block for the pair is −(h² J_s + h D_s); both
+// the diagonal below and the multigrid's assembled fine stencil sum them.
+template <typename T>
+struct SpringBlocks {
+    Sym3<T> stiffness, damping;
+};
+
+template <typename T>
+SpringBlocks<T> springBlocks(const StencilSpring<T>& s, const Vec3<T>& xk, const Vec3<T>& xq, int i,
+                             int j, int nu, int nv, bool damped) {
+    SpringBlocks<T> b;
+    b.stiffness = springJacobian(xk, xq, stiffnessAt(s, i, j, nu, nv), s.restLength);
+    if (damped) {
+        const bool halved = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
+        b.damping =
+            springDampingBlock(xk, xq, halved ? T(0.5) * s.damping : s.damping, s.restLength);
+    }
+    return b;
+}
+
 template <typename T, typename Positions>
 struct ImplicitSystem {
     int nu = 0, nv = 0;
@@ -61,12 +83,10 @@ struct ImplicitSystem {
         for (const StencilSpring<T>& s : *springs) {
             if (!interior && !(i + s.di >= 0 && i + s.di < nu && j + s.dj >= 0 && j + s.dj < nv))
                 continue;
-            const Vec3<T> xq = positionAt(*x, k + s.indexOffset);
-            const bool halved = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
-            stiffness += springJacobian(xk, xq, stiffnessAt(s, i, j, nu, nv), s.restLength);
-            if (springDamping)
-                damping += springDampingBlock(xk, xq, halved ? T(0.5) * s.damping : s.damping,
-                                              s.restLength);
+            const SpringBlocks<T> b =
+                springBlocks(s, xk, positionAt(*x, k + s.indexOffset), i, j, nu, nv, springDamping);
+            stiffness += b.stiffness;
+            if (springDamping) damping += b.damping;
         }
         if (bending.active()) {  // H's diagonal coefficient: minus the force of a unit vertex
             auto unit = [&](int a, int b) { return Vec3<T>(a == i && b == j ? 1 : 0); };

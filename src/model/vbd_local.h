@@ -20,6 +20,7 @@
 #include "model/forces.h"
 #include "model/stiffness.h"
 #include "model/sym3.h"
+#include "model/vbd_lane.h"
 
 namespace cloth {
 
@@ -30,14 +31,27 @@ struct VbdLocal {
     Sym3<T> hessian;
 };
 
+// f(lane) on the local problem's entries as a VbdLane (model/vbd_lane.h): the arithmetic each
+// term shares with the vbd row kernels.
+template <typename T, typename F>
+void onLane(VbdLocal<T>& local, const F& f) {
+    const Vec3<T>& g = local.gradient;
+    const Sym3<T>& m = local.hessian;
+    VbdLane<T> a{g.x, g.y, g.z, m.xx, m.yy, m.zz, m.xy, m.xz, m.yz};
+    f(a);
+    local.gradient = {a.gx, a.gy, a.gz};
+    local.hessian = {a.xx, a.yy, a.zz, a.xy, a.xz, a.yz};
+}
+
 // Inertia and air drag: m/(2h²)|x − y|² + m c/(2h)|x − x_n|², y the inertial target
 // x_n + h v_n + h² a_ext. The drag term is backward Euler's −c m v_{n+1} with v_{n+1} =
 // (x − x_n)/h: its gradient m c (x − x_n)/h is that force's negative.
 template <typename T>
 void addVbdInertia(const Vec3<T>& x, const Vec3<T>& y, const Vec3<T>& xn, T mass, T h,
                    T dampingRate, VbdLocal<T>& local) {
-    const T inertia = mass / (h * h), drag = mass * dampingRate / h;
-    local.gradient += inertia * (x - y) + drag * (x - xn);
+    const T inertia = vbdInertiaWeight(mass, h), drag = vbdDragWeight(mass, h, dampingRate);
+    for (int c = 0; c < 3; ++c)
+        local.gradient[c] += vbdInertiaGradient(x[c], y[c], xn[c], inertia, drag);
     local.hessian.addDiagonal(inertia + drag);
 }
 
@@ -50,12 +64,7 @@ template <typename T>
 void addVbdSpring(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLength,
                   VbdLocal<T>& local) {
     const Vec3<T> d = pq - pk;
-    const T len = glm::length(d);
-    if (!(len >= T(1e-12) * restLength)) return;
-    local.gradient -= (stiffness * (len - restLength) / len) * d;
-    const T transverse = stiffness * std::max(T(0), T(1) - restLength / len);
-    local.hessian.addDiagonal(transverse);
-    local.hessian.addOuter((stiffness - transverse) / (len * len), d);  // (K − t) d̂d̂ᵀ
+    onLane(local, [&](VbdLane<T>& a) { vbdSpringLane(d.x, d.y, d.z, stiffness, restLength, a); });
 }
 
 // Spring damping as implicit Euler's D (docs/integrators.md): the force −D v_{n+1}, D = Σ βK d̂d̂ᵀ
@@ -66,12 +75,10 @@ void addVbdSpring(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLengt
 template <typename T>
 void addVbdSpringDamping(const Vec3<T>& pkn, const Vec3<T>& pqn, const Vec3<T>& w, T dampingK,
                          T restLength, T h, VbdLocal<T>& local) {
-    Vec3<T> f(0);
-    addSpringDamping(pkn, pqn, w, dampingK, restLength, f);
-    local.gradient -= f / h;
     const Vec3<T> d = pqn - pkn;
-    const T d2 = glm::dot(d, d), floor = T(1e-12) * restLength;
-    if (d2 >= floor * floor) local.hessian.addOuter(dampingK / (h * d2), d);
+    onLane(local, [&](VbdLane<T>& a) {
+        vbdSpringDampingLane(d.x, d.y, d.z, w.x, w.y, w.z, dampingK, restLength, h, a);
+    });
 }
 
 // W_kk, the bending Hessian's diagonal coefficient at (i, j) [N/m]: the energy is quadratic,
@@ -130,11 +137,10 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
 // non-finite state, and the vertex then keeps its position. Returns whether it moved.
 template <typename T>
 bool vbdNewtonStep(const VbdLocal<T>& local, double floor, Vec3<T>& x) {
-    const glm::dmat3 h = local.hessian.matrix();
-    const double det = glm::determinant(h);
-    if (!(std::abs(det) > 1e-12 * floor * floor * floor)) return false;
-    x -= Vec3<T>(glm::inverse(h) * glm::dvec3(local.gradient));
-    return true;
+    const Vec3<T>& g = local.gradient;
+    const Sym3<T>& m = local.hessian;
+    const VbdLane<T> a{g.x, g.y, g.z, m.xx, m.yy, m.zz, m.xy, m.xz, m.yz};
+    return vbdNewtonLane(a, floor, x.x, x.y, x.z);
 }
 
 // The paper's adaptive initial guess (§3.7): x = x_n + h v_n + h² ã, ã the component of the

@@ -2,7 +2,7 @@
 // - converged, Vertex Block Descent is nonlinear backward Euler: 500 sweeps equal the reference's
 //   Newton solve of the whole system (tests/reference/reference_backward_euler.cpp);
 // - the vertices of one colour share no energy term, so the sweep's order within a colour, and so
-//   the thread count, changes no bit;
+//   the thread count and the row kernels' instruction set, changes no bit;
 // - at rest the step's fixed point is the static equilibrium, whatever Δt: a hanging sheet settled
 //   at Δt = 1/60 lies where implicit Euler's static solve puts it;
 // - at Δt = 1/60 the cloth stays finite, and its energy never rises above where it started (no
@@ -17,8 +17,10 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "cpu/cpu_backend.h"
+#include "cpu/cpu_rows.h"
 #include "model/material_presets.h"
 #include "solver/diagnostics.h"
 #include "support/material_scene.h"
@@ -79,23 +81,37 @@ TEST(Vbd, ConvergedItIsBackwardEulerSolvedByNewton) {
 }
 
 // 48×80 vertices are 4 chunks of rows, which 3 threads split: bands read each other's border
-// rows between colours. With the grab, a sphere and Chebyshev's extrapolation too.
-TEST(Vbd, OneAndThreeThreadsGiveTheSameBits) {
+// rows between colours. With the grab (inside the sheet, where the row kernel would take it), a
+// sphere, spring damping and Chebyshev's extrapolation too. The row kernels of every
+// instruction set step the interior vertices in the scalar path's operations: the same bits.
+TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
     Scene scene = materialScene(Method::Vbd, kFrame);
     scene.cloth.nu = 48;
     scene.cloth.nv = 80;
     scene.cloth.size = {47 * 0.02, 79 * 0.015};
+    scene.material->springDamping = 1e-3;
+    scene.material->bend = 1e-4;
     scene.colliders.push_back(Sphere{scene.cloth.origin + glm::dvec3(0.4, -0.5, 0.5), 0.3});
     scene.integrator.chebyshevRho = 0.5;
+    const Grab grab{2000, scene.cloth.origin + glm::dvec3(0.3, 0.2, 0.1), 5};
     for (Precision precision : {Precision::Double, Precision::Float}) {
-        SimState states[2];
-        for (int t = 0; t < 2; ++t) {
-            std::unique_ptr<Solver> solver = cpu(scene, precision, t == 0 ? 1 : 3);
-            solver->setGrab(Grab{2000, scene.cloth.origin + glm::dvec3(0.3, 0.2, 0.1), 5});
-            ASSERT_FALSE(solver->step(20).unstable);
-            states[t] = solver->read();
+        auto run = [&](CpuIsa isa, int threads) {
+            std::unique_ptr<Solver> solver = makeCpuSolver(scene, {precision, threads, isa});
+            solver->setGrab(grab);
+            EXPECT_FALSE(solver->step(20).unstable);
+            return solver->read();
+        };
+        const SimState scalar = run(CpuIsa::Scalar, 1);
+        for (CpuIsa isa : {CpuIsa::Scalar, CpuIsa::Generic, CpuIsa::Avx2, CpuIsa::Avx512}) {
+            if (!cpuIsaSupported(isa)) continue;
+            for (int threads : {1, 3}) {
+                if (isa == CpuIsa::Scalar && threads == 1) continue;
+                test::expectSameBits(run(isa, threads), scalar,
+                                     std::string(precisionName(precision)) + " " +
+                                         cpuIsaName(isa) + " " + std::to_string(threads) +
+                                         " threads");
+            }
         }
-        test::expectSameBits(states[0], states[1], precisionName(precision));
     }
 }
 

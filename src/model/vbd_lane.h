@@ -1,0 +1,134 @@
+// The per-vertex arithmetic of Vertex Block Descent's local step (model/vbd_local.h) on plain
+// scalars, as model/spring_math.h is for the forces: the scalar path (vbd_local.h's Vec3
+// functions call these) and the vbd row kernel of every instruction set
+// (cpu/isa/cpu_rows_isa.cpp) compute the same operations in the same order, so a vertex's Newton
+// step has the same bits on every path. always_inline for the reason spring_math.h gives.
+#pragma once
+
+#include <cmath>
+
+#include "model/spring_math.h"
+
+namespace cloth {
+
+// The gradient g = ∂G/∂x_k and the six entries of the Hessian H = ∂²G/∂x_k² of one vertex. A
+// trivial aggregate (VbdLane<T>{} is zero): no constructor that a kernel compiled for a wider
+// instruction set could emit out of line.
+template <typename T>
+struct VbdLane {
+    T gx, gy, gz;
+    T xx, yy, zz, xy, xz, yz;
+};
+
+// H += s I
+template <typename T>
+CLOTH_LANE void vbdAddDiagonal(T s, VbdLane<T>& a) {
+    a.xx += s;
+    a.yy += s;
+    a.zz += s;
+}
+
+// H += c d dᵀ (model/sym3.h addOuter's order)
+template <typename T>
+CLOTH_LANE void vbdAddOuter(T c, T dx, T dy, T dz, VbdLane<T>& a) {
+    const T cx = c * dx, cy = c * dy, cz = c * dz;
+    a.xx += cx * dx;
+    a.xy += cx * dy;
+    a.xz += cx * dz;
+    a.yy += cy * dy;
+    a.yz += cy * dz;
+    a.zz += cz * dz;
+}
+
+// Inertia and air drag at x: g += m/h² (x − y) + m c/h (x − x_n), H += (m/h² + m c/h) I; one
+// component of g from x, y, x_n's (the row kernel's loops take one component at a time).
+template <typename T>
+CLOTH_LANE T vbdInertiaWeight(T mass, T h) {
+    return mass / (h * h);
+}
+template <typename T>
+CLOTH_LANE T vbdDragWeight(T mass, T h, T dampingRate) {
+    return mass * dampingRate / h;
+}
+template <typename T>
+CLOTH_LANE T vbdInertiaGradient(T x, T target, T start, T inertia, T drag) {
+    return inertia * (x - target) + drag * (x - start);
+}
+
+// The spring along d = x_q − x_k: g −= K (|d| − L)/|d| d, H += t I + (K − t)/|d|² d dᵀ with
+// t = K max(0, 1 − L/|d|); nothing below |d| = 1e-12 L.
+template <typename T>
+CLOTH_LANE void vbdSpringLane(T dx, T dy, T dz, T stiffness, T restLength, VbdLane<T>& a) {
+    const T len = std::sqrt(dx * dx + dy * dy + dz * dz);
+    if (!(len >= T(1e-12) * restLength)) return;
+    const T c = stiffness * (len - restLength) / len;
+    a.gx -= c * dx;
+    a.gy -= c * dy;
+    a.gz -= c * dz;
+    const T stretch = T(1) - restLength / len;
+    const T transverse = stiffness * (T(0) < stretch ? stretch : T(0));  // std::max's order
+    vbdAddDiagonal(transverse, a);
+    vbdAddOuter((stiffness - transverse) / (len * len), dx, dy, dz, a);
+}
+
+// The spring's damping on the step's displacement: d = x_q,n − x_k,n at the step's start, w the
+// displacement difference. g −= F_β(d, w)/h, H += βK/(h |d|²) d dᵀ.
+template <typename T>
+CLOTH_LANE void vbdSpringDampingLane(T dx, T dy, T dz, T wx, T wy, T wz, T dampingK, T restLength,
+                                     T h, VbdLane<T>& a) {
+    T fx = T(0), fy = T(0), fz = T(0);
+    addSpringDamping(dx, dy, dz, wx, wy, wz, dampingK, restLength, fx, fy, fz);
+    a.gx -= fx / h;
+    a.gy -= fy / h;
+    a.gz -= fz / h;
+    const T d2 = dx * dx + dy * dy + dz * dz, floor = T(1e-12) * restLength;
+    if (d2 >= floor * floor) vbdAddOuter(dampingK / (h * d2), dx, dy, dz, a);
+}
+
+// The quadratic bending energy's force (model/bending.h bendingForce) on one component at an
+// interior vertex, from its 13 stencil values: row j's five u0…u4 (columns i − 2 … i + 2), the
+// rows j ± 1's three each (l… below, h… above: columns i − 1, i, i + 1), rows j ± 2's one each.
+// The weights come as bendingForce's products: u1 = w_u·1, u0 = w_u·(−2), v1, v0 likewise, and
+// the twist's plus = t·1, minus = t·(−1). bendingForce's order: the second differences along u and
+// v centred at i − 1, i, i + 1 (j − 1, j, j + 1), then the twists of the cells (i − 1, j − 1),
+// (i − 1, j), (i, j − 1), (i, j).
+template <typename T>
+CLOTH_LANE T bendingLane(T u0_, T u1_, T u2_, T u3_, T u4_, T l0, T l1, T l2, T h0, T h1, T h2,
+                         T down, T up, T u1, T u0, T v1, T v0, T plus, T minus) {
+    const T two = T(2);
+    T b = T(0);
+    b -= u1 * ((u0_ - two * u1_) + u2_);
+    b -= v1 * ((down - two * l1) + u2_);
+    b -= u0 * ((u1_ - two * u2_) + u3_);
+    b -= v0 * ((l1 - two * u2_) + h1);
+    b -= u1 * ((u2_ - two * u3_) + u4_);
+    b -= v1 * ((u2_ - two * h1) + up);
+    b -= plus * (((l0 - l1) - u1_) + u2_);
+    b -= minus * (((u1_ - u2_) - h0) + h1);
+    b -= minus * (((l1 - l2) - u2_) + u3_);
+    b -= plus * (((u2_ - u3_) - h1) + h2);
+    return b;
+}
+
+// The Newton step x ← x − H⁻¹g in double, H⁻¹ by the adjugate (glm::inverse's operations);
+// false, and x kept, where |det H| ≤ 1e-12 floor³ (vbdNewtonStep says why).
+template <typename T>
+CLOTH_LANE bool vbdNewtonLane(const VbdLane<T>& a, double floor, T& x, T& y, T& z) {
+    const double d00 = a.xx, d01 = a.xy, d02 = a.xz, d11 = a.yy, d12 = a.yz, d22 = a.zz;
+    const double c0 = d11 * d22 - d12 * d12, c1 = d01 * d22 - d12 * d02;
+    const double c2 = d01 * d12 - d11 * d02;
+    const double det = d00 * c0 - d01 * c1 + d02 * c2;
+    if (!(std::abs(det) > 1e-12 * floor * floor * floor)) return false;
+    const double s = 1.0 / det;
+    const double i00 = c0 * s, i10 = -(d01 * d22 - d02 * d12) * s, i20 = c2 * s;
+    const double i01 = -c1 * s, i11 = (d00 * d22 - d02 * d02) * s;
+    const double i21 = -(d00 * d12 - d02 * d01) * s, i02 = c2 * s;
+    const double i12 = -(d00 * d12 - d01 * d02) * s, i22 = (d00 * d11 - d01 * d01) * s;
+    const double gx = a.gx, gy = a.gy, gz = a.gz;
+    x -= T(i00 * gx + i10 * gy + i20 * gz);
+    y -= T(i01 * gx + i11 * gy + i21 * gz);
+    z -= T(i02 * gx + i12 * gy + i22 * gz);
+    return true;
+}
+
+}  // namespace cloth
