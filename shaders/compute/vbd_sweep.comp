@@ -1,7 +1,8 @@
 // vbd, one colour of a sweep (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp vbdVertex): every
 // free vertex with (i + 2j) mod 5 = uVbd takes one Newton step on its local G, then the
 // colliders' projection with the friction law on the step's displacement (vbdCollide). Vertices
-// of one colour share no energy term: one dispatch per colour, no atomics.
+// of one colour share no energy term: one dispatch per colour, no atomics. The dispatch covers
+// the colour's vertices only: invocation (m, j) is row j's m-th, i = first(j) + 5m.
 #include "layout.glsl"
 #include "common.glsl"
 #include "springs.glsl"
@@ -18,9 +19,10 @@ layout(local_size_x = WX, local_size_y = WY) in;
 layout(location = 3) uniform int uVbd;  // the colour
 
 void main() {
-    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 cell = ivec2(gl_GlobalInvocationID.xy);
+    int first = (uVbd + 10 - (2 * cell.y) % 5) % 5;  // (first + 2j) mod 5 = uVbd, all >= 0
+    ivec2 ij = ivec2(first + 5 * cell.x, cell.y);
     if (ij.x >= gridU() || ij.y >= gridV() || frozen(uStep)) return;
-    if ((ij.x + 2 * ij.y) % 5 != uVbd) return;
     uint k = vertexIndex(ij);
     vec4 x4 = positions[k];
     if (x4.w == 0.0) return;  // pinned

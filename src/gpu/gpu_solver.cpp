@@ -14,6 +14,7 @@
 #include "model/bending.h"
 #include "model/errors.h"
 #include "model/pin_follow.h"
+#include "model/vbd_colouring.h"
 
 namespace cloth {
 namespace {
@@ -107,6 +108,8 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     if (features_.selfCollision) checkSelfCollisionFits(scene);
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
+    // vbd's sweep: one invocation per vertex of a colour, ceil(nu/5) a row.
+    vbdGroupsX_ = ((nu_ + kVbdColours - 1) / kVbdColours + workGroup_.x - 1) / workGroup_.x;
     setStepDt(scene.integrator.dt);
     compilePrograms();
     for (gpu::Binding b : {gpu::kPositions, gpu::kVelocities, gpu::kForces, gpu::kNormals,

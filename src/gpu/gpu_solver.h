@@ -152,6 +152,7 @@ private:
     int manyStepsGroup_ = 0;  // many_steps.comp's invocations; 0: two dispatches per step
     int nu_, nv_;
     int groupsX_, groupsY_;
+    int vbdGroupsX_ = 0;  // vbd_sweep.comp's: a fifth of the columns
     int checkEvery_;
     double maxSpeed_;
     std::vector<float> inverseMass_;            // 1/m_k [1/kg], in position.w of a free vertex

@@ -143,8 +143,12 @@ void GpuSolver::stepVbd(long stepNumber) const {
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
         for (int colour = 0; colour < kVbdColours; ++colour) {
-            glProgramUniform1i(programs_[int(Kernel::VbdSweep)], gpu::kVbdLocation, colour);
-            runStepPass(Kernel::VbdSweep, stepNumber);
+            const GLuint sweep = programs_[int(Kernel::VbdSweep)];
+            glProgramUniform1i(sweep, gpu::kVbdLocation, colour);
+            glProgramUniform1ui(sweep, gpu::kStepLocation, GLuint(stepNumber));
+            glUseProgram(sweep);  // a fifth of the columns: the colour's (vbd_sweep.comp)
+            glDispatchCompute(GLuint(vbdGroupsX_), GLuint(groupsY_), 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
         }
         if (chebyshevRho_ > 0) {
             omega = chebyshevOmega(n, chebyshevRho_, omega);
