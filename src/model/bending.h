@@ -74,6 +74,31 @@ Vec3<T> bendingForce(const BendingWeights& w, int i, int j, const At& x) {
     return f;
 }
 
+// bendingForce on one component at an interior vertex, for the row kernels (cpu/isa/: the
+// vectorised bending force, vbd's local problems), from its 13 stencil values: row j's five
+// u0…u4 (columns i − 2 … i + 2), rows j ± 1's three each (l… below, h… above: columns i − 1, i,
+// i + 1), rows j ± 2's one each. The weights come as bendingForce's products: u1 = w_u·1,
+// u0 = w_u·(−2), v1, v0 likewise, and the twist's plus = t·1, minus = t·(−1). bendingForce's
+// order: the second differences along u and v centred at i − 1, i, i + 1 (j − 1, j, j + 1),
+// then the twists of the cells (i − 1, j − 1), (i − 1, j), (i, j − 1), (i, j).
+template <typename T>
+CLOTH_LANE T bendingLane(T u0_, T u1_, T u2_, T u3_, T u4_, T l0, T l1, T l2, T h0, T h1, T h2,
+                         T down, T up, T u1, T u0, T v1, T v0, T plus, T minus) {
+    const T two = T(2);
+    T b = T(0);
+    b -= u1 * ((u0_ - two * u1_) + u2_);
+    b -= v1 * ((down - two * l1) + u2_);
+    b -= u0 * ((u1_ - two * u2_) + u3_);
+    b -= v0 * ((l1 - two * u2_) + h1);
+    b -= u1 * ((u2_ - two * u3_) + u4_);
+    b -= v1 * ((u2_ - two * h1) + up);
+    b -= plus * (((l0 - l1) - u1_) + u2_);
+    b -= minus * (((u1_ - u2_) - h0) + h1);
+    b -= minus * (((l1 - l2) - u2_) + u3_);
+    b -= plus * (((u2_ - u3_) - h1) + h2);
+    return b;
+}
+
 // E of the positions x(i, j) [J]: what bendingForce is minus the gradient of.
 template <typename At>
 double bendingEnergy(const BendingWeights& w, const At& x) {
