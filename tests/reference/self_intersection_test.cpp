@@ -2,7 +2,7 @@
 // are worked out by hand: interlocked triangles, an edge beside a shared side, each region of the
 // closest point on a triangle, skew edges, a flat grid, a grid folded onto itself and the same
 // fold pushed through, one wide triangle among small ones; the grid's answers against all-pairs
-// ones on a crumpled fold; bad arguments; and the OBJ reader on every corner form and bad input.
+// ones on a crumpled fold; bad arguments. (Its OBJ reader: read_obj_test.cpp.)
 #include "reference/self_intersection.h"
 
 #include <gtest/gtest.h>
@@ -10,8 +10,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <set>
 #include <stdexcept>
@@ -22,7 +20,6 @@
 namespace cloth {
 namespace {
 
-namespace fs = std::filesystem;
 using ref::TriangleMesh;
 using V3 = std::array<double, 3>;
 
@@ -364,61 +361,6 @@ TEST(SelfIntersection, RejectsWhatItCannotMeasure) {
     m.triangles.push_back({0, 1, 6});
     EXPECT_THROW(ref::countEdgeTriangleCrossings(m), std::invalid_argument);
     EXPECT_THROW(ref::minimumSeparation(m, 2, 1.0), std::invalid_argument);
-}
-
-fs::path writeFile(const std::string& name, const std::string& text) {
-    const fs::path dir = fs::temp_directory_path() / "clothsim_self_intersection_test";
-    fs::create_directories(dir);
-    std::ofstream(dir / name) << text;
-    return dir / name;
-}
-
-std::string readError(const fs::path& path) {
-    try {
-        ref::readObj(path.string());
-    } catch (const std::runtime_error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
-
-TEST(SelfIntersection, ReadObjTakesEveryCornerForm) {
-    const fs::path path = writeFile("good.obj",
-                                    "# a comment\n"
-                                    "o sheet\n"
-                                    "v 0 0 0\n"
-                                    "v 1 0 0  # trailing comment\n"
-                                    "v 1 1 0\r\n"
-                                    "v 0 1 0.5 1.0\n"
-                                    "vt 0 0\nvn 0 0 1\n"
-                                    "f 1/1/1 2/2/2 3/3/3\n"
-                                    "f 1//1 2//1 3//1 4//1\n"
-                                    "l 1 2\n"
-                                    "s off\n"
-                                    "f -4/1 -3/1 -1/1\n"
-                                    "f 2 3 4\n");
-    const TriangleMesh m = ref::readObj(path.string());
-    ASSERT_EQ(m.positions.size(), 4u);
-    EXPECT_EQ(m.positions[3], (V3{0, 1, 0.5}));
-    const std::vector<std::array<int, 3>> expected{
-        {0, 1, 2}, {0, 1, 2}, {0, 2, 3}, {0, 1, 3}, {1, 2, 3}};
-    EXPECT_EQ(m.triangles, expected);
-}
-
-TEST(SelfIntersection, ReadObjNamesFileAndLineOfBadInput) {
-    const fs::path bad = writeFile("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
-    const std::string message = readError(bad);
-    EXPECT_NE(message.find(bad.string() + ":4"), std::string::npos) << message;
-    EXPECT_NE(message.find("out of range"), std::string::npos) << message;
-    for (const char* text :
-         {"v 0 0\n", "v 0 0 zero\n", "v 0 0 nan\n", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n",
-          "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 0 2\n", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n",
-          "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2/x 3\n", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1/1 2 3\n"}) {
-        const fs::path path = writeFile("bad.obj", text);
-        EXPECT_NE(readError(path).find(path.string() + ":"), std::string::npos) << text;
-    }
-    EXPECT_NE(readError("/nonexistent/clothsim.obj").find("/nonexistent/clothsim.obj"),
-              std::string::npos);
 }
 
 }  // namespace
