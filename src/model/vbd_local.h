@@ -108,22 +108,25 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                    const BendingWeights& bending, T bendDiagonal, const Positions& x,
                    const Positions& xn, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
     const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
-    const Vec3<T> pk = positionAt(x, k);
-    for (const StencilSpring<T>& s : springs) {
-        if (!interior) {
-            const int qi = i + s.di, qj = j + s.dj;
-            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+    const Vec3<T> pk = positionAt(x, k), pkn = positionAt(xn, k);
+    onLane(local, [&](VbdLane<T>& a) {  // addVbdSpring and addVbdSpringDamping, summed in place
+        for (const StencilSpring<T>& s : springs) {
+            if (!interior) {
+                const int qi = i + s.di, qj = j + s.dj;
+                if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+            }
+            const std::int64_t q = k + s.indexOffset;
+            const Vec3<T> pq = positionAt(x, q), d = pq - pk;
+            vbdSpringLane(d.x, d.y, d.z, stiffnessAt(s, i, j, nu, nv), s.restLength, a);
+            if (s.damping > 0) {
+                const bool half = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
+                const Vec3<T> pqn = positionAt(xn, q), dn = pqn - pkn;
+                const Vec3<T> w = (pq - pqn) - (pk - pkn);
+                vbdSpringDampingLane(dn.x, dn.y, dn.z, w.x, w.y, w.z,
+                                     half ? T(0.5) * s.damping : s.damping, s.restLength, h, a);
+            }
         }
-        const std::int64_t q = k + s.indexOffset;
-        const Vec3<T> pq = positionAt(x, q);
-        addVbdSpring(pk, pq, stiffnessAt(s, i, j, nu, nv), s.restLength, local);
-        if (s.damping > 0) {
-            const bool half = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
-            const Vec3<T> pkn = positionAt(xn, k), pqn = positionAt(xn, q);
-            addVbdSpringDamping(pkn, pqn, (pq - pqn) - (pk - pkn),
-                                half ? T(0.5) * s.damping : s.damping, s.restLength, h, local);
-        }
-    }
+    });
     if (bending.active()) {
         const auto at = [&](int a, int b) { return positionAt(x, std::int64_t(b) * nu + a); };
         local.gradient -= bendingForce<T>(bending, i, j, at);
