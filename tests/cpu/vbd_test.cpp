@@ -107,9 +107,8 @@ TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
             for (int threads : {1, 3}) {
                 if (isa == CpuIsa::Scalar && threads == 1) continue;
                 test::expectSameBits(run(isa, threads), scalar,
-                                     std::string(precisionName(precision)) + " " +
-                                         cpuIsaName(isa) + " " + std::to_string(threads) +
-                                         " threads");
+                                     std::string(precisionName(precision)) + " " + cpuIsaName(isa) +
+                                         " " + std::to_string(threads) + " threads");
             }
         }
     }
