@@ -102,8 +102,11 @@ private:
 
     // One step of the scene's integrator (gpu_solver_steps.cpp).
     void dispatchStep(long stepNumber);
-    void runPass(Kernel k) const;
-    void runStepPass(Kernel k, long stepNumber) const;
+    // One dispatch over the grid, or over groupsX columns of work groups (vbd's sweep: a fifth).
+    void runPass(Kernel k) const { runPass(k, groupsX_); }
+    void runPass(Kernel k, int groupsX) const;
+    void runStepPass(Kernel k, long stepNumber) const { runStepPass(k, stepNumber, groupsX_); }
+    void runStepPass(Kernel k, long stepNumber, int groupsX) const;
     void runManySteps(long firstStep, long count) const;
     void stepVerlet(long stepNumber);
     void stepRk4(long stepNumber) const;

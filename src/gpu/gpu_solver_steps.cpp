@@ -23,16 +23,16 @@ constexpr int kIterationsPerRead = 8;
 }  // namespace
 
 // One dispatch over the grid (2-D, DESIGN.md §3).
-void GpuSolver::runPass(Kernel k) const {
+void GpuSolver::runPass(Kernel k, int groupsX) const {
     glUseProgram(programs_[int(k)]);
-    glDispatchCompute(GLuint(groupsX_), GLuint(groupsY_), 1);
+    glDispatchCompute(GLuint(groupsX), GLuint(groupsY_), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
 // A pass that writes the state (step_end.glsl): it needs the step's number.
-void GpuSolver::runStepPass(Kernel k, long stepNumber) const {
+void GpuSolver::runStepPass(Kernel k, long stepNumber, int groupsX) const {
     glProgramUniform1ui(programs_[int(k)], gpu::kStepLocation, GLuint(stepNumber));
-    runPass(k);
+    runPass(k, groupsX);
 }
 
 // Steps firstStep .. firstStep + count − 1 of explicit or symplectic Euler in one dispatch of one
@@ -143,12 +143,8 @@ void GpuSolver::stepVbd(long stepNumber) const {
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
         for (int colour = 0; colour < kVbdColours; ++colour) {
-            const GLuint sweep = programs_[int(Kernel::VbdSweep)];
-            glProgramUniform1i(sweep, gpu::kVbdLocation, colour);
-            glProgramUniform1ui(sweep, gpu::kStepLocation, GLuint(stepNumber));
-            glUseProgram(sweep);  // a fifth of the columns: the colour's (vbd_sweep.comp)
-            glDispatchCompute(GLuint(vbdGroupsX_), GLuint(groupsY_), 1);
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            glProgramUniform1i(programs_[int(Kernel::VbdSweep)], gpu::kVbdLocation, colour);
+            runStepPass(Kernel::VbdSweep, stepNumber, vbdGroupsX_);  // the colour's columns
         }
         if (chebyshevRho_ > 0) {
             omega = chebyshevOmega(n, chebyshevRho_, omega);

@@ -27,6 +27,7 @@ struct VbdChunk {
     alignas(64) T xx[kVbdChunk], yy[kVbdChunk], zz[kVbdChunk];
     alignas(64) T xy[kVbdChunk], xz[kVbdChunk], yz[kVbdChunk];
     alignas(64) T nx[kVbdChunk], ny[kVbdChunk], nz[kVbdChunk];
+    alignas(64) T mass[kVbdChunk];  // m = 1/(1/m), once per vertex
     CLOTH_LANE VbdLane<T> get(int m) const {
         return {gx[m], gy[m], gz[m], xx[m], yy[m], zz[m], xy[m], xz[m], yz[m]};
     }
@@ -52,13 +53,12 @@ void vbdStore(T* __restrict x, T* __restrict y, T* __restrict z, const VbdChunk<
 // chunk's vertices m (x, x_n five apart, y fifteen: its three components interleaved).
 template <typename T>
 void vbdInertiaLoop(T* __restrict g, const T* __restrict x, const T* __restrict y,
-                    const T* __restrict start, const T* __restrict inverseMass, T h, T dampingRate,
+                    const T* __restrict start, const T* __restrict mass, T h, T dampingRate,
                     int n) {
     for (int m = 0; m < n; ++m) {
         const std::int64_t k = 5 * std::int64_t(m);
-        const T mass = T(1) / inverseMass[k];
-        g[m] = T(0) + vbdInertiaGradient(x[k], y[3 * k], start[k], vbdInertiaWeight(mass, h),
-                                         vbdDragWeight(mass, h, dampingRate));
+        g[m] = T(0) + vbdInertiaGradient(x[k], y[3 * k], start[k], vbdInertiaWeight(mass[m], h),
+                                         vbdDragWeight(mass[m], h, dampingRate));
     }
 }
 
@@ -88,15 +88,13 @@ void vbdChunk(const VbdRow<T>& r, std::int64_t k0, int n, std::uint8_t* __restri
     const T* __restrict inverseMass = r.inverseMass;
     const T h = r.h, dampingRate = r.dampingRate;
     const std::int64_t skip = r.skip;
+    for (int m = 0; m < n; ++m) c.mass[m] = T(1) / inverseMass[k0 + 5 * std::int64_t(m)];
     // The inertia first, as addVbdInertia starts the sum from zero.
-    vbdInertiaLoop(c.gx, px + k0, r.inertial + 3 * k0, nx + k0, inverseMass + k0, h, dampingRate,
-                   n);
-    vbdInertiaLoop(c.gy, py + k0, r.inertial + 3 * k0 + 1, ny + k0, inverseMass + k0, h,
-                   dampingRate, n);
-    vbdInertiaLoop(c.gz, pz + k0, r.inertial + 3 * k0 + 2, nz + k0, inverseMass + k0, h,
-                   dampingRate, n);
+    vbdInertiaLoop(c.gx, px + k0, r.inertial + 3 * k0, nx + k0, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gy, py + k0, r.inertial + 3 * k0 + 1, ny + k0, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gz, pz + k0, r.inertial + 3 * k0 + 2, nz + k0, c.mass, h, dampingRate, n);
     for (int m = 0; m < n; ++m) {
-        const T mass = T(1) / inverseMass[k0 + 5 * std::int64_t(m)];
+        const T mass = c.mass[m];
         const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
         c.xx[m] = diagonal, c.yy[m] = diagonal, c.zz[m] = diagonal;
         c.xy[m] = T(0), c.xz[m] = T(0), c.yz[m] = T(0);
@@ -149,9 +147,8 @@ void vbdChunk(const VbdRow<T>& r, std::int64_t k0, int n, std::uint8_t* __restri
     const std::uint8_t* __restrict pinned = r.pinned;
     for (int m = 0; m < n; ++m) {
         const std::int64_t k = k0 + 5 * std::int64_t(m);
-        const T mass = T(1) / inverseMass[k];
         T x = px[k], yk = py[k], z = pz[k];
-        const bool stepped = vbdNewtonLane(c.get(m), double(mass) / (double(h) * h), x, yk, z);
+        const bool stepped = vbdNewtonLane(c.get(m), double(c.mass[m]) / (double(h) * h), x, yk, z);
         c.nx[m] = x, c.ny[m] = yk, c.nz[m] = z;
         const bool free = pinned[k] == 0;  // read in every lane: no masked load
         moved[m] = std::uint8_t(unsigned(stepped) & unsigned(free) & unsigned(k != skip));
