@@ -89,7 +89,8 @@ SpeedRow timeTarget(const Scene& scene, int side, const BenchTarget& t, const Ba
     r.bytesPerVertex =
         onGpu ? double(device.bytes) / double(r.vertices)
               : double(cpuBytesPerVertex(t.precision, m, scene.integrator.preconditioner,
-                                         !scene.colliders.empty()));
+                                         !scene.colliders.empty(),
+                                         resolveCpuIsa(choice.isa) != CpuIsa::Scalar));
     if (!onGpu) return r;
     // The variant as asked (one curve per variant in the plot), the dispatch as run.
     r.variant = device.variant + "/" + stepDispatchName(choice.gpu.dispatch);

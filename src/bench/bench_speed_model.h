@@ -44,10 +44,12 @@ inline constexpr const char* kTrafficModel =
 // colliders its contacts in the solve, a vec3 and a scalar), vbd the
 // step's start, the inertial target and the previous velocity (Chebyshev's two iterates and,
 // with a material's bending, its Hessian diagonal, one scalar, are not counted), and the
-// inverse mass 1/m_k (one scalar per vertex); the threads' scratch rows are O(side), not counted.
+// inverse mass 1/m_k (one scalar per vertex); with row kernels vbd keeps the copy its kernel
+// reads (cpu/cpu_vbd_phases.h: x, x_n, y, 1/m and the pin flag); the threads' scratch rows are
+// O(side), not counted.
 inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
                                      Preconditioner preconditioner = Preconditioner::Jacobi,
-                                     bool colliders = false) {
+                                     bool colliders = false, bool rowKernels = true) {
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
     std::size_t vectors = 4;
     if (method == Method::Rk4 || method == Method::ImplicitEuler) vectors += 4;
@@ -55,7 +57,9 @@ inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
     std::size_t scalars = vectors * 3 + 1;
     if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
     if (method == Method::ImplicitEuler && colliders) scalars += 4;
-    return scalars * scalar + 1;
+    const bool phases = method == Method::Vbd && rowKernels;
+    if (phases) scalars += 3 * 3 + 1;
+    return scalars * scalar + (phases ? 2 : 1);
 }
 
 // The baseline (bench_baseline.h): x, v and their next values, 4 vec3 of double.

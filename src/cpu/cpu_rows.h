@@ -104,24 +104,29 @@ struct ContactRow {
 };
 
 // vbd: the Newton steps of a run of one colour's vertices in an interior row (every vertex two
-// or more from every border), k = first + 5m for m < n, each on its local potential as
-// cpu_vbd.cpp's vbdVertex builds it (model/vbd_lane.h: the same operations, the same bits). The
-// arrays are the whole grid's. A pinned vertex, and `skip` (the grabbed one, which the caller
-// steps), keep their position; moved[m] says whether vertex m took its step (the caller then
-// applies the colliders).
+// or more from every border), grid vertex k = first + 5m for m < n, each on its local potential
+// as cpu_vbd.cpp's vbdVertex builds it (model/vbd_lane.h: the same operations, the same bits).
+// The kernel reads the solver's copy in phases (cpu/cpu_vbd_phases.h), where vertex m of the
+// run is at + m and its neighbours lie a fixed offset away; it writes the moved vertices there
+// and into the iterate. A pinned vertex, and `skip` (the grabbed one, which the caller steps),
+// keep their position; moved[m] says whether vertex m took its step (the caller then applies the
+// colliders).
 template <typename T>
 struct VbdRow {
-    Row3<T> x{nullptr, nullptr, nullptr};        // the iterate: read, written after the steps
-    ConstRow3<T> xn{nullptr, nullptr, nullptr};  // the step's start
-    const T* inertial = nullptr;                 // y, three per vertex
-    const T* inverseMass = nullptr;              // 1/m [1/kg]
-    const T* bendDiagonal = nullptr;             // W_kk, with bending
+    Row3<T> x{nullptr, nullptr, nullptr};  // the iterate, in the grid's order: written
+    // In phases: the iterate (read, written), the step's start, the inertial target y, 1/m
+    // [1/kg], W_kk (with bending), the pins.
+    Row3<T> px{nullptr, nullptr, nullptr};
+    ConstRow3<T> pxn{nullptr, nullptr, nullptr}, py{nullptr, nullptr, nullptr};
+    const T* inverseMass = nullptr;
+    const T* bendDiagonal = nullptr;
     const std::uint8_t* pinned = nullptr;
     std::uint8_t* moved = nullptr;
-    std::int64_t first = 0, skip = -1;  // first: the run's first vertex; skip: −1 for none
-    std::int64_t nu = 0;                // the row stride
-    int springs = 0;                    // the stencil's springs, as the solver's springs_
-    std::int64_t offset[12]{};          // q − k
+    // first: the run's first vertex in the grid, at: in phases; skip: −1 for none.
+    std::int64_t first = 0, at = 0, skip = -1;
+    int springs = 0;            // the stencil's springs, as the solver's springs_
+    std::int64_t offset[12]{};  // q − k in phases
+    std::int64_t bendAt[13]{};  // bendingLane's 13 stencil vertices, in phases
     T stiffness[12]{}, restLength[12]{}, damping[12]{};
     T h{}, dampingRate{};
     bool bending = false;  // with bending: its weights w_u, w_v, t inside the sheet (bending.h)

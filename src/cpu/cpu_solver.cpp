@@ -60,6 +60,10 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     if (method_ == Method::Vbd) {
         xStart_.assign(n, Vec3<T>(0));
         for (auto* a : {&inertial_, &vPrevious_}) a->assign(n, Vec3<T>(0));
+        if (kernels_) {
+            phases_.configure(nu, nv);
+            phases_.bendDiagonal.assign(bendingDiagonal_.size(), T(0));
+        }
     }  // (its Chebyshev iterates are takeParameters': a new ρ may ask for them)
     // Bands of whole rows, on chunk boundaries (reduce()), so each row's sweep is one thread's.
     // (Self-collision's threads need bands: a chunk of at most a sixteenth of the rows.)
@@ -141,6 +145,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
         for (int j = 0; j < grid_.nv; ++j)
             for (int i = 0; i < grid_.nu; ++i)
                 bendingDiagonal_.push_back(bendingDiagonal<T>(bending_, i, j));
+    if (phases_.active()) phases_.bendDiagonal.assign(bendingDiagonal_.size(), T(0));
     gravity_ = cast<T>(scene.gravity);
     maxSpeed_ = scene.maxSpeed;
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
@@ -336,14 +341,18 @@ SimState CpuSolver<T>::read() const {
 template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
-    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_, &xStart_})
+    for (const Soa3<T>* a :
+         {&x_, &v_, &f_, &xNext_, &vNext_, &xStart_, &phases_.x, &phases_.xn, &phases_.y})
         vectors += std::size_t(a->size());
     for (const auto* a : {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_,
                           &ap_, &z_, &inertial_, &vPrevious_, &xBefore_, &xBeforeLast_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
            contacts_.size() * sizeof(SolveContact<T>) +
-           (inverseMass_.size() + bendingDiagonal_.size()) * sizeof(T) + pinned_.size();
+           (inverseMass_.size() + bendingDiagonal_.size() + phases_.inverseMass.size() +
+            phases_.bendDiagonal.size()) *
+               sizeof(T) +
+           pinned_.size() + phases_.pinned.size();
 }
 
 template <typename T>

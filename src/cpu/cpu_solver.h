@@ -19,6 +19,7 @@
 #include "cpu/cpu_rows.h"
 #include "cpu/cpu_self_collision.h"
 #include "cpu/cpu_soa.h"
+#include "cpu/cpu_vbd_phases.h"
 #include "cpu/worker_pool.h"
 #include "model/bending.h"
 #include "model/implicit_system.h"
@@ -134,9 +135,12 @@ private:
     void vbdStart(const Band& band, const Team& team, long stepNumber);
     void vbdSweep(const Band& band, int colour);
     VbdRow<T> vbdRow();
+    void vbdRunOffsets(VbdRow<T>& r, int i) const;
+    void vbdSet(std::int64_t k, const Vec3<T>& x);  // the iterate, and its copy in phases
     void vbdVertex(std::int64_t k, int i, int j);
     void vbdCollide(std::int64_t k, Vec3<T>& x) const;
-    void vbdCollideRun(std::int64_t first, const std::uint8_t* moved, int n);
+    void vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved, int n);
+    void vbdFillPhases(const Band& band);
     void vbdFriction(Vec3<T>& x, const Vec3<T>& p, const Vec3<T>& before, const Vec3<T>& v) const;
     void vbdAccelerate(const Band& band, double omega);
     // The end of every step: pins, colliders in scene order, then the instability check.
@@ -210,6 +214,7 @@ private:
     Soa3<T> xStart_;
     std::vector<Vec3<T>> inertial_, vPrevious_, xBefore_, xBeforeLast_;
     std::vector<T> bendingDiagonal_;  // W_kk per vertex (model/vbd_local.h), with bending only
+    VbdPhases<T> phases_;             // what the row kernel reads (with row kernels)
     int vbdIterations_ = 0;
     double chebyshevRho_ = 0;
     long vbdHistoryFrom_ = 2;          // the first step whose v_{n−1} is in vPrevious_ (1-based)

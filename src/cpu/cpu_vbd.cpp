@@ -71,7 +71,37 @@ void CpuSolver<T>::vbdStart(const Band& band, const Team& team, long stepNumber)
         x_.set(k, x);
         if (!xBefore_.empty()) xBefore_[k] = x;
     }
+    if (phases_.active()) vbdFillPhases(band);
     team.sync();
+}
+
+// The row kernel's copy of this band's rows, refreshed whole (pins and masses can change): each
+// phase of a row written contiguously from every fifth vertex.
+template <typename T>
+void CpuSolver<T>::vbdFillPhases(const Band& band) {
+    const int nu = grid_.nu;
+    const bool bending = bending_.active();
+    for (int j = band.rowBegin; j < band.rowEnd; ++j)
+        for (int p = 0; p < kVbdColours && p < nu; ++p) {
+            const std::int64_t k0 = std::int64_t(j) * nu + p, a0 = phases_.at(p, j);
+            const int count = (nu - p + kVbdColours - 1) / kVbdColours;
+            const Vec3<T>* __restrict y = inertial_.data() + k0;
+            const T* __restrict inverseMass = inverseMass_.data() + k0;
+            const std::uint8_t* __restrict pinned = pinned_.data() + k0;
+            for (int m = 0; m < count; ++m) {
+                const std::int64_t k = kVbdColours * std::int64_t(m), a = a0 + m;
+                phases_.x.x[a] = x_.x[k0 + k], phases_.x.y[a] = x_.y[k0 + k];
+                phases_.x.z[a] = x_.z[k0 + k];
+                phases_.xn.x[a] = xStart_.x[k0 + k], phases_.xn.y[a] = xStart_.y[k0 + k];
+                phases_.xn.z[a] = xStart_.z[k0 + k];
+                phases_.y.x[a] = y[k].x, phases_.y.y[a] = y[k].y, phases_.y.z[a] = y[k].z;
+                phases_.inverseMass[a] = inverseMass[k];
+                phases_.pinned[a] = pinned[k];
+            }
+            if (bending)
+                for (int m = 0; m < count; ++m)
+                    phases_.bendDiagonal[a0 + m] = bendingDiagonal_[k0 + kVbdColours * m];
+        }
 }
 
 // The Newton steps of one colour's vertices in this band's rows: in row j the colour's columns
@@ -97,11 +127,13 @@ void CpuSolver<T>::vbdSweep(const Band& band, int colour) {
             for (; i <= nu - 3;) {
                 const int n = std::min(kRun, (nu - 3 - i) / kVbdColours + 1);
                 row.first = std::int64_t(j) * nu + i;
+                row.at = phases_.at(i, j);
+                vbdRunOffsets(row, i);
                 kernels_->vbd(row, n);
                 if (row.skip >= row.first && row.skip < row.first + kVbdColours * n &&
                     (row.skip - row.first) % kVbdColours == 0 && !pinned_[row.skip])
                     vbdVertex(row.skip, int(row.skip % nu), j);
-                if (!colliders_.empty()) vbdCollideRun(row.first, moved, n);
+                if (!colliders_.empty()) vbdCollideRun(row.first, row.at, moved, n);
                 i += kVbdColours * n;
             }
         }
@@ -115,16 +147,15 @@ template <typename T>
 VbdRow<T> CpuSolver<T>::vbdRow() {
     VbdRow<T> r{};
     r.x = x_.row(0);
-    r.xn = xStart_.row(0);
-    r.inertial = &inertial_[0].x;
-    r.inverseMass = inverseMass_.data();
-    r.bendDiagonal = bendingDiagonal_.data();
-    r.pinned = pinned_.data();
+    r.px = phases_.x.row(0);
+    r.pxn = phases_.xn.row(0);
+    r.py = phases_.y.row(0);
+    r.inverseMass = phases_.inverseMass.data();
+    r.bendDiagonal = phases_.bendDiagonal.data();
+    r.pinned = phases_.pinned.data();
     r.skip = grab_ ? grab_->vertex : -1;
-    r.nu = grid_.nu;
     r.springs = int(springs_.size());
     for (std::size_t s = 0; s < springs_.size(); ++s) {
-        r.offset[s] = springs_[s].indexOffset;
         r.stiffness[s] = springs_[s].stiffness;
         r.restLength[s] = springs_[s].restLength;
         r.damping[s] = springs_[s].damping;
@@ -136,6 +167,24 @@ VbdRow<T> CpuSolver<T>::vbdRow() {
     r.wv = T(bending_.alongV);
     r.t = T(bending_.twist);
     return r;
+}
+
+// The offsets in phases of a run from column i (they depend on i mod 5): the springs' far ends
+// and bendingLane's stencil (row j's columns −2 … 2, rows j ∓ 1's −1 … 1, rows j ∓ 2).
+template <typename T>
+void CpuSolver<T>::vbdRunOffsets(VbdRow<T>& r, int i) const {
+    for (std::size_t s = 0; s < springs_.size(); ++s)
+        r.offset[s] = phases_.offset(i, springs_[s].di, springs_[s].dj);
+    static constexpr int kBend[13][2] = {{-2, 0},  {-1, 0}, {0, 0},  {1, 0},  {2, 0},
+                                         {-1, -1}, {0, -1}, {1, -1}, {-1, 1}, {0, 1},
+                                         {1, 1},   {0, -2}, {0, 2}};
+    for (int e = 0; e < 13; ++e) r.bendAt[e] = phases_.offset(i, kBend[e][0], kBend[e][1]);
+}
+
+template <typename T>
+void CpuSolver<T>::vbdSet(std::int64_t k, const Vec3<T>& x) {
+    x_.set(k, x);
+    if (phases_.active()) phases_.x.set(phases_.at(k), x);
 }
 
 // One vertex's Newton step on its local G, then the colliders' projection of the new position
@@ -152,35 +201,37 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
     if (grab_ && grab_->vertex == k) addVbdGrab(x, grab_->target, grab_->stiffness, local);
     if (!vbdNewtonStep(local, double(mass) / (double(h) * h), x)) return;
     vbdCollide(k, x);
-    x_.set(k, x);
+    vbdSet(k, x);
 }
 
-// vbdCollide on the run's vertices that moved (k = first + 5m, moved[m]), the colliders through
-// their row code (CpuColliders::applyRow: the same bits as apply, vertex by vertex) on the moved
-// vertices gathered into contiguous rows.
+// vbdCollide on the run's vertices that moved (k = first + 5m, in phases at + m, moved[m]): the
+// colliders through their row code (CpuColliders::applyRow: the same bits as apply, vertex by
+// vertex) on the whole run, read contiguously from the copy in phases; the vertices that did not
+// move keep their position.
 template <typename T>
-void CpuSolver<T>::vbdCollideRun(std::int64_t first, const std::uint8_t* moved, int n) {
+void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved,
+                                 int n) {
     constexpr int kRun = 64;
-    alignas(64) T p[3][kRun], v[3][kRun];
-    Vec3<T> x[kRun], before[kRun];
-    std::int64_t vertex[kRun];
+    alignas(64) T p[3][kRun], v[3][kRun], x[3][kRun], before[3][kRun];
     const T h = dt_t_;
-    int count = 0;
+    const T* position[3] = {phases_.x.x.data() + at, phases_.x.y.data() + at,
+                            phases_.x.z.data() + at};
+    const T* start[3] = {phases_.xn.x.data() + at, phases_.xn.y.data() + at,
+                         phases_.xn.z.data() + at};
+    for (int c = 0; c < 3; ++c)
+        for (int m = 0; m < n; ++m) {
+            x[c][m] = p[c][m] = position[c][m];
+            before[c][m] = v[c][m] = (position[c][m] - start[c][m]) / h;
+        }
+    colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_);
     for (int m = 0; m < n; ++m) {
-        if (!moved[m]) continue;
-        const std::int64_t k = first + std::int64_t(kVbdColours) * m;
-        x[count] = x_.get(k);
-        before[count] = (x[count] - xStart_.get(k)) / h;
-        for (int c = 0; c < 3; ++c) p[c][count] = x[count][c], v[c][count] = before[count][c];
-        vertex[count++] = k;
-    }
-    if (count == 0) return;
-    colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, count, *kernels_);
-    for (int m = 0; m < count; ++m) {
-        Vec3<T> y = x[m];
-        vbdFriction(y, Vec3<T>(p[0][m], p[1][m], p[2][m]), before[m],
+        const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old(x[0][m], x[1][m], x[2][m]);
+        if (!moved[m] || pushed == old) continue;  // nothing pushed it: vbdFriction keeps x
+        Vec3<T> y = old;
+        vbdFriction(y, pushed, Vec3<T>(before[0][m], before[1][m], before[2][m]),
                     Vec3<T>(v[0][m], v[1][m], v[2][m]));
-        x_.set(vertex[m], y);
+        x_.set(first + std::int64_t(kVbdColours) * m, y);
+        phases_.x.set(at + m, y);
     }
 }
 
@@ -222,7 +273,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
         if (omega > 1) {
             x = w * (x - xBeforeLast_[k]) + xBeforeLast_[k];
             vbdCollide(k, x);
-            x_.set(k, x);
+            vbdSet(k, x);
         }
         xBeforeLast_[k] = xBefore_[k];
         xBefore_[k] = x;
@@ -231,16 +282,20 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
-#define CLOTH_INSTANTIATE(T)                                                           \
-    template bool CpuSolver<T>::stepVbd(Band&, const Team&, long);                     \
-    template void CpuSolver<T>::vbdStart(const Band&, const Team&, long);              \
-    template void CpuSolver<T>::vbdSweep(const Band&, int);                            \
-    template VbdRow<T> CpuSolver<T>::vbdRow();                                         \
-    template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);                     \
-    template void CpuSolver<T>::vbdCollide(std::int64_t, Vec3<T>&) const;              \
-    template void CpuSolver<T>::vbdCollideRun(std::int64_t, const std::uint8_t*, int); \
-    template void CpuSolver<T>::vbdFriction(Vec3<T>&, const Vec3<T>&, const Vec3<T>&,  \
-                                            const Vec3<T>&) const;                     \
+#define CLOTH_INSTANTIATE(T)                                                                   \
+    template bool CpuSolver<T>::stepVbd(Band&, const Team&, long);                             \
+    template void CpuSolver<T>::vbdStart(const Band&, const Team&, long);                      \
+    template void CpuSolver<T>::vbdSweep(const Band&, int);                                    \
+    template VbdRow<T> CpuSolver<T>::vbdRow();                                                 \
+    template void CpuSolver<T>::vbdRunOffsets(VbdRow<T>&, int) const;                          \
+    template void CpuSolver<T>::vbdSet(std::int64_t, const Vec3<T>&);                          \
+    template void CpuSolver<T>::vbdFillPhases(const Band&);                                    \
+    template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);                             \
+    template void CpuSolver<T>::vbdCollide(std::int64_t, Vec3<T>&) const;                      \
+    template void CpuSolver<T>::vbdCollideRun(std::int64_t, std::int64_t, const std::uint8_t*, \
+                                              int);                                            \
+    template void CpuSolver<T>::vbdFriction(Vec3<T>&, const Vec3<T>&, const Vec3<T>&,          \
+                                            const Vec3<T>&) const;                             \
     template void CpuSolver<T>::vbdAccelerate(const Band&, double);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

@@ -56,54 +56,63 @@ CLOTH_LANE T vbdInertiaGradient(T x, T target, T start, T inertia, T drag) {
 }
 
 // The spring along d = x_q − x_k: g −= K (|d| − L)/|d| d, H += t I + (K − t)/|d|² d dᵀ with
-// t = K max(0, 1 − L/|d|); nothing below |d| = 1e-12 L.
+// t = K max(0, (|d| − L)/|d|); nothing below |d| = 1e-12 L. One division, 1/|d|, for the three
+// quotients (|d| − L is exact near the rest length, so the strain keeps float's precision).
 template <typename T>
 CLOTH_LANE void vbdSpringLane(T dx, T dy, T dz, T stiffness, T restLength, VbdLane<T>& a) {
     const T len = std::sqrt(dx * dx + dy * dy + dz * dz);
     if (!(len >= T(1e-12) * restLength)) return;
-    const T c = stiffness * (len - restLength) / len;
+    const T inverse = T(1) / len;
+    const T strain = (len - restLength) * inverse;
+    const T c = stiffness * strain;
     a.gx -= c * dx;
     a.gy -= c * dy;
     a.gz -= c * dz;
-    const T stretch = T(1) - restLength / len;
-    const T transverse = stiffness * (T(0) < stretch ? stretch : T(0));  // std::max's order
+    const T transverse = stiffness * (T(0) < strain ? strain : T(0));  // std::max's order
     vbdAddDiagonal(transverse, a);
-    vbdAddOuter((stiffness - transverse) / (len * len), dx, dy, dz, a);
+    vbdAddOuter((stiffness - transverse) * inverse * inverse, dx, dy, dz, a);
 }
 
 // The spring's damping on the step's displacement: d = x_q,n − x_k,n at the step's start, w the
-// displacement difference. g −= F_β(d, w)/h, H += βK/(h |d|²) d dᵀ.
+// displacement difference. With e = βK/|d|² (spring_math.h's springDampingCoefficient over
+// (w·d)): g −= e (w·d) d/h, H += e/h d dᵀ; nothing where |d| < 1e-12 L. One division, e (1/h is
+// the caller's loop invariant).
 template <typename T>
 CLOTH_LANE void vbdSpringDampingLane(T dx, T dy, T dz, T wx, T wy, T wz, T dampingK, T restLength,
-                                     T h, VbdLane<T>& a) {
-    T fx = T(0), fy = T(0), fz = T(0);
-    addSpringDamping(dx, dy, dz, wx, wy, wz, dampingK, restLength, fx, fy, fz);
-    a.gx -= fx / h;
-    a.gy -= fy / h;
-    a.gz -= fz / h;
+                                     T inverseH, VbdLane<T>& a) {
     const T d2 = dx * dx + dy * dy + dz * dz, floor = T(1e-12) * restLength;
-    if (d2 >= floor * floor) vbdAddOuter(dampingK / (h * d2), dx, dy, dz, a);
+    if (!(d2 >= floor * floor)) return;
+    const T e = dampingK / d2;
+    const T c = e * (wx * dx + wy * dy + wz * dz) * inverseH;
+    a.gx -= c * dx;
+    a.gy -= c * dy;
+    a.gz -= c * dz;
+    vbdAddOuter(e * inverseH, dx, dy, dz, a);
 }
 
 // The Newton step x ← x − H⁻¹g in double, H⁻¹ by the adjugate (glm::inverse's operations);
-// false, and x kept, where |det H| ≤ 1e-12 floor³ (vbdNewtonStep says why).
+// false, and x kept, where |det H| ≤ 1e-12 floor³ (vbdNewtonStep says why). Without a branch,
+// so that the row kernel's loop vectorises: a kept vertex selects its old x.
 template <typename T>
 CLOTH_LANE bool vbdNewtonLane(const VbdLane<T>& a, double floor, T& x, T& y, T& z) {
     const double d00 = a.xx, d01 = a.xy, d02 = a.xz, d11 = a.yy, d12 = a.yz, d22 = a.zz;
     const double c0 = d11 * d22 - d12 * d12, c1 = d01 * d22 - d12 * d02;
     const double c2 = d01 * d12 - d11 * d02;
     const double det = d00 * c0 - d01 * c1 + d02 * c2;
-    if (!(std::abs(det) > 1e-12 * floor * floor * floor)) return false;
-    const double s = 1.0 / det;
+    const bool step = std::abs(det) > 1e-12 * floor * floor * floor;
+    const double s = 1.0 / (step ? det : 1.0);
     const double i00 = c0 * s, i10 = -(d01 * d22 - d02 * d12) * s, i20 = c2 * s;
     const double i01 = -c1 * s, i11 = (d00 * d22 - d02 * d02) * s;
     const double i21 = -(d00 * d12 - d02 * d01) * s, i02 = c2 * s;
     const double i12 = -(d00 * d12 - d01 * d02) * s, i22 = (d00 * d11 - d01 * d01) * s;
     const double gx = a.gx, gy = a.gy, gz = a.gz;
-    x -= T(i00 * gx + i10 * gy + i20 * gz);
-    y -= T(i01 * gx + i11 * gy + i21 * gz);
-    z -= T(i02 * gx + i12 * gy + i22 * gz);
-    return true;
+    const T nx = x - T(i00 * gx + i10 * gy + i20 * gz);
+    const T ny = y - T(i01 * gx + i11 * gy + i21 * gz);
+    const T nz = z - T(i02 * gx + i12 * gy + i22 * gz);
+    x = step ? nx : x;
+    y = step ? ny : y;
+    z = step ? nz : z;
+    return step;
 }
 
 }  // namespace cloth

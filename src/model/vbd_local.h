@@ -77,7 +77,7 @@ void addVbdSpringDamping(const Vec3<T>& pkn, const Vec3<T>& pqn, const Vec3<T>& 
                          T restLength, T h, VbdLocal<T>& local) {
     const Vec3<T> d = pqn - pkn;
     onLane(local, [&](VbdLane<T>& a) {
-        vbdSpringDampingLane(d.x, d.y, d.z, w.x, w.y, w.z, dampingK, restLength, h, a);
+        vbdSpringDampingLane(d.x, d.y, d.z, w.x, w.y, w.z, dampingK, restLength, T(1) / h, a);
     });
 }
 
@@ -109,6 +109,7 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                    const Positions& xn, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
     const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
     const Vec3<T> pk = positionAt(x, k), pkn = positionAt(xn, k);
+    const T inverseH = T(1) / h;
     onLane(local, [&](VbdLane<T>& a) {  // addVbdSpring and addVbdSpringDamping, summed in place
         for (const StencilSpring<T>& s : springs) {
             if (!interior) {
@@ -123,7 +124,8 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                 const Vec3<T> pqn = positionAt(xn, q), dn = pqn - pkn;
                 const Vec3<T> w = (pq - pqn) - (pk - pkn);
                 vbdSpringDampingLane(dn.x, dn.y, dn.z, w.x, w.y, w.z,
-                                     half ? T(0.5) * s.damping : s.damping, s.restLength, h, a);
+                                     half ? T(0.5) * s.damping : s.damping, s.restLength, inverseH,
+                                     a);
             }
         }
     });

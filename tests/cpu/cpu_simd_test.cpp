@@ -190,11 +190,12 @@ TEST(CpuMemory, BytesPerVertexOfTheBenchModelAreWhatTheSolverAllocates) {
         CpuSolver<double> d(scene, 2);
         const Preconditioner p = scene.integrator.preconditioner;
         const bool colliders = !scene.colliders.empty();
+        const bool kernels = f.isa() != CpuIsa::Scalar;
         EXPECT_EQ(f.allocatedBytes(),
-                  64 * 40 * app::cpuBytesPerVertex(Precision::Float, m, p, colliders))
+                  64 * 40 * app::cpuBytesPerVertex(Precision::Float, m, p, colliders, kernels))
             << methodName(m);
         EXPECT_EQ(d.allocatedBytes(),
-                  64 * 40 * app::cpuBytesPerVertex(Precision::Double, m, p, colliders))
+                  64 * 40 * app::cpuBytesPerVertex(Precision::Double, m, p, colliders, kernels))
             << methodName(m);
         EXPECT_LE(d.scratchBytes(), 2 * (3 * 6 + 3) * 64 * sizeof(double)) << methodName(m);
     }

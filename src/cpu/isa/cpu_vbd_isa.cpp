@@ -15,10 +15,10 @@
 namespace cloth::CLOTH_ISA_NS {
 namespace {
 
-// vbd (cpu_rows.h VbdRow) on up to kVbdChunk vertices from k0: each term of the local problems
+// vbd (cpu_rows.h VbdRow) on up to kVbdChunk vertices from m0: each term of the local problems
 // in a loop of its own over the chunk's vertices, their sums kept in the chunk's arrays, so each
-// loop vectorises across the vertices (their loads five apart); then the Newton steps, and the
-// stores after every step is taken.
+// loop vectorises across the vertices (every load contiguous: the arrays are in phases); then
+// the Newton steps, and the stores after every step is taken.
 constexpr int kVbdChunk = 64;
 
 template <typename T>
@@ -37,62 +37,64 @@ struct VbdChunk {
     }
 };
 
-// The chunk's new positions into the iterate, where the vertex moved (in its own function: the
-// steps above read the iterate through restrict pointers).
+// The chunk's new positions, where the vertex moved, into the iterate in phases (contiguous,
+// from a) and in the grid's order (five apart, from k); in its own function: the steps above
+// read the iterate through restrict pointers.
 template <typename T>
-void vbdStore(T* __restrict x, T* __restrict y, T* __restrict z, const VbdChunk<T>& c,
-              const std::uint8_t* __restrict moved, std::int64_t k0, int n) {
+void vbdStore(Row3<T> phases, Row3<T> grid, const VbdChunk<T>& c,
+              const std::uint8_t* __restrict moved, std::int64_t a, std::int64_t k, int n) {
+    T* __restrict px = phases.x + a, * __restrict py = phases.y + a, * __restrict pz = phases.z + a;
     for (int m = 0; m < n; ++m) {
         if (!moved[m]) continue;
-        const std::int64_t k = k0 + 5 * std::int64_t(m);
-        x[k] = c.nx[m], y[k] = c.ny[m], z[k] = c.nz[m];
+        px[m] = c.nx[m], py[m] = c.ny[m], pz[m] = c.nz[m];
+    }
+    T* __restrict gx = grid.x + k, * __restrict gy = grid.y + k, * __restrict gz = grid.z + k;
+    for (int m = 0; m < n; ++m) {
+        if (!moved[m]) continue;
+        const std::int64_t q = 5 * std::int64_t(m);
+        gx[q] = c.nx[m], gy[q] = c.ny[m], gz[q] = c.nz[m];
     }
 }
 
 // One component of the inertia's gradient, g_m = inertia·(x − y) + drag·(x − x_n) for the
-// chunk's vertices m (x, x_n five apart, y fifteen: its three components interleaved).
+// chunk's vertices m.
 template <typename T>
 void vbdInertiaLoop(T* __restrict g, const T* __restrict x, const T* __restrict y,
                     const T* __restrict start, const T* __restrict mass, T h, T dampingRate,
                     int n) {
-    for (int m = 0; m < n; ++m) {
-        const std::int64_t k = 5 * std::int64_t(m);
-        g[m] = T(0) + vbdInertiaGradient(x[k], y[3 * k], start[k], vbdInertiaWeight(mass[m], h),
+    for (int m = 0; m < n; ++m)
+        g[m] = T(0) + vbdInertiaGradient(x[m], y[m], start[m], vbdInertiaWeight(mass[m], h),
                                          vbdDragWeight(mass[m], h, dampingRate));
-    }
 }
 
 // One component of the bending force subtracted from g, the 13 stencil values through pointers
-// of their own (each at the chunk's first vertex, five apart): with offsets the compiler could
-// see, it would group the loads and give up on the group of five (hence not inlined either).
+// of their own (each at the chunk's first vertex).
 template <typename T>
-[[gnu::noinline]] void vbdBendingLoop(T* __restrict g, const T* const (&p)[13], T u1, T u0, T v1,
-                                      T v0, T plus, T minus, int n) {
+void vbdBendingLoop(T* __restrict g, const T* const (&p)[13], T u1, T u0, T v1, T v0, T plus,
+                    T minus, int n) {
     const T* __restrict a0 = p[0], * __restrict a1 = p[1], * __restrict a2 = p[2];
     const T* __restrict a3 = p[3], * __restrict a4 = p[4], * __restrict b0 = p[5];
     const T* __restrict b1 = p[6], * __restrict b2 = p[7], * __restrict c0 = p[8];
     const T* __restrict c1 = p[9], * __restrict c2 = p[10], * __restrict d = p[11];
     const T* __restrict e = p[12];
-    for (int m = 0; m < n; ++m) {
-        const std::int64_t k = 5 * std::int64_t(m);
-        g[m] -= bendingLane(a0[k], a1[k], a2[k], a3[k], a4[k], b0[k], b1[k], b2[k], c0[k], c1[k],
-                            c2[k], d[k], e[k], u1, u0, v1, v0, plus, minus);
-    }
+    for (int m = 0; m < n; ++m)
+        g[m] -= bendingLane(a0[m], a1[m], a2[m], a3[m], a4[m], b0[m], b1[m], b2[m], c0[m], c1[m],
+                            c2[m], d[m], e[m], u1, u0, v1, v0, plus, minus);
 }
 
 template <typename T>
-void vbdChunk(const VbdRow<T>& r, std::int64_t k0, int n, std::uint8_t* __restrict moved) {
+void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     VbdChunk<T> c;
-    const T* __restrict px = r.x.x, * __restrict py = r.x.y, * __restrict pz = r.x.z;
-    const T* __restrict nx = r.xn.x, * __restrict ny = r.xn.y, * __restrict nz = r.xn.z;
-    const T* __restrict inverseMass = r.inverseMass;
-    const T h = r.h, dampingRate = r.dampingRate;
-    const std::int64_t skip = r.skip;
-    for (int m = 0; m < n; ++m) c.mass[m] = T(1) / inverseMass[k0 + 5 * std::int64_t(m)];
+    const std::int64_t a0 = r.at + m0;
+    const T* __restrict px = r.px.x + a0, * __restrict py = r.px.y + a0, * __restrict pz = r.px.z + a0;
+    const T* __restrict nx = r.pxn.x + a0, * __restrict ny = r.pxn.y + a0, * __restrict nz = r.pxn.z + a0;
+    const T* __restrict inverseMass = r.inverseMass + a0;
+    const T h = r.h, dampingRate = r.dampingRate, inverseH = T(1) / r.h;
+    for (int m = 0; m < n; ++m) c.mass[m] = T(1) / inverseMass[m];
     // The inertia first, as addVbdInertia starts the sum from zero.
-    vbdInertiaLoop(c.gx, px + k0, r.inertial + 3 * k0, nx + k0, c.mass, h, dampingRate, n);
-    vbdInertiaLoop(c.gy, py + k0, r.inertial + 3 * k0 + 1, ny + k0, c.mass, h, dampingRate, n);
-    vbdInertiaLoop(c.gz, pz + k0, r.inertial + 3 * k0 + 2, nz + k0, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gx, px, r.py.x + a0, nx, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gy, py, r.py.y + a0, ny, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gz, pz, r.py.z + a0, nz, c.mass, h, dampingRate, n);
     for (int m = 0; m < n; ++m) {
         const T mass = c.mass[m];
         const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
@@ -101,23 +103,23 @@ void vbdChunk(const VbdRow<T>& r, std::int64_t k0, int n, std::uint8_t* __restri
     }
     for (int s = 0; s < r.springs; ++s) {
         const std::int64_t o = r.offset[s];
+        const T* __restrict qx = px + o, * __restrict qy = py + o, * __restrict qz = pz + o;
         const T K = r.stiffness[s], L = r.restLength[s], beta = r.damping[s];
         if (beta > 0) {
+            const T* __restrict qnx = nx + o, * __restrict qny = ny + o, * __restrict qnz = nz + o;
             for (int m = 0; m < n; ++m) {
-                const std::int64_t k = k0 + 5 * std::int64_t(m), q = k + o;
                 VbdLane<T> a = c.get(m);
-                vbdSpringLane(px[q] - px[k], py[q] - py[k], pz[q] - pz[k], K, L, a);
-                vbdSpringDampingLane(nx[q] - nx[k], ny[q] - ny[k], nz[q] - nz[k],
-                                     (px[q] - nx[q]) - (px[k] - nx[k]),
-                                     (py[q] - ny[q]) - (py[k] - ny[k]),
-                                     (pz[q] - nz[q]) - (pz[k] - nz[k]), beta, L, h, a);
+                vbdSpringLane(qx[m] - px[m], qy[m] - py[m], qz[m] - pz[m], K, L, a);
+                vbdSpringDampingLane(qnx[m] - nx[m], qny[m] - ny[m], qnz[m] - nz[m],
+                                     (qx[m] - qnx[m]) - (px[m] - nx[m]),
+                                     (qy[m] - qny[m]) - (py[m] - ny[m]),
+                                     (qz[m] - qnz[m]) - (pz[m] - nz[m]), beta, L, inverseH, a);
                 c.set(m, a);
             }
         } else {
             for (int m = 0; m < n; ++m) {
-                const std::int64_t k = k0 + 5 * std::int64_t(m), q = k + o;
                 VbdLane<T> a = c.get(m);
-                vbdSpringLane(px[q] - px[k], py[q] - py[k], pz[q] - pz[k], K, L, a);
+                vbdSpringLane(qx[m] - px[m], qy[m] - py[m], qz[m] - pz[m], K, L, a);
                 c.set(m, a);
             }
         }
@@ -125,44 +127,40 @@ void vbdChunk(const VbdRow<T>& r, std::int64_t k0, int n, std::uint8_t* __restri
     if (r.bending) {
         const T u1 = r.wu * T(1), u0 = r.wu * T(-2), v1 = r.wv * T(1), v0 = r.wv * T(-2);
         const T plus = r.t * T(1), minus = r.t * T(-1);
-        const std::int64_t nu = r.nu;
-        // bendingLane's order: row j's columns −2 … 2, row j − 1's and j + 1's −1 … 1, rows j ∓ 2.
-        const std::int64_t at[13] = {-2,      -1,     0,  1,      2,       -nu - 1, -nu,
-                                     -nu + 1, nu - 1, nu, nu + 1, -2 * nu, 2 * nu};
         for (int axis = 0; axis < 3; ++axis) {
-            const T* base = (axis == 0 ? px : axis == 1 ? py : pz) + k0;
+            const T* base = axis == 0 ? px : axis == 1 ? py : pz;
             const T* p[13];
-            for (int e = 0; e < 13; ++e) p[e] = base + at[e];
+            for (int e = 0; e < 13; ++e) p[e] = base + r.bendAt[e];
             vbdBendingLoop(axis == 0   ? c.gx
                            : axis == 1 ? c.gy
                                        : c.gz,
                            p, u1, u0, v1, v0, plus, minus, n);
         }
-        const T* __restrict w = r.bendDiagonal;
+        const T* __restrict w = r.bendDiagonal + a0;
         for (int m = 0; m < n; ++m) {
-            const T s = w[k0 + 5 * std::int64_t(m)];
+            const T s = w[m];
             c.xx[m] += s, c.yy[m] += s, c.zz[m] += s;
         }
     }
-    const std::uint8_t* __restrict pinned = r.pinned;
+    const std::uint8_t* __restrict pinned = r.pinned + a0;
+    std::uint8_t* __restrict moved = r.moved + m0;
+    const std::int64_t k0 = r.first + 5 * std::int64_t(m0);
     for (int m = 0; m < n; ++m) {
-        const std::int64_t k = k0 + 5 * std::int64_t(m);
-        T x = px[k], yk = py[k], z = pz[k];
+        T x = px[m], yk = py[m], z = pz[m];
         const bool stepped = vbdNewtonLane(c.get(m), double(c.mass[m]) / (double(h) * h), x, yk, z);
         c.nx[m] = x, c.ny[m] = yk, c.nz[m] = z;
-        const bool free = pinned[k] == 0;  // read in every lane: no masked load
-        moved[m] = std::uint8_t(unsigned(stepped) & unsigned(free) & unsigned(k != skip));
+        const bool free = pinned[m] == 0;  // read in every lane: no masked load
+        const bool grabbed = k0 + 5 * std::int64_t(m) == r.skip;
+        moved[m] = std::uint8_t(unsigned(stepped) & unsigned(free) & unsigned(!grabbed));
     }
-    vbdStore(r.x.x, r.x.y, r.x.z, c, moved, k0, n);
+    vbdStore(r.px, r.x, c, moved, a0, k0, n);
 }
 
 }  // namespace
 
 template <typename T>
 void vbd(const VbdRow<T>& r, int n) {
-    for (int m = 0; m < n; m += kVbdChunk)
-        vbdChunk(r, r.first + 5 * std::int64_t(m), n - m < kVbdChunk ? n - m : kVbdChunk,
-                 r.moved + m);
+    for (int m = 0; m < n; m += kVbdChunk) vbdChunk(r, m, n - m < kVbdChunk ? n - m : kVbdChunk);
 }
 
 template void vbd(const VbdRow<float>&, int);

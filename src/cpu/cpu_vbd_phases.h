@@ -1,0 +1,45 @@
+// What the vbd row kernel (cpu/cpu_rows.h VbdRow) reads, in the order it reads it. A colour's
+// vertices in a row are five apart (model/vbd_colouring.h); in the grid's own order a vector of
+// them is built one scalar at a time. Here every row is split into its five phases, columns
+// i ≡ p (mod 5) one after another:
+//
+//     (i, j) → j · rowStride + (i mod 5) · phaseStride + ⌊i/5⌋
+//
+// so a run of one colour's vertices, and the same run shifted by any stencil offset (di, dj), is
+// contiguous. Phase p of a row starts at start[p] (the phases before it hold ⌈(nu − q)/5⌉ columns
+// each): no padding, nu · nv entries. The solver keeps this copy of the iterate beside its own
+// (both written on every move, cpu_vbd.cpp vbdSet) and fills the rest once a step (vbdStart).
+#pragma once
+
+#include <cstdint>
+
+#include "cpu/cpu_soa.h"
+
+namespace cloth {
+
+template <typename T>
+struct VbdPhases {
+    int nu = 0, nv = 0;
+    std::int64_t start[5]{};
+    Soa3<T> x, xn, y;  // the iterate, the step's start x_n, the inertial target
+    AlignedVector<T> inverseMass;
+    AlignedVector<T> bendDiagonal;  // with bending only (sized by the solver)
+    AlignedVector<std::uint8_t> pinned;
+
+    void configure(int u, int v) {
+        nu = u;
+        nv = v;
+        for (int p = 1; p < 5; ++p) start[p] = start[p - 1] + (u - (p - 1) + 4) / 5;
+        const std::int64_t n = std::int64_t(u) * v;
+        for (Soa3<T>* a : {&x, &xn, &y}) a->assign(n, Vec3<T>(0));
+        inverseMass.assign(std::size_t(n), T(0));
+        pinned.assign(std::size_t(n), 1);
+    }
+    bool active() const { return nu > 0; }
+    std::int64_t at(int i, int j) const { return std::int64_t(j) * nu + start[i % 5] + i / 5; }
+    std::int64_t at(std::int64_t k) const { return at(int(k % nu), int(k / nu)); }
+    // How far (i + di, j + dj) lies from (i, j) here: the same for every i of one phase.
+    std::int64_t offset(int i, int di, int dj) const { return at(i + di, dj + 2) - at(i, 2); }
+};
+
+}  // namespace cloth
