@@ -72,7 +72,8 @@ Simulation::Simulation(Scene scene, const BackendChoice& choice)
 
 void Simulation::stepChunk(long n, long end) {
     StepResult r = solver_->step(n);
-    if (!r.unstable && strainCheckDue(checked_, solver_->stepsDone(), end)) {
+    if (!r.unstable && strainCheckDue(checked_, solver_->stepsDone(), end,
+                                      strainCheckSteps(scene_.integrator.dt))) {
         if (auto strained = strainInstability(scene_, *solver_, checked_)) r = *strained;
         checked_ = solver_->stepsDone();
     }

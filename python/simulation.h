@@ -82,7 +82,8 @@ void Simulation::step(long n, Interrupted interrupted) {
         throw std::invalid_argument("n: expected a number of steps >= 0, got " + std::to_string(n));
     const long end = solver_->stepsDone() + n;
     while (solver_->stepsDone() < end) {
-        stepChunk(std::min(kStrainCheckSteps, end - solver_->stepsDone()), end);
+        stepChunk(std::min(strainCheckSteps(scene_.integrator.dt), end - solver_->stepsDone()),
+                  end);
         interrupted();
     }
 }

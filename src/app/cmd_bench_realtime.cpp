@@ -64,7 +64,8 @@ options:
   --out DIR             output folder (default bench/results)
   --label NAME          file names realtime_NAME.* (default the material's name)
   --threads N           CPU threads (default automatic)
-  --quick               a small run for CI: T = 0.25 s, tolerance 0.25, reference factor 4
+  --quick               a small run for CI: T = 0.25 s, tolerance 0.25, reference factor 4,
+                        max size 128
   --allow-debug         run in a Debug build (refused otherwise: its timings mean nothing)
   --help                this text
 
@@ -136,13 +137,14 @@ bool parseFlag(const std::string& f, Args& args, Options& o) {
 
 // Returns false when --help was asked for.
 bool parse(Args& args, Options& o) {
-    bool time = false, tolerance = false, factor = false;
+    bool time = false, tolerance = false, factor = false, maxSize = false;
     while (!args.done()) {
         const std::string f = args.flag();
         if (f == "--help" || f == "-h") return false;
         time |= f == "--time";
         tolerance |= f == "--tolerance";
         factor |= f == "--reference-factor";
+        maxSize |= f == "--max-size";
         if (!parseCommonFlag(f, args, o) && !parseFlag(f, args, o)) args.unknown(f);
     }
     parseTargets("--backend", o.backend, {Precision::Float});  // checks the value early
@@ -150,6 +152,7 @@ bool parse(Args& args, Options& o) {
     if (o.quick && !time) o.time = 0.25;
     if (o.quick && !tolerance) o.tolerance = 0.25;
     if (o.quick && !factor) o.referenceFactor = 4;
+    if (o.quick && !maxSize) o.maxSize = 128;
     return true;
 }
 

@@ -156,7 +156,7 @@ bool parse(Args& args, RenderArgs& o) {
 bool simulate(const Scene& scene, Solver& solver, long total) {
     while (solver.stepsDone() < total) {
         const long before = solver.stepsDone();
-        StepResult r = solver.step(std::min(total - before, kStrainCheckSteps));
+        StepResult r = solver.step(std::min(total - before, strainCheckSteps(scene.integrator.dt)));
         if (!r.unstable)
             if (auto strained = strainInstability(scene, solver, before)) r = *strained;
         if (!r.unstable) continue;

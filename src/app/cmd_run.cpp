@@ -255,7 +255,8 @@ int runCommand(Args& args) {
     const SimState initial = o.every > 0 ? solver->read() : SimState{};
     if (o.every > 0) writeEvery(o, scene, initial, 0, total, pc2);
     Progress progress(total, !o.quiet);
-    const long chunk = std::max(1L, std::min(total / 100, kStrainCheckSteps));
+    const long checkEvery = strainCheckSteps(scene.integrator.dt);
+    const long chunk = std::max(1L, std::min(total / 100, checkEvery));
     long checked = 0;  // steps done at the last strain check
     while (solver->stepsDone() < total) {
         long n = std::min(chunk, total - solver->stepsDone());
@@ -265,7 +266,7 @@ int runCommand(Args& args) {
         StepResult r = solver->step(n);
         times.stepping += std::chrono::duration<double>(Clock::now() - t0).count();
         times.device += solver->deviceReport().secondsPerStep * double(r.stepsTaken);
-        if (!r.unstable && strainCheckDue(checked, solver->stepsDone(), total)) {
+        if (!r.unstable && strainCheckDue(checked, solver->stepsDone(), total, checkEvery)) {
             if (auto strained = strainInstability(scene, *solver, checked)) r = *strained;
             checked = solver->stepsDone();
         }

@@ -3,6 +3,7 @@
 // command line and the Python module both step by these rules.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -12,13 +13,23 @@
 namespace cloth {
 
 // Steps between the strain checks of a run: a read of the state every 1000 steps costs well under
-// 1% of them (docs/performance.md), and a run that left physics stops soon after.
+// 1% of them (docs/performance.md), and a run that left physics stops soon after. A large step
+// is checked at least every kStrainCheckInterval of simulated time: vbd at 1/60 s can stretch a
+// sheet to 5× and let it contract again within 40 steps (docs/stability.md "vbd").
 inline constexpr long kStrainCheckSteps = 1000;
+inline constexpr double kStrainCheckInterval = 0.1;  // [s]
+
+// The steps between checks at Δt = dt: 1000, or fewer where they span more than 0.1 s.
+inline long strainCheckSteps(double dt) {
+    if (!(dt > 0)) return kStrainCheckSteps;
+    const double steps = std::floor(kStrainCheckInterval / dt * (1 + 1e-9));
+    return steps < 1 ? 1 : steps < double(kStrainCheckSteps) ? long(steps) : kStrainCheckSteps;
+}
 
 // Whether a run at step `done` of `total`, last checked at step `checked`, checks its strain now:
-// every kStrainCheckSteps steps and at the end.
-inline bool strainCheckDue(long checked, long done, long total) {
-    return done - checked >= kStrainCheckSteps || done == total;
+// every `every` steps (strainCheckSteps) and at the end.
+inline bool strainCheckDue(long checked, long done, long total, long every) {
+    return done - checked >= every || done == total;
 }
 
 // DESIGN.md §2's strain check on the solver's state (solver/diagnostics.h strainBreach), last
