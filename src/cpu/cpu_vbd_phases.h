@@ -3,7 +3,7 @@
 // them is built one scalar at a time. Here every row is split into its five phases, columns
 // i ≡ p (mod 5) one after another:
 //
-//     (i, j) → j · rowStride + (i mod 5) · phaseStride + ⌊i/5⌋
+//     (i, j) → j · nu + start[i mod 5] + ⌊i/5⌋
 //
 // so a run of one colour's vertices, and the same run shifted by any stencil offset (di, dj), is
 // contiguous. Phase p of a row starts at start[p] (the phases before it hold ⌈(nu − q)/5⌉ columns
