@@ -263,21 +263,52 @@ void CpuSolver<T>::vbdFriction(Vec3<T>& x, const Vec3<T>& p, const Vec3<T>& befo
 }
 
 // Chebyshev acceleration after sweep n (VBD §3.8): x_n ← ω_n (x̄_n − x_{n−2}) + x_{n−2} for the
-// free vertices, then the colliders' projection again.
+// free vertices, then the colliders' projection again. With the copy in phases, by runs of one
+// phase of a row, so that the colliders run on whole runs (vbdCollideRun).
 template <typename T>
 void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
     const T w = T(omega);
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        if (pinned_[k]) continue;
-        Vec3<T> x = x_.get(k);
-        if (omega > 1) {
-            x = w * (x - xBeforeLast_[k]) + xBeforeLast_[k];
-            vbdCollide(k, x);
-            vbdSet(k, x);
-        }
+    const bool extrapolate = omega > 1;
+    auto shift = [&](std::int64_t k) {
         xBeforeLast_[k] = xBefore_[k];
-        xBefore_[k] = x;
+        xBefore_[k] = x_.get(k);
+    };
+    if (!phases_.active() || !extrapolate) {
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            if (pinned_[k]) continue;
+            if (extrapolate) {
+                Vec3<T> x = w * (x_.get(k) - xBeforeLast_[k]) + xBeforeLast_[k];
+                vbdCollide(k, x);
+                vbdSet(k, x);
+            }
+            shift(k);
+        }
+        return;
     }
+    const int nu = grid_.nu;
+    constexpr int kRun = 64;
+    std::uint8_t moved[kRun];
+    for (int j = band.rowBegin; j < band.rowEnd; ++j)
+        for (int p = 0; p < kVbdColours && p < nu; ++p) {
+            const int count = (nu - p + kVbdColours - 1) / kVbdColours;
+            for (int m0 = 0; m0 < count; m0 += kRun) {
+                const int n = std::min(kRun, count - m0);
+                const std::int64_t first =
+                    std::int64_t(j) * nu + p + std::int64_t(kVbdColours) * m0;
+                const std::int64_t at = phases_.at(p, j) + m0;
+                for (int m = 0; m < n; ++m) {
+                    const std::int64_t k = first + std::int64_t(kVbdColours) * m;
+                    moved[m] = !pinned_[k];
+                    if (!moved[m]) continue;
+                    const Vec3<T> x = w * (x_.get(k) - xBeforeLast_[k]) + xBeforeLast_[k];
+                    x_.set(k, x);
+                    phases_.x.set(at + m, x);
+                }
+                if (!colliders_.empty()) vbdCollideRun(first, at, moved, n);
+                for (int m = 0; m < n; ++m)
+                    if (moved[m]) shift(first + std::int64_t(kVbdColours) * m);
+            }
+        }
 }
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
