@@ -47,19 +47,22 @@ void GpuSolver::generateIntegratorBuffers() {
         glGenBuffers(1, &buffers_[b]);
 }
 
-// Stage or solver state, as zeros: written by the step before it is read.
+// Stage or solver state, as zeros: written by the step before it is read. The bindings from 8 on
+// are each integrator's own, so one number names different buffers (kCgPartials is
+// kVbdBeforeLast): a size is chosen by the method and the binding together.
 void GpuSolver::allocateIntegratorBuffers() {
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    const bool cg = method_ == Method::ImplicitEuler;
     for (gpu::Binding b : integratorBindings(method_, preconditioner_, !scene_.colliders.empty())) {
-        if (b == gpu::kCgPartials) {
+        if (cg && b == gpu::kCgPartials) {
             // Two floats per work group, rounded up to whole vec4s.
             const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
             bufferData(buffers_[b], nullptr, (2 * groups + 3) / 4 * kVec4);
-        } else if (b == gpu::kCgInverse) {
+        } else if (cg && b == gpu::kCgInverse) {
             bufferData(buffers_[b], nullptr, 2 * n * kVec4);
-        } else if (b == gpu::kCgVelocityChange) {  // the warm start's first guess: 0
+        } else if (cg && b == gpu::kCgVelocityChange) {  // the warm start's first guess: 0
             bufferData(buffers_[b], std::vector<glm::vec4>(n, glm::vec4(0)));
-        } else if (b == gpu::kCgState) {
+        } else if (cg && b == gpu::kCgState) {
             const gpu::CgState zero{};
             bufferData(buffers_[b], &zero, sizeof zero);
         } else {
