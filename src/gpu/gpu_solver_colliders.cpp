@@ -24,18 +24,28 @@ void GpuSolver::uploadColliders(const Scene& scene) {
     colliders_.emplace(scene, dragged_);
     const gpu::ColliderTable& table = *colliders_;
     const std::vector<const void*> sources = table.sampleSources();
-    if (table.vec4Count() != colliderVec4s_) {
-        colliderVec4s_ = table.vec4Count();
-        gpu::bufferData(buffers_[gpu::kColliders], nullptr, colliderVec4s_ * kVec4);
-        sampleSources_.clear();
-    }
     const std::vector<glm::vec4> records = table.stillRecords();
-    subData(buffers_[gpu::kColliders], 0, records.data(), records.size() * kVec4);
-    if (sources != sampleSources_) {
+    if (table.vec4Count() != colliderVec4s_) {
+        // A new size: the records and samples go in with the allocation, the poses' region as
+        // zeros, in one upload. (A clear of a fresh buffer followed at once by a write of part of
+        // it is ordered by GL; a driver that defers the clear and writes the part straight into
+        // the idle buffer would lose the part. Only this buffer was ever filled that way.)
+        colliderVec4s_ = table.vec4Count();
+        std::vector<glm::vec4> all(colliderVec4s_, glm::vec4(0));
+        std::copy(records.begin(), records.end(), all.begin());
         const std::vector<glm::vec4> samples = table.samples();
-        subData(buffers_[gpu::kColliders], table.sampleStart() * kVec4, samples.data(),
-                samples.size() * kVec4);
+        std::copy(samples.begin(), samples.end(),
+                  all.begin() + std::ptrdiff_t(table.sampleStart()));
+        gpu::bufferData(buffers_[gpu::kColliders], all);
         sampleSources_ = sources;
+    } else {
+        subData(buffers_[gpu::kColliders], 0, records.data(), records.size() * kVec4);
+        if (sources != sampleSources_) {
+            const std::vector<glm::vec4> samples = table.samples();
+            subData(buffers_[gpu::kColliders], table.sampleStart() * kVec4, samples.data(),
+                    samples.size() * kVec4);
+            sampleSources_ = sources;
+        }
     }
     posedFrom_ = posedTo_ = 0;  // the poses of the new placement (and Δt) are not there yet
 }
