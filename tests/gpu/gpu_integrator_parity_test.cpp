@@ -56,27 +56,39 @@ Runs runBoth(const Scene& scene, long steps) {
 
 class GpuIntegratorParity : public GpuTest, public ::testing::WithParamInterface<Method> {};
 
+// GPU against CPU float just before the first contact and after kSteps: max |p_gpu − p_cpu| over
+// the extent, and the full runs' solve counts. `label` names the case in the printed line.
+struct ContactParity {
+    long beforeContact = 0;
+    double free = 0, all = 0;
+    Runs runs;
+};
+ContactParity contactParity(const Scene& scene, const char* label) {
+    ContactParity c;
+    const double extent = scene.grid().extent();
+    c.beforeContact = firstContactStep(scene, kSteps) - 1;
+    EXPECT_GT(c.beforeContact, 100) << label;
+    const Runs free = runBoth(scene, c.beforeContact);
+    c.runs = runBoth(scene, kSteps);
+    c.free = maxDifferenceOverExtent(free.gpu, free.cpu, extent);
+    c.all = maxDifferenceOverExtent(c.runs.gpu, c.runs.cpu, extent);
+    std::printf("%-16s gpu vs cpu float: %ld steps before contact %.3g, %ld steps %.3g (/ extent)",
+                label, c.beforeContact, c.free, kSteps, c.all);
+    return c;
+}
+
 TEST_P(GpuIntegratorParity, MatchesTheCpuFloatBackend) {
     const Method method = GetParam();
-    const Scene scene = sceneFor(method);
-    const double extent = scene.grid().extent();
-    const long beforeContact = firstContactStep(scene, kSteps) - 1;
-    ASSERT_GT(beforeContact, 100);
-    const Runs free = runBoth(scene, beforeContact);
-    const Runs all = runBoth(scene, kSteps);
-    const double freeDiff = maxDifferenceOverExtent(free.gpu, free.cpu, extent);
-    const double allDiff = maxDifferenceOverExtent(all.gpu, all.cpu, extent);
-    std::printf("%-16s gpu vs cpu float: %ld steps before contact %.3g, %ld steps %.3g (/ extent)",
-                methodName(method), beforeContact, freeDiff, kSteps, allDiff);
+    const ContactParity c = contactParity(sceneFor(method), methodName(method));
     if (method == Method::ImplicitEuler)
-        std::printf("; CG iterations gpu %ld, cpu %ld", all.gpuSolves.iterations,
-                    all.cpuSolves.iterations);
+        std::printf("; CG iterations gpu %ld, cpu %ld", c.runs.gpuSolves.iterations,
+                    c.runs.cpuSolves.iterations);
     std::printf("\n");
-    EXPECT_LT(freeDiff, kTolerance);
-    EXPECT_LT(allDiff, method == Method::Vbd             ? kVbdContactTolerance
-                       : method == Method::ImplicitEuler ? kImplicitContactTolerance
-                                                         : kTolerance);
-    EXPECT_EQ(all.gpuSolves.solves, all.cpuSolves.solves);
+    EXPECT_LT(c.free, kTolerance);
+    EXPECT_LT(c.all, method == Method::Vbd             ? kVbdContactTolerance
+                     : method == Method::ImplicitEuler ? kImplicitContactTolerance
+                                                       : kTolerance);
+    EXPECT_EQ(c.runs.gpuSolves.solves, c.runs.cpuSolves.solves);
 }
 
 // The viewer's Δt = 1/60 s with springs 100× stiffer (h² λ_max/m ≈ 130, far beyond every
@@ -111,19 +123,10 @@ TEST_F(GpuIntegratorParity, VbdWithChebyshevMatchesTheCpu) {
     Scene scene = sceneFor(Method::Vbd);
     scene.integrator.chebyshevRho = 0.9;
     scene.integrator.iterations = 20;
-    const double extent = scene.grid().extent();
-    const long beforeContact = firstContactStep(scene, kSteps) - 1;
-    ASSERT_GT(beforeContact, 100);
-    const Runs free = runBoth(scene, beforeContact);
-    const Runs all = runBoth(scene, kSteps);
-    const double freeDiff = maxDifferenceOverExtent(free.gpu, free.cpu, extent);
-    const double allDiff = maxDifferenceOverExtent(all.gpu, all.cpu, extent);
-    std::printf(
-        "vbd, 20 sweeps, rho 0.9: gpu vs cpu float: %ld steps before contact %.3g, %ld "
-        "steps %.3g (/ extent)\n",
-        beforeContact, freeDiff, kSteps, allDiff);
-    EXPECT_LT(freeDiff, kTolerance);
-    EXPECT_LT(allDiff, kVbdChebyshevContactTolerance);
+    const ContactParity c = contactParity(scene, "vbd, rho 0.9");
+    std::printf("\n");
+    EXPECT_LT(c.free, kTolerance);
+    EXPECT_LT(c.all, kVbdChebyshevContactTolerance);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, GpuIntegratorParity, ::testing::ValuesIn(kMethods),
