@@ -269,6 +269,9 @@ template <typename T>
 void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
     const T w = T(omega);
     const bool extrapolate = omega > 1;
+    auto extrapolated = [&](std::int64_t k) {
+        return w * (x_.get(k) - xBeforeLast_[k]) + xBeforeLast_[k];
+    };
     auto shift = [&](std::int64_t k) {
         xBeforeLast_[k] = xBefore_[k];
         xBefore_[k] = x_.get(k);
@@ -277,7 +280,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
         for (std::int64_t k = band.begin; k < band.end; ++k) {
             if (pinned_[k]) continue;
             if (extrapolate) {
-                Vec3<T> x = w * (x_.get(k) - xBeforeLast_[k]) + xBeforeLast_[k];
+                Vec3<T> x = extrapolated(k);
                 vbdCollide(k, x);
                 vbdSet(k, x);
             }
@@ -300,7 +303,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
                     const std::int64_t k = first + std::int64_t(kVbdColours) * m;
                     moved[m] = !pinned_[k];
                     if (!moved[m]) continue;
-                    const Vec3<T> x = w * (x_.get(k) - xBeforeLast_[k]) + xBeforeLast_[k];
+                    const Vec3<T> x = extrapolated(k);
                     x_.set(k, x);
                     phases_.x.set(at + m, x);
                 }

@@ -14,27 +14,47 @@ namespace {
 using gpu::bufferData;
 using gpu::kVec4;
 
+// What a buffer holds, which sets its size. The bindings from 8 on are each integrator's own, so
+// one number names different buffers (kCgPartials is kVbdBeforeLast): the size goes with the
+// binding in the integrator's list, never from the number alone.
+enum class Contents {
+    PerVertex,     // one vec4 per vertex, zeros
+    TwoPerVertex,  // two vec4 per vertex (the block-Jacobi inverses)
+    Partials,      // two floats per work group of the grid dispatch, in whole vec4s
+    CgState,       // one gpu::CgState
+};
+struct IntegratorBuffer {
+    gpu::Binding binding;
+    Contents contents = Contents::PerVertex;
+};
+
 // The buffers of docs/integrators.md's stage or solver state, beyond the core eight.
 // `contacts`: the scene has colliders (implicit_euler's contacts in the solve).
-std::vector<gpu::Binding> integratorBindings(Method m, Preconditioner p, bool contacts) {
-    if (m == Method::ImplicitEuler && contacts) {
-        std::vector<gpu::Binding> bindings = integratorBindings(m, p, false);
-        bindings.push_back(gpu::kCgContacts);
-        return bindings;
-    }
-    if (m == Method::ImplicitEuler && p == Preconditioner::Jacobi)
-        return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection, gpu::kCgProduct,
-                gpu::kCgPartials,       gpu::kCgState,    gpu::kCgInverse};
+std::vector<IntegratorBuffer> integratorBuffers(Method m, Preconditioner p, bool contacts) {
     switch (m) {
         case Method::Rk4:
-            return {gpu::kRk4StartPositions, gpu::kRk4StartVelocities, gpu::kRk4SumPositions,
-                    gpu::kRk4SumVelocities};
-        case Method::ImplicitEuler:
-            return {gpu::kCgVelocityChange, gpu::kCgResidual, gpu::kCgDirection,
-                    gpu::kCgProduct,        gpu::kCgPartials, gpu::kCgState};
+            return {{gpu::kRk4StartPositions},
+                    {gpu::kRk4StartVelocities},
+                    {gpu::kRk4SumPositions},
+                    {gpu::kRk4SumVelocities}};
+        case Method::ImplicitEuler: {
+            std::vector<IntegratorBuffer> cg = {{gpu::kCgVelocityChange},  // first guess: 0
+                                                {gpu::kCgResidual},
+                                                {gpu::kCgDirection},
+                                                {gpu::kCgProduct},
+                                                {gpu::kCgPartials, Contents::Partials},
+                                                {gpu::kCgState, Contents::CgState}};
+            if (p == Preconditioner::Jacobi)
+                cg.push_back({gpu::kCgInverse, Contents::TwoPerVertex});
+            if (contacts) cg.push_back({gpu::kCgContacts});
+            return cg;
+        }
         case Method::Vbd:
-            return {gpu::kVbdStart, gpu::kVbdInertial, gpu::kVbdPrevious, gpu::kVbdBefore,
-                    gpu::kVbdBeforeLast};
+            return {{gpu::kVbdStart},
+                    {gpu::kVbdInertial},
+                    {gpu::kVbdPrevious},
+                    {gpu::kVbdBefore},
+                    {gpu::kVbdBeforeLast}};
         default:
             return {};
     }
@@ -43,30 +63,34 @@ std::vector<gpu::Binding> integratorBindings(Method m, Preconditioner p, bool co
 }  // namespace
 
 void GpuSolver::generateIntegratorBuffers() {
-    for (gpu::Binding b : integratorBindings(method_, preconditioner_, !scene_.colliders.empty()))
-        glGenBuffers(1, &buffers_[b]);
+    for (const IntegratorBuffer& b :
+         integratorBuffers(method_, preconditioner_, !scene_.colliders.empty()))
+        glGenBuffers(1, &buffers_[b.binding]);
 }
 
-// Stage or solver state, as zeros: written by the step before it is read. The bindings from 8 on
-// are each integrator's own, so one number names different buffers (kCgPartials is
-// kVbdBeforeLast): a size is chosen by the method and the binding together.
+// Stage or solver state, as zeros: written by the step before it is read.
 void GpuSolver::allocateIntegratorBuffers() {
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
-    const bool cg = method_ == Method::ImplicitEuler;
-    for (gpu::Binding b : integratorBindings(method_, preconditioner_, !scene_.colliders.empty())) {
-        if (cg && b == gpu::kCgPartials) {
-            // Two floats per work group, rounded up to whole vec4s.
-            const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
-            bufferData(buffers_[b], nullptr, (2 * groups + 3) / 4 * kVec4);
-        } else if (cg && b == gpu::kCgInverse) {
-            bufferData(buffers_[b], nullptr, 2 * n * kVec4);
-        } else if (cg && b == gpu::kCgVelocityChange) {  // the warm start's first guess: 0
-            bufferData(buffers_[b], std::vector<glm::vec4>(n, glm::vec4(0)));
-        } else if (cg && b == gpu::kCgState) {
-            const gpu::CgState zero{};
-            bufferData(buffers_[b], &zero, sizeof zero);
-        } else {
-            bufferData(buffers_[b], nullptr, n * kVec4);
+    for (const IntegratorBuffer& b :
+         integratorBuffers(method_, preconditioner_, !scene_.colliders.empty())) {
+        const unsigned buffer = buffers_[b.binding];
+        switch (b.contents) {
+            case Contents::PerVertex:
+                bufferData(buffer, nullptr, n * kVec4);
+                break;
+            case Contents::TwoPerVertex:
+                bufferData(buffer, nullptr, 2 * n * kVec4);
+                break;
+            case Contents::Partials: {
+                const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
+                bufferData(buffer, nullptr, (2 * groups + 3) / 4 * kVec4);
+                break;
+            }
+            case Contents::CgState: {
+                const gpu::CgState zero{};
+                bufferData(buffer, &zero, sizeof zero);
+                break;
+            }
         }
     }
 }
