@@ -86,6 +86,19 @@ class SolveStats:
     def last_converged(self) -> bool: ...
 
 @final
+class StepControlStats:
+    """The step control's work (all zero unless integrator.max_step_strain is set)."""
+
+    @property
+    def split(self) -> int: ...
+    @property
+    def rejected(self) -> int: ...
+    @property
+    def substeps(self) -> int: ...
+    @property
+    def deepest(self) -> int: ...
+
+@final
 class Simulation:
     """A cloth simulation: one scene, one solver."""
 
@@ -148,3 +161,5 @@ class Simulation:
         """(strain, (i, j), (i, j)): the most strained spring of any family."""
     @property
     def solve_stats(self) -> SolveStats: ...
+    @property
+    def step_control_stats(self) -> StepControlStats: ...

@@ -134,6 +134,14 @@ the simulation was made (all zero for the other integrators). A solve that reach
 inline constexpr const char* kSolveStatsProperty = R"doc(implicit_euler's linear solves so far,
 a ``SolveStats`` copy (``clothsim run`` warns when ``misses`` > 0).)doc";
 
+inline constexpr const char* kStepControlStats = R"doc(The step control's work since the
+simulation was made (all zero unless the scene sets ``integrator.max_step_strain``): a step that
+stretches a structural spring by more than that fraction of its rest length is taken again as
+two of half the step, down to ``dt / 16``.)doc";
+
+inline constexpr const char* kStepControlStatsProperty = R"doc(The step control's work so far, a
+``StepControlStats`` copy.)doc";
+
 inline constexpr const char* kStableDt = R"doc(The integrator's predicted stability bound for the
 scene [s] (``clothsim validate`` prints it): ``inf`` where any step is stable, ``0`` where none
 is (explicit Euler without damping).)doc";

@@ -193,6 +193,19 @@ void bindResults(py::module_& m) {
                    ", iterations=" + std::to_string(s.iterations) +
                    ", misses=" + std::to_string(s.misses) + ")";
         });
+    py::class_<StepControlStats>(m, "StepControlStats", doc::kStepControlStats)
+        .def_readonly("split", &StepControlStats::split,
+                      "Steps of integrator.dt taken as two halves or more.")
+        .def_readonly("rejected", &StepControlStats::rejected, "Tries thrown away, at every depth.")
+        .def_readonly("substeps", &StepControlStats::substeps, "Steps the backend took and kept.")
+        .def_readonly("deepest", &StepControlStats::deepest,
+                      "Most halvings of one step: its shortest piece is dt / 2**deepest.")
+        .def("__repr__", [](const StepControlStats& s) {
+            return "StepControlStats(split=" + std::to_string(s.split) +
+                   ", rejected=" + std::to_string(s.rejected) +
+                   ", substeps=" + std::to_string(s.substeps) +
+                   ", deepest=" + std::to_string(s.deepest) + ")";
+        });
 }
 
 using PySimulation = py::class_<Simulation>;
@@ -279,7 +292,10 @@ void bindMeasures(PySimulation& c) {
             doc::kLargestStrain)
         .def_property_readonly(
             "solve_stats", [](const Simulation& s) { return s.solver().solveStats(); },
-            doc::kSolveStatsProperty);
+            doc::kSolveStatsProperty)
+        .def_property_readonly(
+            "step_control_stats", [](const Simulation& s) { return s.solver().stepControlStats(); },
+            doc::kStepControlStatsProperty);
 }
 
 void bindSimulation(py::module_& m) {

@@ -210,6 +210,13 @@ void printSummary(const RunOptions& o, const Scene& scene, const Solver& solver,
             double(self.substeps) / double(self.steps), self.mostSubsteps, self.stepsOverBound,
             double(self.iterations) / double(self.substeps),
             self.iterations ? double(self.contacts) / double(self.iterations) : 0.0);
+    const StepControlStats control = solver.stepControlStats();
+    if (Features::of(scene).stepControl)
+        std::printf(
+            "step control: %ld of %ld steps split (max_step_strain %g), %ld tries rejected, %ld "
+            "substeps kept, the shortest dt/%d\n",
+            control.split, total, scene.integrator.maxStepStrain, control.rejected,
+            control.substeps, 1 << control.deepest);
     for (const std::string* f : {&o.csv, &o.obj, &o.colliders})
         if (!f->empty()) std::printf("wrote %s\n", f->c_str());
     if (!o.pc2.empty())

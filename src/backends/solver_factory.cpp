@@ -2,6 +2,7 @@
 
 #include "cpu/cpu_backend.h"
 #include "model/errors.h"
+#include "solver/step_control.h"
 
 // CMake defines CLOTH_GPU_BUILT when it builds the GPU backend (CLOTH_GPU=ON): this is the one
 // place that asks.
@@ -58,9 +59,12 @@ void configureBackends(const GpuSetup& gpu) {
 }
 
 std::unique_ptr<Solver> makeSolver(const Scene& scene, const BackendChoice& choice) {
-    if (choice.backend == Backend::Cpu)
-        return makeCpuSolver(scene, CpuOptions{choice.precision, choice.threads, choice.isa});
-    return requireGpu().make(scene, choice.gpu);
+    std::unique_ptr<Solver> backend =
+        choice.backend == Backend::Cpu
+            ? makeCpuSolver(scene, CpuOptions{choice.precision, choice.threads, choice.isa})
+            : requireGpu().make(scene, choice.gpu);
+    if (!Features::of(scene).stepControl) return backend;
+    return std::make_unique<StepControl>(std::move(backend), scene);
 }
 
 BackendPick pickBackend(const Scene* scene, const GpuOptions& options, bool doubleAsked) {

@@ -84,6 +84,10 @@ struct IntegratorSpec {
     // ρ, the spectral radius estimate of the Chebyshev acceleration; 0 = no acceleration.
     int iterations = 10;
     double chebyshevRho = 0;
+    // Step control (docs/integrators.md "Step control"), any method: a step that stretches a
+    // structural spring by more than this fraction of its rest length is redone from its start
+    // as two steps of half the Δt, each checked again; 0 = every step is taken as it comes.
+    double maxStepStrain = 0;
 };
 
 struct Plane {

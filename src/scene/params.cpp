@@ -105,6 +105,11 @@ constexpr ParamSpec kParams[] = {
      "vbd: spectral radius estimate ρ of the Chebyshev acceleration; 0 = none", kHidden,
      [](const Scene& s) -> std::optional<double> { return s.integrator.chebyshevRho; },
      [](Scene& s, double v) { s.integrator.chebyshevRho = v; }},
+    {"integrator.max_step_strain", "", 0, 10, false, false, 0, false,
+     "a step that stretches a structural spring by more than this fraction of its rest length "
+     "is redone as two of half the Δt, down to Δt/16; 0 = off", kHidden,
+     [](const Scene& s) -> std::optional<double> { return s.integrator.maxStepStrain; },
+     [](Scene& s, double v) { s.integrator.maxStepStrain = v; }},
     {"wind.strength", "N; N/m²", -kInf, kInf, false, false, 0, true,
      "K_w in F = K_w ⟨n, û_w⟩ n per vertex; with a material a pressure, times the vertex's area",
      {PanelSection::Wind, SliderScale::Log, 0, 100, "strength"},

@@ -116,6 +116,8 @@ std::string sceneToJson(const Scene& s) {
         j["integrator"]["iterations"] = s.integrator.iterations;
         j["integrator"]["chebyshev_rho"] = s.integrator.chebyshevRho;
     }
+    if (s.integrator.maxStepStrain > 0)
+        j["integrator"]["max_step_strain"] = s.integrator.maxStepStrain;
     Json colliders = Json::array();
     for (const Collider& c : s.colliders) colliders.push_back(collider(c));
     j["colliders"] = colliders;

@@ -200,7 +200,7 @@ Material SceneReader::readMaterial(const Json& j) const {
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
     expectObject(j, "integrator",
                  {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner",
-                  "iterations", "chebyshev_rho"});
+                  "iterations", "chebyshev_rho", "max_step_strain"});
     if (j.contains("method")) {
         const Json& m = j["method"];
         if (!m.is_string()) fail("integrator.method", "expected a string, got " + describe(m));
@@ -230,6 +230,8 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
         int(param(j, "iterations", "integrator.iterations", "integrator.iterations"));
     integrator.chebyshevRho =
         param(j, "chebyshev_rho", "integrator.chebyshev_rho", "integrator.chebyshev_rho");
+    integrator.maxStepStrain =
+        param(j, "max_step_strain", "integrator.max_step_strain", "integrator.max_step_strain");
 }
 
 // A pin is [i, j], or {"at": [i, j], "follow": n} to follow colliders[n] (checked once the
@@ -300,10 +302,10 @@ SelfCollision SceneReader::readSelfCollision(const Json& j, const ClothSpec& clo
 }
 
 Scene SceneReader::read(const Json& doc) {
-    expectObject(doc, "",
-                 {"name", "cloth", "material", "springs", "damping", "gravity", "pins",
-                  "integrator", "colliders", "wind", "self_collision", "max_speed", "max_strain",
-                  "duration"});
+    expectObject(
+        doc, "",
+        {"name", "cloth", "material", "springs", "damping", "gravity", "pins", "integrator",
+         "colliders", "wind", "self_collision", "max_speed", "max_strain", "duration"});
     Scene scene;
     scene.source = source_;
     scene.name = std::filesystem::path(source_).stem().string();

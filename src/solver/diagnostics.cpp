@@ -79,6 +79,26 @@ SpringStrain largestStrain(const Scene& scene, const SimState& state) {
     return worst;
 }
 
+SpringStrain largestStretchGrowth(const Scene& scene, const SimState& before,
+                                  const SimState& after) {
+    const Grid g = scene.grid();
+    SpringStrain worst;
+    if (!familyModelled(scene, Family::Structural)) return worst;
+    for (auto [di, dj] : {std::pair{1, 0}, {0, 1}}) {
+        const double rest = g.restLength(di, dj);
+        for (int j = 0; j < g.nv; ++j)
+            for (int i = 0; i < g.nu; ++i) {
+                if (!g.contains(i + di, j + dj)) continue;
+                const std::int64_t a = g.index(i, j), b = g.index(i + di, j + dj);
+                const double was = glm::length(before.positions[b] - before.positions[a]);
+                const double is = glm::length(after.positions[b] - after.positions[a]);
+                const double growth = (std::max(is, rest) - std::max(was, rest)) / rest;
+                if (!(growth <= worst.strain)) worst = {growth, a, b};  // a NaN counts as worst
+            }
+    }
+    return worst;
+}
+
 std::optional<std::string> strainBreach(const Scene& scene, const SimState& state) {
     const SpringStrain s = largestStrain(scene, state);
     if (s.strain <= scene.maxStrain) return std::nullopt;

@@ -32,6 +32,13 @@ struct SpringStrain {
 };
 SpringStrain largestStrain(const Scene& scene, const SimState& state);
 
+// The structural spring whose stretch max(0, (|d| − L)/L) grew most from `before` to `after` (two
+// states of the same grid), by how much: the step control's measure of a step
+// (solver/step_control.h). A membrane torn by a step stretches; one that folds or shears
+// shortens its bend and shear springs, and buckling compresses, as the cloth may.
+SpringStrain largestStretchGrowth(const Scene& scene, const SimState& before,
+                                  const SimState& after);
+
 // DESIGN.md §2's instability by strain: why the state has a spring beyond the scene's max_strain
 // ("strain 1.8 > max_strain 1 on the spring (3, 4)-(4, 4)"), or nothing.
 std::optional<std::string> strainBreach(const Scene& scene, const SimState& state);

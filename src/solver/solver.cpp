@@ -31,6 +31,7 @@ Features Features::of(const Scene& scene) {
     f.meshes = scene.count<MeshCollider>();
     for (const Collider& c : scene.colliders) f.contactExtras += !c.plain();
     f.selfCollision = scene.selfCollision.has_value();
+    f.stepControl = scene.integrator.maxStepStrain > 0;
     return f;
 }
 
@@ -54,6 +55,7 @@ std::string Features::describe() const {
     if (contactExtras)
         s += ", " + std::to_string(contactExtras) + " with thickness, friction or motion";
     if (selfCollision) s += ", self-collision";
+    if (stepControl) s += ", step control";
     return s;
 }
 

@@ -51,6 +51,7 @@ struct Features {
     // Colliders with a thickness, friction or motion (docs/colliders.md §2–3).
     int contactExtras = 0;
     bool selfCollision = false;  // Scene::selfCollision (docs/physics.md "Self-collision")
+    bool stepControl = false;    // integrator.max_step_strain > 0 (solver/step_control.h)
     static Features of(const Scene& scene);
     bool operator==(const Features&) const = default;
     std::string describe() const;  // "structural+shear+bend, wind, 1 plane, 1 sphere, 2 boxes"
@@ -103,6 +104,15 @@ struct SelfCollisionStats {
     long iterations = 0;      // Jacobi iterations, summed
     long contacts = 0;        // contacts corrected, summed over iterations
     int lastContacts = 0;     // in the first iteration of the last step's last substep
+};
+
+// The step control's work since the solver was made (solver/step_control.h); all zero when the
+// scene does not declare it.
+struct StepControlStats {
+    long split = 0;     // steps of the scene's Δt taken in two or more pieces
+    long rejected = 0;  // tries thrown away, at every depth
+    long substeps = 0;  // steps the backend took, kept ones only
+    int deepest = 0;    // most halvings of one step: Δt / 2^deepest
 };
 
 // GL buffer names of a backend that keeps its state in GL buffers (vec4 per vertex, k = j·nu + i):
@@ -170,6 +180,7 @@ public:
     double time() const { return timeAt(steps_); }
     const SolveStats& solveStats() const { return solveStats_; }
     virtual SelfCollisionStats selfCollisionStats() const { return {}; }
+    virtual StepControlStats stepControlStats() const { return {}; }
     // The vertices k = j·nu + i in a self-contact in the last step (the viewer marks them).
     virtual std::vector<std::int64_t> selfContactVertices() const { return {}; }
 

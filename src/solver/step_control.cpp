@@ -1,0 +1,103 @@
+#include "solver/step_control.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "solver/diagnostics.h"
+
+namespace cloth {
+
+StepControl::StepControl(std::unique_ptr<Solver> backend, const Scene& scene)
+    : backend_(std::move(backend)), scene_(scene), backendDt_(scene.integrator.dt) {
+    setStepDt(scene.integrator.dt);
+    setTime(backend_->time());
+    steps_ = backend_->stepsDone();
+}
+
+StepResult StepControl::step(long n) {
+    StepResult result;
+    for (long s = 0; s < n; ++s) {
+        // A step starts at the pieces the last one ended with where one of those failed the
+        // check, else at pieces twice as long: the step grows back by halves, a step at a time.
+        const int start = startDepth_;
+        deepest_ = start;
+        failed_ = false;
+        const long rejectedBefore = stats_.rejected;
+        StepResult r;
+        for (long piece = 0; piece < (1L << start) && !r.unstable; ++piece)
+            r = advance(scene_.integrator.dt / double(1L << start), start);
+        if (start > 0 || stats_.rejected > rejectedBefore) ++stats_.split;
+        startDepth_ = failed_ ? deepest_ : std::max(0, start - 1);
+        solveStats_ = backend_->solveStats();
+        if (r.unstable) {
+            r.stepsTaken = s;
+            r.firstBadStep = r.lastBadStep = steps_ + 1;
+            return r;
+        }
+        ++steps_;
+        ++result.stepsTaken;
+    }
+    return result;
+}
+
+StepResult StepControl::advance(double dt, int depth) {
+    if (!known_) state_ = backend_->read();
+    known_ = false;
+    SimState start = std::move(state_);
+    setBackendDt(dt);
+    const StepResult tried = backend_->step(1);
+    SimState after = backend_->read();
+    const bool failed = tried.unstable || largestStretchGrowth(scene_, start, after).strain >
+                                              scene_.integrator.maxStepStrain;
+    failed_ = failed_ || failed;
+    if (!failed || depth == kMaxHalvings) {
+        state_ = std::move(after);
+        known_ = true;
+        ++stats_.substeps;
+        stats_.deepest = std::max(stats_.deepest, depth);
+        deepest_ = std::max(deepest_, depth);
+        return tried;
+    }
+    ++stats_.rejected;
+    backend_->write(start);  // the step's start, its time included
+    state_ = std::move(start);
+    known_ = true;
+    for (int half = 0; half < 2; ++half) {
+        const StepResult r = advance(dt / 2, depth + 1);
+        if (r.unstable) return r;
+    }
+    return {};
+}
+
+void StepControl::setBackendDt(double dt) {
+    if (dt == backendDt_) return;
+    Scene scene = scene_;
+    scene.integrator.dt = dt;
+    backend_->setParameters(scene);
+    backendDt_ = dt;
+}
+
+void StepControl::write(const SimState& state) {
+    backend_->write(state);
+    known_ = false;
+    setTime(state.time);
+}
+
+void StepControl::setPinned(int i, int j, bool pinned) {
+    backend_->setPinned(i, j, pinned);
+    known_ = false;
+}
+
+void StepControl::setParameters(const Scene& scene) {
+    backend_->setParameters(scene);  // throws where the backend needs rebuilding
+    scene_ = scene;
+    backendDt_ = scene.integrator.dt;
+    setStepDt(scene.integrator.dt);
+}
+
+PassTimes StepControl::timePasses(int repeats) {
+    known_ = false;
+    return backend_->timePasses(repeats);
+}
+
+}  // namespace cloth
