@@ -71,6 +71,10 @@ void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui) {
         ImGui::TextDisabled(session.paused() ? "paused" : "not stepping");
     }
     ImGui::Text("t = %.4f s, %ld steps", session.simTime(), session.totalSteps());
+    if (solver.features().stepControl) {
+        const StepControlStats c = solver.stepControlStats();
+        ImGui::Text("step control: %ld steps split, shortest dt/%d", c.split, 1 << c.deepest);
+    }
     const ViewerHistory& h = session.history();
     plot("energy", h.energy, "J");
     plot("max strain", h.maxStrain, "");

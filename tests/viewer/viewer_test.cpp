@@ -81,6 +81,26 @@ TEST(ViewerSession, SwitchingAFeatureOnBuildsANewSolverAndCarriesTheState) {
     EXPECT_NEAR(s.simTime(), 5 * 50 * p.scene.integrator.dt, 1e-12);
 }
 
+// Step control wraps the backend (solver/step_control.h): switching it on builds the wrapped
+// solver, carrying the state; its limit then changes live.
+TEST(ViewerSession, SwitchingStepControlOnBuildsANewSolverAndItsLimitIsLive) {
+    ViewerSession s(smallScene("hanging"), {});
+    const SimState before = afterFrames(s, 5);
+    ViewerParams p = s.params();
+    p.scene.integrator.maxStepStrain = 0.1;
+    const int rebuilds = s.rebuilds();
+    s.applyParameters(p);
+    EXPECT_EQ(s.rebuilds(), rebuilds + 1);
+    EXPECT_EQ(maxDifference(before, s.solver().read()), 0.0);
+    EXPECT_TRUE(s.solver().features().stepControl);
+    p.scene.integrator.maxStepStrain = 0.05;
+    s.applyParameters(p);
+    EXPECT_EQ(s.rebuilds(), rebuilds + 1) << "a new limit is taken live";
+    afterFrames(s, 2);
+    EXPECT_GE(s.solver().stepControlStats().substeps, 2 * 50);
+    EXPECT_NEAR(s.simTime(), 7 * 50 * p.scene.integrator.dt, 1e-12);
+}
+
 TEST(ViewerSession, SwitchingAColliderOffRemovesItFromTheSolver) {
     ViewerSession s(smallScene("drape"), {});
     ViewerParams p = s.params();
