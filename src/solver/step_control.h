@@ -3,8 +3,8 @@
 // than integrator.max_step_strain of its rest length (solver/diagnostics.h
 // largestStretchGrowth), or leaves the state unstable, the backend is put back to the
 // step's start and the step is taken as two of Δt/2, each checked the same way, down to
-// Δt/2^kMaxHalvings, where a step is kept as it comes. Baraff and Witkin (1998, §5) control
-// their implicit step by the stretch it causes in the same way. A large step fails where its
+// Δt/2^kMaxHalvings, where a step is kept as it comes (Baraff and Witkin, 1998, control their
+// implicit step by the stretch it causes in the same spirit). A large step fails where its
 // one linearisation (implicit Euler) or its few sweeps (vbd) cannot follow the motion, as in an
 // impact: the halves are paid there only.
 //
