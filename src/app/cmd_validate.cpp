@@ -14,6 +14,7 @@
 #include "scene/collider_validate.h"
 #include "scene/params.h"
 #include "scene/scene_loader.h"
+#include "solver/step_control.h"
 
 namespace cloth::app {
 namespace {
@@ -182,6 +183,11 @@ void printModel(const Scene& s) {
     std::printf("integrator   %s, dt = %g s, %d substeps per frame, duration %g s = %ld steps\n",
                 methodName(s.integrator.method), s.integrator.dt, s.integrator.substeps, s.duration,
                 s.defaultSteps());
+    if (s.integrator.maxStepStrain > 0)
+        std::printf(
+            "step control a step that stretches a structural spring by more than %g of its "
+            "rest length is taken again in halves, down to dt/%d\n",
+            s.integrator.maxStepStrain, 1 << StepControl::kMaxHalvings);
     std::printf("max speed    %g m/s\n", s.maxSpeed);
 }
 

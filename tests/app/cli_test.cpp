@@ -107,6 +107,32 @@ TEST(CliValidate, ReportsWhatTheSceneModelsAndItsStableStep) {
         EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }
 
+// The step control (integrator.max_step_strain) says what it does in validate and what it did in
+// run's summary; a scene without it prints neither line.
+TEST(CliRun, StepControlIsReportedWhereTheSceneDeclaresIt) {
+    const std::vector<std::string> control = {"--set", "integrator.max_step_strain=1e-9"};
+    auto args = [&](const char* command, bool withControl) {
+        std::vector<std::string> a = {kExe, command, kScenes + "hanging.json"};
+        if (std::string(command) == "run") a.insert(a.end(), {"--steps", "20"});
+        if (withControl) a.insert(a.end(), control.begin(), control.end());
+        return a;
+    };
+    const auto run = runProcess(args("run", true), 60);
+    ASSERT_EQ(run.exitCode, 0) << test::describe(run);
+    EXPECT_NE(run.out.find("of 20 steps split (max_step_strain 1e-09)"), std::string::npos)
+        << run.out;
+    EXPECT_NE(run.out.find("the shortest dt/16"), std::string::npos) << run.out;
+    const auto validate = runProcess(args("validate", true), 60);
+    ASSERT_EQ(validate.exitCode, 0) << test::describe(validate);
+    EXPECT_NE(validate.out.find("step control a step that stretches"), std::string::npos)
+        << validate.out;
+    for (const char* command : {"run", "validate"}) {
+        const auto plain = runProcess(args(command, false), 60);
+        ASSERT_EQ(plain.exitCode, 0) << test::describe(plain);
+        EXPECT_EQ(plain.out.find("step control"), std::string::npos) << plain.out;
+    }
+}
+
 TEST(CliValidate, AbsentFamilyIsReportedAsNotModelled) {
     const auto r = runProcess({kExe, "validate", kScenes + "spring.json"}, 60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
