@@ -145,11 +145,15 @@ std::string framePath(const RunOptions& o, const Scene& scene, long step, long t
 struct SolveLog {
     std::string path, rows = "step,iterations,residual,converged\n";
     bool wanted() const { return !path.empty(); }
+    SolveStats before;  // the counts at the last row
+    // A step's iterations are those of all its solves: one, or, where the step control split
+    // the step, every piece's and every thrown-away try's. It converged if none missed.
     void add(long step, const SolveStats& s) {
         char row[96];
-        std::snprintf(row, sizeof row, "%ld,%d,%.9g,%d\n", step, s.lastIterations, s.lastResidual,
-                      s.lastConverged ? 1 : 0);
+        std::snprintf(row, sizeof row, "%ld,%ld,%.9g,%d\n", step, s.iterations - before.iterations,
+                      s.lastResidual, s.misses == before.misses ? 1 : 0);
         rows += row;
+        before = s;
     }
     void write() const {
         if (wanted()) writeWholeFile(path, rows);

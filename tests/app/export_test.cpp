@@ -197,5 +197,43 @@ TEST(Export, OutSolvesHasARowPerImplicitStepThatSumsToTheSummary) {
     EXPECT_FALSE(fs::exists(csv));
 }
 
+// With the step control splitting every step, a row still stands for one step of the scene's Δt
+// and counts the iterations of all its solves: the rows sum to the summary's total.
+TEST(Export, OutSolvesCountsEverySolveOfASplitStep) {
+    const fs::path csv = fs::temp_directory_path() / "clothsim_solves_split_test.csv";
+    fs::remove(csv);
+    const auto r =
+        runProcess({kExe, "run", kDrape, "--steps", "30", "--set",
+                    "integrator.method=\"implicit_euler\"", "--set", "integrator.dt=0.016667",
+                    "--set", "integrator.max_step_strain=1e-9", "--out-solves", csv.string()},
+                   60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    std::ifstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    long rows = 0, iterations = 0;
+    while (std::getline(in, line)) {
+        long step = 0, it = 0;
+        int converged = 0;
+        double residual = 0;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%ld,%ld,%lf,%d", &step, &it, &residual, &converged), 4)
+            << line;
+        EXPECT_EQ(step, ++rows);
+        iterations += it;
+    }
+    EXPECT_EQ(rows, 30);
+    long solves = 0;
+    const std::size_t at = r.out.find("implicit solve: ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    ASSERT_EQ(std::sscanf(r.out.c_str() + at, "implicit solve: %ld CG solves", &solves), 1)
+        << r.out;
+    EXPECT_GT(solves, 30 * 8) << "the steps were not split";
+    char average[64];
+    std::snprintf(average, sizeof average, "%.1f iterations on average",
+                  double(iterations) / double(solves));
+    EXPECT_NE(r.out.find(average), std::string::npos) << r.out;
+    fs::remove(csv);
+}
+
 }  // namespace
 }  // namespace cloth
