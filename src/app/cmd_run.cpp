@@ -143,6 +143,7 @@ std::string framePath(const RunOptions& o, const Scene& scene, long step, long t
 // --out-solves: the rows of each step's conjugate-gradient solve, written when the run ends (an
 // unstable run's too, up to its last step).
 struct SolveLog {
+    explicit SolveLog(std::string file) : path(std::move(file)) {}
     std::string path, rows = "step,iterations,residual,converged\n";
     bool wanted() const { return !path.empty(); }
     SolveStats before;  // the counts at the last row
