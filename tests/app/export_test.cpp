@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "support/csv_positions.h"
 #include "support/process.h"
@@ -157,6 +158,28 @@ TEST(Export, RunFramesWithoutEveryIsAnInputError) {
     EXPECT_EQ(r.exitCode, 2) << test::describe(r);
 }
 
+// The rows of an --out-solves file after its header line (returned in `header`).
+struct SolveRow {
+    long step = 0, iterations = 0;
+    double residual = 0;
+    int converged = 0;
+};
+std::vector<SolveRow> readSolveRows(const fs::path& csv, std::string& header) {
+    std::ifstream in(csv);
+    std::getline(in, header);
+    std::vector<SolveRow> rows;
+    std::string line;
+    while (std::getline(in, line)) {
+        SolveRow r;
+        EXPECT_EQ(std::sscanf(line.c_str(), "%ld,%ld,%lf,%d", &r.step, &r.iterations, &r.residual,
+                              &r.converged),
+                  4)
+            << line;
+        rows.push_back(r);
+    }
+    return rows;
+}
+
 // --out-solves writes one row per implicit step: its CG iterations, final |r|/|b| (at most the
 // tolerance where it converged) and the flag; the rows add up to run's summary. An integrator
 // without a linear system refuses the flag as invalid input.
@@ -169,22 +192,15 @@ TEST(Export, OutSolvesHasARowPerImplicitStepThatSumsToTheSummary) {
                     "--set", "integrator.preconditioner=\"jacobi\"", "--out-solves", csv.string()},
                    60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
-    std::ifstream in(csv);
-    std::string line;
-    std::getline(in, line);
-    EXPECT_EQ(line, "step,iterations,residual,converged");
+    std::string header;
     long rows = 0, iterations = 0;
-    while (std::getline(in, line)) {
-        long step = 0;
-        int it = 0, converged = 0;
-        double residual = 0;
-        ASSERT_EQ(std::sscanf(line.c_str(), "%ld,%d,%lf,%d", &step, &it, &residual, &converged), 4)
-            << line;
-        EXPECT_EQ(step, ++rows);
-        EXPECT_EQ(converged, 1) << line;
-        EXPECT_LE(residual, 1e-5) << line;
-        iterations += it;
+    for (const SolveRow& row : readSolveRows(csv, header)) {
+        EXPECT_EQ(row.step, ++rows);
+        EXPECT_EQ(row.converged, 1) << "step " << row.step;
+        EXPECT_LE(row.residual, 1e-5) << "step " << row.step;
+        iterations += row.iterations;
     }
+    EXPECT_EQ(header, "step,iterations,residual,converged");
     EXPECT_EQ(rows, 300);  // run steps in chunks of total/100 without --out-solves
     char average[64];
     std::snprintf(average, sizeof average, "%.1f iterations on average", double(iterations) / 300);
@@ -208,18 +224,11 @@ TEST(Export, OutSolvesCountsEverySolveOfASplitStep) {
                     "--set", "integrator.max_step_strain=1e-9", "--out-solves", csv.string()},
                    60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
-    std::ifstream in(csv);
-    std::string line;
-    std::getline(in, line);
+    std::string header;
     long rows = 0, iterations = 0;
-    while (std::getline(in, line)) {
-        long step = 0, it = 0;
-        int converged = 0;
-        double residual = 0;
-        ASSERT_EQ(std::sscanf(line.c_str(), "%ld,%ld,%lf,%d", &step, &it, &residual, &converged), 4)
-            << line;
-        EXPECT_EQ(step, ++rows);
-        iterations += it;
+    for (const SolveRow& row : readSolveRows(csv, header)) {
+        EXPECT_EQ(row.step, ++rows);
+        iterations += row.iterations;
     }
     EXPECT_EQ(rows, 30);
     long solves = 0;
