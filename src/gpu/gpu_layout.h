@@ -49,7 +49,11 @@ enum Binding : unsigned {
     // implicit_euler with colliders: the contacts in the solve (solve_contact.glsl), (n, z) per
     // vertex.
     kCgContacts = 17,
-    kBindingCount = 18
+    // Step control (step_check.comp), any integrator's scene that declares it: the kept
+    // positions, the kept velocities (n vec4 each), then each work group's largest stretch
+    // growth (in x of one vec4 per group of the grid dispatch).
+    kStepStart = 18,
+    kBindingCount = 19
 };
 
 // Uniform locations. The kernels that end a step (step_end.glsl): the 1-based global step

@@ -17,8 +17,8 @@
 namespace cloth {
 namespace {
 
-constexpr int kIterations = 16;     // as CpuSelfCollision::kIterations
-constexpr int kMaxSubsteps = 256;   // as CpuSelfCollision::kMaxSubsteps
+constexpr int kIterations = 16;      // as CpuSelfCollision::kIterations
+constexpr int kMaxSubsteps = 256;    // as CpuSelfCollision::kMaxSubsteps
 constexpr std::size_t kGroup = 256;  // the self passes' work group (self_contact.glsl)
 
 float fromOrderedBits(std::int32_t stored) {
@@ -38,15 +38,10 @@ std::size_t bucketsFor(std::size_t n) {
 }  // namespace
 
 void GpuSolver::checkSelfCollisionFits(const Scene& scene) const {
-    GLint bindings = 0;
-    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
-    if (bindings <= GLint(gpu::kSelfInts))
-        throw GpuUnavailable(context_.info().renderer + " has " + std::to_string(bindings) +
-                             " storage buffer bindings; self-collision needs " +
-                             std::to_string(gpu::kSelfInts + 1) + ": use --backend cpu");
+    checkBindingFits(gpu::kSelfInts, "self-collision");
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
-    const std::size_t ints = gpu::kSelfHeaderInts + gpu::kSelfIntsPerVertex * n +
-                             3 * bucketsFor(n) + 1;
+    const std::size_t ints =
+        gpu::kSelfHeaderInts + gpu::kSelfIntsPerVertex * n + 3 * bucketsFor(n) + 1;
     const long long limit = context_.info().maxStorageBlockSize;
     if (static_cast<long long>(ints * 4) > limit || static_cast<long long>(n * 112) > limit)
         throw InputError(scene.source, "self_collision",
@@ -136,9 +131,8 @@ void GpuSolver::resolveSelfContacts(long stepNumber) {
     }
     const double needed =
         std::ceil(4.0 * 0.5 * std::sqrt(d2) / double(scene_.selfCollision->thickness));
-    const int substeps = std::isfinite(needed)
-                             ? int(std::clamp(needed, 1.0, double(kMaxSubsteps)))
-                             : kMaxSubsteps;
+    const int substeps =
+        std::isfinite(needed) ? int(std::clamp(needed, 1.0, double(kMaxSubsteps))) : kMaxSubsteps;
     ++selfStats_.steps;
     selfStats_.stepsOverBound += !(needed <= double(kMaxSubsteps));
     selfStats_.substeps += substeps;

@@ -52,6 +52,7 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
     }
     if (scene.selfCollision)
         for (Kernel k : selfCollisionKernels()) kernels.push_back(k);
+    if (Features::of(scene).stepControl) kernels.push_back(Kernel::StepCheck);
     try {
         for (Kernel k : kernels) {
             const ShaderSource source =
@@ -106,6 +107,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
         usesManySteps(options.dispatch, method_, vertices, info.software))
         manyStepsGroup_ = manyStepsGroupSize(vertices, info);
     if (features_.selfCollision) checkSelfCollisionFits(scene);
+    if (features_.stepControl) checkBindingFits(gpu::kStepStart, "step control");
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
     groupsY_ = (nv_ + workGroup_.y - 1) / workGroup_.y;
     // vbd's sweep: one invocation per vertex of a colour, ceil(nu/5) a row.
@@ -120,6 +122,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     if (multigrid) multigrid_ = std::make_unique<GpuMultigrid>(nu_, nv_, workGroup_);
     upload(scene);
     if (features_.selfCollision) allocateSelfCollision(scene);
+    if (features_.stepControl) allocateStepCheck();
     setGrabUniforms(std::nullopt);
     // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
     // the wall clock.

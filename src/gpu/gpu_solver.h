@@ -18,12 +18,15 @@
 #include "gpu/gpu_multigrid.h"
 #include "gpu/gpu_variant.h"
 #include "solver/solver.h"
+#include "solver/step_check.h"
 
 namespace cloth {
 
 class GlContext;
 
-class GpuSolver final : public Solver {
+// With step control, it is its own StepCheck (gpu_step_check.cpp): the step's start is kept in
+// a buffer and measured by a reduction pass, never read back.
+class GpuSolver final : public Solver, private StepCheck {
 public:
     // Throws as makeGpuSolver does.
     GpuSolver(const Scene& scene, const GpuOptions& options);
@@ -73,6 +76,7 @@ public:
     std::size_t bufferBytes() const;
     SelfCollisionStats selfCollisionStats() const override { return selfStats_; }
     std::vector<std::int64_t> selfContactVertices() const override;
+    StepCheck* deviceStepCheck() override { return features_.stepControl ? this : nullptr; }
 
 private:
     struct PinSlot {
@@ -123,6 +127,18 @@ private:
     StepResult reportUnstable(const gpu::Status& status, long stepsBefore);
     // Self-collision (gpu_self_collision.cpp, docs/physics.md "Self-collision").
     void checkSelfCollisionFits(const Scene& scene) const;
+    // Throws GpuUnavailable where the device has no storage buffer binding `binding`, which
+    // `feature` needs.
+    void checkBindingFits(unsigned binding, const char* feature) const;
+    // After the state was replaced (write, restore): the time, a start without history (vbd's
+    // v_{n−1}, implicit_euler's last solution, the forces verlet kept), no instability, normals.
+    void startAfresh(double time);
+    // Step control (gpu_step_check.cpp, solver/step_check.h).
+    void allocateStepCheck();
+    void keep() override;
+    double stretchGrowth(const Scene& scene) override;
+    void restore() override;
+    double keptTime_ = 0;  // the time of the kept state
     void allocateSelfCollision(const Scene& scene);
     void setSelfUniforms(const Scene& scene) const;
     void storeSelfStart() const;  // the positions as the next step's start

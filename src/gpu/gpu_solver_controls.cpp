@@ -37,16 +37,21 @@ void GpuSolver::write(const SimState& state) {
         if (following_.count(k) != 0) continue;  // its row holds its rest position
         pins_[std::size_t(pin.slot)] = glm::vec4(glm::vec3(x[std::size_t(k)]), 0);  // held here
     }
-    setTime(state.time);
-    vbdHistoryFrom_ = steps_ + 2;  // the written velocities have no predecessor
-    posedFrom_ = posedTo_ = 0;     // posed again at the (new) time
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     subData(buffers_[gpu::kPositions], 0, x.data(), n * kVec4);
     subData(buffers_[gpu::kVelocities], 0, v.data(), n * kVec4);
     subData(buffers_[gpu::kPins], 0, pins_.data(), pins_.size() * kVec4);
+    startAfresh(state.time);
+}
+
+void GpuSolver::startAfresh(double time) {
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    setTime(time);
+    vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor
+    posedFrom_ = posedTo_ = 0;                      // posed again at the (new) time
     if (features_.selfCollision) storeSelfStart();  // the next step starts here
-    if (method_ == Method::ImplicitEuler) {  // no last solution to start from, as on the CPU
+    if (method_ == Method::ImplicitEuler) {         // no last solution to start from, as on the CPU
         const std::vector<glm::vec4> zero(n, glm::vec4(0));
         subData(buffers_[gpu::kCgVelocityChange], 0, zero.data(), n * kVec4);
     }

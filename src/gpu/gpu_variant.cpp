@@ -224,7 +224,8 @@ const char* kernelFile(Kernel k) {
                                                          "compute/self_contacts.comp",
                                                          "compute/self_apply.comp",
                                                          "compute/self_finish.comp",
-                                                         "compute/cg_contact_start.comp"};
+                                                         "compute/cg_contact_start.comp",
+                                                         "compute/step_check.comp"};
     return kFiles[int(k)];
 }
 

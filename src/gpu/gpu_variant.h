@@ -85,8 +85,10 @@ enum class Kernel {
     SelfFinish,      // the state, the velocities, the next step's start
     // implicit_euler with colliders (contacts in the solve, solve_contact.glsl):
     CgContactStart,  // Δv₀ = S Δv + z n
+    // Step control (solver/step_check.h), when the scene declares it:
+    StepCheck,  // each work group's largest growth of a structural spring's stretch
 };
-inline constexpr int kKernelCount = int(Kernel::CgContactStart) + 1;
+inline constexpr int kKernelCount = int(Kernel::StepCheck) + 1;
 // The self-collision kernels, in the order above.
 std::vector<Kernel> selfCollisionKernels();
 

@@ -42,6 +42,8 @@ std::vector<ShaderVariant> computeShaderVariants(const std::string& dir, const S
                 for (Kernel k : kernelsOf(method, Preconditioner::Jacobi, !s.colliders.empty()))
                     add(prefix + "." + stem(kernelFile(k)) + ".comp", kernelFile(k), s, {}, extra,
                         dragSets[d]);
+                if (method == kMethods[0] && d == 0 && !tiled)  // any integrator's: once
+                    add("step_check.comp", kernelFile(Kernel::StepCheck), s, {}, {}, {});
                 if (s.selfCollision)  // the same for every integrator: once per drag set
                     for (Kernel k : selfCollisionKernels())
                         add(std::string(drag.empty() ? "" : "dragged.") + stem(kernelFile(k)) +

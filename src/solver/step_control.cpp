@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <utility>
 
-#include "solver/diagnostics.h"
-
 namespace cloth {
 
 StepControl::StepControl(std::unique_ptr<Solver> backend, const Scene& scene)
-    : backend_(std::move(backend)), scene_(scene), backendDt_(scene.integrator.dt) {
+    : backend_(std::move(backend)),
+      check_(backend_->deviceStepCheck()),
+      scene_(scene),
+      backendDt_(scene.integrator.dt) {
+    if (!check_) {
+        hostCheck_ = std::make_unique<HostStepCheck>(*backend_);
+        check_ = hostCheck_.get();
+    }
     setStepDt(scene.integrator.dt);
     setTime(backend_->time());
     steps_ = backend_->stepsDone();
@@ -41,27 +46,20 @@ StepResult StepControl::step(long n) {
 }
 
 StepResult StepControl::advance(double dt, int depth) {
-    if (!known_) state_ = backend_->read();
-    known_ = false;
-    SimState start = std::move(state_);
+    check_->keep();
     setBackendDt(dt);
     const StepResult tried = backend_->step(1);
-    SimState after = backend_->read();
-    const bool failed = tried.unstable || largestStretchGrowth(scene_, start, after).strain >
-                                              scene_.integrator.maxStepStrain;
+    const bool failed =
+        tried.unstable || !(check_->stretchGrowth(scene_) <= scene_.integrator.maxStepStrain);
     failed_ = failed_ || failed;
     if (!failed || depth == kMaxHalvings) {
-        state_ = std::move(after);
-        known_ = true;
         ++stats_.substeps;
         stats_.deepest = std::max(stats_.deepest, depth);
         deepest_ = std::max(deepest_, depth);
         return tried;
     }
     ++stats_.rejected;
-    backend_->write(start);  // the step's start, its time included
-    state_ = std::move(start);
-    known_ = true;
+    check_->restore();  // the step's start, its time included
     for (int half = 0; half < 2; ++half) {
         const StepResult r = advance(dt / 2, depth + 1);
         if (r.unstable) return r;
@@ -79,13 +77,13 @@ void StepControl::setBackendDt(double dt) {
 
 void StepControl::write(const SimState& state) {
     backend_->write(state);
-    known_ = false;
+    check_->forget();
     setTime(state.time);
 }
 
 void StepControl::setPinned(int i, int j, bool pinned) {
     backend_->setPinned(i, j, pinned);
-    known_ = false;
+    check_->forget();
 }
 
 void StepControl::setParameters(const Scene& scene) {
@@ -96,7 +94,7 @@ void StepControl::setParameters(const Scene& scene) {
 }
 
 PassTimes StepControl::timePasses(int repeats) {
-    known_ = false;
+    check_->forget();
     return backend_->timePasses(repeats);
 }
 

@@ -8,14 +8,16 @@
 // one linearisation (implicit Euler) or its few sweeps (vbd) cannot follow the motion, as in an
 // impact: the halves are paid there only.
 //
-// It wraps the backend's solver (solver_factory makes it where the scene declares the key), and
-// reads the state back after every step to measure it: a round trip per step that a scene
-// without the key does not pay.
+// It wraps the backend's solver (solver_factory makes it where the scene declares the key). The
+// backend's StepCheck (solver/step_check.h) keeps each step's start, measures the step and puts
+// the start back: on the GPU without reading the state back, on the CPU through read() and
+// write(). A scene without the key pays none of it.
 #pragma once
 
 #include <memory>
 
 #include "solver/solver.h"
+#include "solver/step_check.h"
 
 namespace cloth {
 
@@ -48,20 +50,20 @@ public:
     StepControlStats stepControlStats() const override { return stats_; }
 
 private:
-    // Advances the backend by `dt` from its state now (state_), as one step or, where that one
-    // fails the check, as two of dt/2; depth halvings below the scene's Δt. Returns the result
-    // of the last step kept (unstable only where a step of the shortest length is).
+    // Advances the backend by `dt` from its state now, as one step or, where that one fails the
+    // check, as two of dt/2; depth halvings below the scene's Δt. Returns the result of the last
+    // step kept (unstable only where a step of the shortest length is).
     StepResult advance(double dt, int depth);
     void setBackendDt(double dt);
 
     std::unique_ptr<Solver> backend_;
-    Scene scene_;           // the parameters, with the scene's Δt
-    double backendDt_ = 0;  // the Δt the backend steps by now
-    SimState state_;        // the backend's state now, where known_
-    bool known_ = false;
-    int startDepth_ = 0;   // the halvings the next step starts at
-    int deepest_ = 0;      // the most halvings of a piece kept in this step
-    bool failed_ = false;  // whether a piece of this step failed the check
+    std::unique_ptr<HostStepCheck> hostCheck_;  // where the backend has no device check
+    StepCheck* check_;                          // the backend's or hostCheck_
+    Scene scene_;                               // the parameters, with the scene's Δt
+    double backendDt_ = 0;                      // the Δt the backend steps by now
+    int startDepth_ = 0;                        // the halvings the next step starts at
+    int deepest_ = 0;                           // the most halvings of a piece kept in this step
+    bool failed_ = false;                       // whether a piece of this step failed the check
     StepControlStats stats_;
 };
 

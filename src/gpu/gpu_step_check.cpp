@@ -1,0 +1,99 @@
+// GpuSolver as the step control's StepCheck (solver/step_check.h): the step's start is copied
+// within the GPU (kStepStart), step_check.comp measures each work group's largest growth of a
+// structural spring's stretch, and the host reads those maxima (4 bytes per work group) instead
+// of the state: 1 kB at 128² with 16x16 work groups, where read() moves 512 kB.
+#include <GL/glew.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include "gpu/egl_context.h"
+#include "gpu/gpu_buffers.h"
+#include "gpu/gpu_solver.h"
+#include "model/errors.h"
+#include "model/grid.h"
+
+namespace cloth {
+namespace {
+
+// step_check.comp reads the rest lengths of spring-table slots 0 and 2.
+static_assert(kSpringOffsets[0].di == 1 && kSpringOffsets[0].dj == 0 &&
+              kSpringOffsets[0].family == Family::Structural);
+static_assert(kSpringOffsets[2].di == 0 && kSpringOffsets[2].dj == 1 &&
+              kSpringOffsets[2].family == Family::Structural);
+
+}  // namespace
+
+void GpuSolver::checkBindingFits(unsigned binding, const char* feature) const {
+    GLint bindings = 0;
+    glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &bindings);
+    if (bindings <= GLint(binding))
+        throw GpuUnavailable(context_.info().renderer + " has " + std::to_string(bindings) +
+                             " storage buffer bindings; " + feature + " needs " +
+                             std::to_string(binding + 1) + ": use --backend cpu");
+}
+
+void GpuSolver::allocateStepCheck() {
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
+    glGenBuffers(1, &buffers_[gpu::kStepStart]);
+    gpu::bufferData(buffers_[gpu::kStepStart], nullptr, (2 * n + groups) * gpu::kVec4);
+}
+
+void GpuSolver::keep() {
+    const std::size_t bytes = std::size_t(nu_) * std::size_t(nv_) * gpu::kVec4;
+    context_.makeCurrent();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the kernels' writes, to the copy
+    glBindBuffer(GL_COPY_WRITE_BUFFER, buffers_[gpu::kStepStart]);
+    int offset = 0;
+    for (gpu::Binding b : {gpu::kPositions, gpu::kVelocities}) {
+        glBindBuffer(GL_COPY_READ_BUFFER, buffers_[b]);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, GLintptr(offset * bytes),
+                            GLsizeiptr(bytes));
+        ++offset;
+    }
+    keptTime_ = time();
+}
+
+double GpuSolver::stretchGrowth(const Scene&) {
+    if (!features_.structural) return 0;  // as largestStretchGrowth: no structural spring
+    context_.makeCurrent();
+    bindBuffers();
+    runPass(Kernel::StepCheck);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // its writes, to the read-back
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
+    std::vector<glm::vec4> maxima(groups);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[gpu::kStepStart]);
+    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(2 * n * gpu::kVec4),
+                       GLsizeiptr(groups * gpu::kVec4), maxima.data());
+    double largest = 0;
+    for (const glm::vec4& m : maxima) {
+        if (!(m.x <= std::numeric_limits<float>::max()))  // +inf: a length was not finite
+            return std::numeric_limits<double>::infinity();
+        largest = std::max(largest, double(m.x));
+    }
+    return largest;
+}
+
+void GpuSolver::restore() {
+    const std::size_t bytes = std::size_t(nu_) * std::size_t(nv_) * gpu::kVec4;
+    context_.makeCurrent();
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBuffer(GL_COPY_READ_BUFFER, buffers_[gpu::kStepStart]);
+    int offset = 0;
+    for (gpu::Binding b : {gpu::kPositions, gpu::kVelocities}) {
+        glBindBuffer(GL_COPY_WRITE_BUFFER, buffers_[b]);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, GLintptr(offset * bytes), 0,
+                            GLsizeiptr(bytes));
+        ++offset;
+    }
+    // The pins' rows need no update: a pinned vertex is where its row holds it, or follows a
+    // collider posed by the time.
+    startAfresh(keptTime_);
+}
+
+}  // namespace cloth
