@@ -204,7 +204,12 @@ void CpuSolver<T>::write(const SimState& state) {
         v_.set(k, cast<T>(state.velocities[std::size_t(k)]));
         if (pinned_[k]) pinPosition_[k] = x_.get(k);  // a pin holds the vertex where it now is
     }
-    Solver::setTime(state.time);
+    startAfresh(state.time);
+}
+
+template <typename T>
+void CpuSolver<T>::startAfresh(double time) {
+    Solver::setTime(time);
     forcesValid_ = false;
     std::fill(dv_.begin(), dv_.end(), Vec3<T>(0));  // no last solution to start from
     vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor

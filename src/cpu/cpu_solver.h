@@ -26,11 +26,14 @@
 #include "model/pin_follow.h"
 #include "model/stiffness.h"
 #include "solver/solver.h"
+#include "solver/step_check.h"
 
 namespace cloth {
 
+// With step control, it is its own StepCheck (cpu_step_check.cpp): a copy of the state, measured
+// in double as largestStretchGrowth does.
 template <typename T>
-class CpuSolver final : public Solver {
+class CpuSolver final : public Solver, private StepCheck {
 public:
     // isa: which row kernels; Auto picks the CPU's best or CLOTH_CPU_ISA (cpu/cpu_rows.h).
     CpuSolver(const Scene& scene, int threads, CpuIsa isa = CpuIsa::Auto);
@@ -60,6 +63,7 @@ public:
             if (in[i]) k.push_back(std::int64_t(i));
         return k;
     }
+    StepCheck* stepCheck() override { return features_.stepControl ? this : nullptr; }
 
 private:
     using Spring = StencilSpring<T>;
@@ -252,6 +256,16 @@ private:
     std::optional<GrabT> grab_;
     std::vector<Band> bands_;
     std::unique_ptr<WorkerPool> pool_;
+
+    // After the state was replaced (write, restore): the time, a start without history (vbd's
+    // v_{n−1}, implicit_euler's last solution, verlet's forces), no instability.
+    void startAfresh(double time);
+    // Step control (cpu_step_check.cpp, solver/step_check.h): the kept state and its time.
+    void keep() override;
+    double stretchGrowth() override;
+    void restore() override;
+    Soa3<T> keptX_, keptV_;
+    double keptTime_ = 0;
 };
 
 extern template class CpuSolver<float>;

@@ -76,7 +76,7 @@ public:
     std::size_t bufferBytes() const;
     SelfCollisionStats selfCollisionStats() const override { return selfStats_; }
     std::vector<std::int64_t> selfContactVertices() const override;
-    StepCheck* deviceStepCheck() override { return features_.stepControl ? this : nullptr; }
+    StepCheck* stepCheck() override { return features_.stepControl ? this : nullptr; }
 
 private:
     struct PinSlot {
@@ -136,7 +136,7 @@ private:
     // Step control (gpu_step_check.cpp, solver/step_check.h).
     void allocateStepCheck();
     void keep() override;
-    double stretchGrowth(const Scene& scene) override;
+    double stretchGrowth() override;
     void restore() override;
     double keptTime_ = 0;  // the time of the kept state
     void allocateSelfCollision(const Scene& scene);

@@ -58,7 +58,7 @@ void GpuSolver::keep() {
     keptTime_ = time();
 }
 
-double GpuSolver::stretchGrowth(const Scene&) {
+double GpuSolver::stretchGrowth() {
     if (!features_.structural) return 0;  // as largestStretchGrowth: no structural spring
     context_.makeCurrent();
     bindBuffers();

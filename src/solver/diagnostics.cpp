@@ -73,7 +73,8 @@ SpringStrain largestStrain(const Scene& scene, const SimState& state) {
                 const std::int64_t a = g.index(i, j), b = g.index(i + o.di, j + o.dj);
                 const double len = glm::length(state.positions[b] - state.positions[a]);
                 const double strain = std::abs(len - rest) / rest;
-                if (!(strain <= worst.strain)) worst = {strain, a, b};  // a NaN counts as worst
+                if (std::isnan(strain)) return {strain, a, b};  // a NaN is the worst
+                if (strain > worst.strain) worst = {strain, a, b};
             }
     }
     return worst;
@@ -93,7 +94,8 @@ SpringStrain largestStretchGrowth(const Scene& scene, const SimState& before,
                 const double was = glm::length(before.positions[b] - before.positions[a]);
                 const double is = glm::length(after.positions[b] - after.positions[a]);
                 const double growth = (std::max(is, rest) - std::max(was, rest)) / rest;
-                if (!(growth <= worst.strain)) worst = {growth, a, b};  // a NaN counts as worst
+                if (std::isnan(growth)) return {growth, a, b};  // a NaN is the worst
+                if (growth > worst.strain) worst = {growth, a, b};
             }
     }
     return worst;

@@ -183,10 +183,9 @@ public:
     const SolveStats& solveStats() const { return solveStats_; }
     virtual SelfCollisionStats selfCollisionStats() const { return {}; }
     virtual StepControlStats stepControlStats() const { return {}; }
-    // The backend's own StepCheck (solver/step_check.h), where it measures a step on its device
-    // without reading the state back; null where the step control reads the state back instead
-    // (HostStepCheck). It lives as long as the solver.
-    virtual StepCheck* deviceStepCheck() { return nullptr; }
+    // The backend's StepCheck (solver/step_check.h) where the scene declares step control
+    // (Features::stepControl), else null. It lives as long as the solver.
+    virtual StepCheck* stepCheck() { return nullptr; }
     // The vertices k = j·nu + i in a self-contact in the last step (the viewer marks them).
     virtual std::vector<std::int64_t> selfContactVertices() const { return {}; }
 

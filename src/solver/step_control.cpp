@@ -1,19 +1,26 @@
 #include "solver/step_control.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 namespace cloth {
+namespace {
+
+StepCheck& checkOf(Solver& backend) {
+    StepCheck* check = backend.stepCheck();
+    if (!check)
+        throw std::logic_error(backend.name() + " keeps no step start: made without step control");
+    return *check;
+}
+
+}  // namespace
 
 StepControl::StepControl(std::unique_ptr<Solver> backend, const Scene& scene)
     : backend_(std::move(backend)),
-      check_(backend_->deviceStepCheck()),
+      check_(checkOf(*backend_)),
       scene_(scene),
       backendDt_(scene.integrator.dt) {
-    if (!check_) {
-        hostCheck_ = std::make_unique<HostStepCheck>(*backend_);
-        check_ = hostCheck_.get();
-    }
     setStepDt(scene.integrator.dt);
     setTime(backend_->time());
     steps_ = backend_->stepsDone();
@@ -46,11 +53,11 @@ StepResult StepControl::step(long n) {
 }
 
 StepResult StepControl::advance(double dt, int depth) {
-    check_->keep();
+    check_.keep();
     setBackendDt(dt);
     const StepResult tried = backend_->step(1);
     const bool failed =
-        tried.unstable || !(check_->stretchGrowth(scene_) <= scene_.integrator.maxStepStrain);
+        tried.unstable || !(check_.stretchGrowth() <= scene_.integrator.maxStepStrain);
     failed_ = failed_ || failed;
     if (!failed || depth == kMaxHalvings) {
         ++stats_.substeps;
@@ -59,7 +66,7 @@ StepResult StepControl::advance(double dt, int depth) {
         return tried;
     }
     ++stats_.rejected;
-    check_->restore();  // the step's start, its time included
+    check_.restore();  // the step's start, its time included
     for (int half = 0; half < 2; ++half) {
         const StepResult r = advance(dt / 2, depth + 1);
         if (r.unstable) return r;
@@ -77,13 +84,7 @@ void StepControl::setBackendDt(double dt) {
 
 void StepControl::write(const SimState& state) {
     backend_->write(state);
-    check_->forget();
     setTime(state.time);
-}
-
-void StepControl::setPinned(int i, int j, bool pinned) {
-    backend_->setPinned(i, j, pinned);
-    check_->forget();
 }
 
 void StepControl::setParameters(const Scene& scene) {
@@ -91,11 +92,6 @@ void StepControl::setParameters(const Scene& scene) {
     scene_ = scene;
     backendDt_ = scene.integrator.dt;
     setStepDt(scene.integrator.dt);
-}
-
-PassTimes StepControl::timePasses(int repeats) {
-    check_->forget();
-    return backend_->timePasses(repeats);
 }
 
 }  // namespace cloth

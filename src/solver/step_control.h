@@ -10,8 +10,8 @@
 //
 // It wraps the backend's solver (solver_factory makes it where the scene declares the key). The
 // backend's StepCheck (solver/step_check.h) keeps each step's start, measures the step and puts
-// the start back: on the GPU without reading the state back, on the CPU through read() and
-// write(). A scene without the key pays none of it.
+// the start back where the state lives: the GPU reads back no state for it. A scene without the
+// key pays none of it.
 #pragma once
 
 #include <memory>
@@ -32,7 +32,7 @@ public:
     Features features() const override { return backend_->features(); }
     std::string name() const override { return backend_->name(); }
     void write(const SimState& state) override;
-    void setPinned(int i, int j, bool pinned) override;
+    void setPinned(int i, int j, bool pinned) override { backend_->setPinned(i, j, pinned); }
     void setGrab(const std::optional<Grab>& grab) override { backend_->setGrab(grab); }
     void setParameters(const Scene& scene) override;
     void setColliderDrag(int index, const glm::dvec3& offset, const glm::dvec3& velocity) override {
@@ -40,7 +40,7 @@ public:
     }
     std::optional<DrawBuffers> drawBuffers() const override { return backend_->drawBuffers(); }
     DeviceReport deviceReport() const override { return backend_->deviceReport(); }
-    PassTimes timePasses(int repeats) override;
+    PassTimes timePasses(int repeats) override { return backend_->timePasses(repeats); }
     SelfCollisionStats selfCollisionStats() const override {
         return backend_->selfCollisionStats();
     }
@@ -57,13 +57,12 @@ private:
     void setBackendDt(double dt);
 
     std::unique_ptr<Solver> backend_;
-    std::unique_ptr<HostStepCheck> hostCheck_;  // where the backend has no device check
-    StepCheck* check_;                          // the backend's or hostCheck_
-    Scene scene_;                               // the parameters, with the scene's Δt
-    double backendDt_ = 0;                      // the Δt the backend steps by now
-    int startDepth_ = 0;                        // the halvings the next step starts at
-    int deepest_ = 0;                           // the most halvings of a piece kept in this step
-    bool failed_ = false;                       // whether a piece of this step failed the check
+    StepCheck& check_;      // the backend's
+    Scene scene_;           // the parameters, with the scene's Δt
+    double backendDt_ = 0;  // the Δt the backend steps by now
+    int startDepth_ = 0;    // the halvings the next step starts at
+    int deepest_ = 0;       // the most halvings of a piece kept in this step
+    bool failed_ = false;   // whether a piece of this step failed the check
     StepControlStats stats_;
 };
 

@@ -46,7 +46,7 @@ SimState restState(const Scene& scene) {
 TEST_F(GpuStepControl, DeviceCheckMeasuresWhatTheHostMeasures) {
     const Scene scene = controlledSheet("symplectic_euler");
     std::unique_ptr<Solver> gpu = makeGpuSolver(scene);
-    StepCheck* check = gpu->deviceStepCheck();
+    StepCheck* check = gpu->stepCheck();
     ASSERT_NE(check, nullptr);
     const Grid g = scene.grid();
     const SimState before = restState(scene);
@@ -69,13 +69,13 @@ TEST_F(GpuStepControl, DeviceCheckMeasuresWhatTheHostMeasures) {
         x += moves[m].by.x * g.restLength(1, 0) * g.u + moves[m].by.y * g.restLength(0, 1) * g.v;
         gpu->write(after);  // the kept start stays kept
         const double host = largestStretchGrowth(scene, before, after).strain;
-        const double device = check->stretchGrowth(scene);
+        const double device = check->stretchGrowth();
         EXPECT_NEAR(host, expected[m], 1e-9) << "move " << m;
         EXPECT_NEAR(device, host, 1e-5) << "move " << m;
     }
     after.positions[std::size_t(g.index(10, 6))].y = std::nan("");
     gpu->write(after);
-    EXPECT_TRUE(std::isinf(check->stretchGrowth(scene)));
+    EXPECT_TRUE(std::isinf(check->stretchGrowth()));
 }
 
 // restore() puts the kept state back bit for bit, with its time, for every integrator whose
@@ -87,9 +87,9 @@ TEST_F(GpuStepControl, RestoreIsTheKeptStateAndStepsOnAsAfterAWrite) {
         std::unique_ptr<Solver> gpu = makeGpuSolver(scene);
         ASSERT_FALSE(gpu->step(5).unstable) << method;
         const SimState kept = gpu->read();
-        gpu->deviceStepCheck()->keep();
+        gpu->stepCheck()->keep();
         ASSERT_FALSE(gpu->step(3).unstable) << method;
-        gpu->deviceStepCheck()->restore();
+        gpu->stepCheck()->restore();
         const SimState restored = gpu->read();
         EXPECT_EQ(restored.time, kept.time) << method;
         EXPECT_EQ(0, std::memcmp(restored.positions.data(), kept.positions.data(),
@@ -113,7 +113,7 @@ TEST_F(GpuStepControl, RestoreIsTheKeptStateAndStepsOnAsAfterAWrite) {
 TEST_F(GpuStepControl, ASceneWithoutTheKeyHasNoDeviceCheck) {
     Scene scene = controlledSheet("symplectic_euler");
     scene.integrator.maxStepStrain = 0;
-    EXPECT_EQ(makeGpuSolver(scene)->deviceStepCheck(), nullptr);
+    EXPECT_EQ(makeGpuSolver(scene)->stepCheck(), nullptr);
 }
 
 // The CPU's case (tests/solver/step_control_test.cpp), 20 frames: the GPU's long steps strain the

@@ -8,12 +8,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
 #include "backends/solver_factory.h"
+#include "cpu/cpu_backend.h"
 #include "model/pin_follow.h"
 #include "scene/scene_loader.h"
 #include "solver/diagnostics.h"
@@ -66,6 +68,38 @@ TEST(StepControl, StretchGrowthIsTheStructuralSpringsStretch) {
     later.positions[std::size_t(g.index(0, 3))].x -= 0.5 * du;
     s = largestStretchGrowth(scene, after, later);
     EXPECT_NEAR(s.strain, 0.05, 1e-12);
+    // A NaN is the worst wherever it lies, not only on the last spring looked at.
+    later.positions[std::size_t(g.index(3, 2))].y = std::nan("");
+    EXPECT_TRUE(std::isnan(largestStretchGrowth(scene, after, later).strain));
+    EXPECT_TRUE(std::isnan(largestStrain(scene, later).strain));
+}
+
+// The CPU's own check (cpu/cpu_step_check.cpp) decides as the states read back would: its
+// measure is largestStretchGrowth's of read() before and after, in float and double, +inf where
+// a position is NaN; and restore() gives back the kept state bit for bit, with its time.
+TEST(StepControl, TheCpusCheckMeasuresWhatTheStatesReadBackDo) {
+    const Scene scene = withControl(hangingSheet(0.001), 0.1);
+    for (Precision p : {Precision::Float, Precision::Double}) {
+        std::unique_ptr<Solver> cpu = makeCpuSolver(scene, {p, 1});
+        ASSERT_FALSE(cpu->step(40).unstable);
+        const SimState before = cpu->read();
+        StepCheck* check = cpu->stepCheck();
+        ASSERT_NE(check, nullptr);
+        check->keep();
+        ASSERT_FALSE(cpu->step(5).unstable);
+        const double grown = check->stretchGrowth();
+        EXPECT_GT(grown, 0) << precisionName(p);
+        EXPECT_DOUBLE_EQ(grown, largestStretchGrowth(scene, before, cpu->read()).strain)
+            << precisionName(p);
+        SimState torn = cpu->read();
+        torn.positions[std::size_t(scene.grid().index(3, 2))].y = std::nan("");
+        cpu->write(torn);
+        EXPECT_TRUE(std::isinf(check->stretchGrowth())) << precisionName(p);
+        check->restore();
+        test::expectSameBits(cpu->read(), before, precisionName(p));
+        EXPECT_EQ(cpu->time(), before.time) << precisionName(p);
+    }
+    EXPECT_EQ(makeCpuSolver(withControl(scene, 0), {Precision::Double, 1})->stepCheck(), nullptr);
 }
 
 // Where no step stretches a spring by the limit, the control only reads: the same bits as the
