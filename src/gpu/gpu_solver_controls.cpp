@@ -46,14 +46,13 @@ void GpuSolver::write(const SimState& state) {
 }
 
 void GpuSolver::startAfresh(double time) {
-    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
     setTime(time);
     vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor
     posedFrom_ = posedTo_ = 0;                      // posed again at the (new) time
     if (features_.selfCollision) storeSelfStart();  // the next step starts here
     if (method_ == Method::ImplicitEuler) {         // no last solution to start from, as on the CPU
-        const std::vector<glm::vec4> zero(n, glm::vec4(0));
-        subData(buffers_[gpu::kCgVelocityChange], 0, zero.data(), n * kVec4);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[gpu::kCgVelocityChange]);
+        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
     }
     // A written state starts afresh: an earlier instability no longer freezes the kernels.
     const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
