@@ -1,13 +1,12 @@
 // GpuSolver as the step control's StepCheck (solver/step_check.h): the step's start is copied
 // within the GPU (kStepStart), step_check.comp measures each work group's largest growth of a
-// structural spring's stretch, and the host reads those maxima (4 bytes per work group) instead
+// structural spring's stretch, and the host reads those maxima (16 bytes a work group) instead
 // of the state: 1 kB at 128² with 16x16 work groups, where read() moves 512 kB.
 #include <GL/glew.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 #include <vector>
 
 #include "gpu/egl_context.h"
