@@ -15,15 +15,13 @@ layout(std430, binding = 18) buffer StepStart {
 // The group's largest growth, at least 0, as bits: a non-negative float's bits order as it does.
 shared uint groupMax;
 
-const float kInfinity = uintBitsToFloat(0x7f800000u);
-
 // The growth of the spring from ij to ij + offset, of rest length restLength [m].
 float growth(ivec2 ij, ivec2 offset, float restLength) {
     if (!insideGrid(ij + offset)) return 0.0;
     uint a = vertexIndex(ij), b = vertexIndex(ij + offset);
     vec3 before = stepStart[b].xyz - stepStart[a].xyz, now = positions[b].xyz - positions[a].xyz;
     // Tested on the bits (common.glsl), before max(), which may return its other operand for NaN.
-    if (nonFinite(before) || nonFinite(now)) return kInfinity;
+    if (nonFinite(before) || nonFinite(now)) return uintBitsToFloat(0x7f800000u);  // +inf
     return (max(length(now), restLength) - max(length(before), restLength)) / restLength;
 }
 
