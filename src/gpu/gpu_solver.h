@@ -135,6 +135,7 @@ private:
     void startAfresh(double time);
     // Step control (gpu_step_check.cpp, solver/step_check.h).
     void allocateStepCheck();
+    void copyKeptState(bool toKept) const;
     void keep() override;
     double stretchGrowth() override;
     void restore() override;

@@ -42,18 +42,24 @@ void GpuSolver::allocateStepCheck() {
     gpu::bufferData(buffers_[gpu::kStepStart], nullptr, (2 * n + groups) * gpu::kVec4);
 }
 
-void GpuSolver::keep() {
+// Positions and velocities into the kept state's buffer (`toKept`), or back out of it.
+void GpuSolver::copyKeptState(bool toKept) const {
     const std::size_t bytes = std::size_t(nu_) * std::size_t(nv_) * gpu::kVec4;
     context_.makeCurrent();
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // the kernels' writes, to the copy
-    glBindBuffer(GL_COPY_WRITE_BUFFER, buffers_[gpu::kStepStart]);
-    int offset = 0;
-    for (gpu::Binding b : {gpu::kPositions, gpu::kVelocities}) {
-        glBindBuffer(GL_COPY_READ_BUFFER, buffers_[b]);
-        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, 0, GLintptr(offset * bytes),
-                            GLsizeiptr(bytes));
-        ++offset;
+    const gpu::Binding state[] = {gpu::kPositions, gpu::kVelocities};
+    for (std::size_t s = 0; s < 2; ++s) {
+        const unsigned live = buffers_[state[s]], kept = buffers_[gpu::kStepStart];
+        glBindBuffer(GL_COPY_READ_BUFFER, toKept ? live : kept);
+        glBindBuffer(GL_COPY_WRITE_BUFFER, toKept ? kept : live);
+        const GLintptr keptAt = GLintptr(s * bytes);
+        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, toKept ? 0 : keptAt,
+                            toKept ? keptAt : 0, GLsizeiptr(bytes));
     }
+}
+
+void GpuSolver::keep() {
+    copyKeptState(true);
     keptTime_ = time();
 }
 
@@ -79,17 +85,7 @@ double GpuSolver::stretchGrowth() {
 }
 
 void GpuSolver::restore() {
-    const std::size_t bytes = std::size_t(nu_) * std::size_t(nv_) * gpu::kVec4;
-    context_.makeCurrent();
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    glBindBuffer(GL_COPY_READ_BUFFER, buffers_[gpu::kStepStart]);
-    int offset = 0;
-    for (gpu::Binding b : {gpu::kPositions, gpu::kVelocities}) {
-        glBindBuffer(GL_COPY_WRITE_BUFFER, buffers_[b]);
-        glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, GLintptr(offset * bytes), 0,
-                            GLsizeiptr(bytes));
-        ++offset;
-    }
+    copyKeptState(false);
     // The pins' rows need no update: a pinned vertex is where its row holds it, or follows a
     // collider posed by the time.
     startAfresh(keptTime_);

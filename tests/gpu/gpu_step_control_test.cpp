@@ -4,13 +4,14 @@
 // sheet through the drape's impact as the CPU does, and reads no state back to do it.
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "gpu/gpu_test_support.h"
 #include "solver/diagnostics.h"
 #include "solver/step_check.h"
 #include "support/impact_runs.h"
+#include "support/same_bits.h"
 
 namespace cloth::test {
 namespace {
@@ -92,20 +93,13 @@ TEST_F(GpuStepControl, RestoreIsTheKeptStateAndStepsOnAsAfterAWrite) {
         gpu->stepCheck()->restore();
         const SimState restored = gpu->read();
         EXPECT_EQ(restored.time, kept.time) << method;
-        EXPECT_EQ(0, std::memcmp(restored.positions.data(), kept.positions.data(),
-                                 kept.positions.size() * sizeof(glm::dvec3)))
-            << method;
-        EXPECT_EQ(0, std::memcmp(restored.velocities.data(), kept.velocities.data(),
-                                 kept.velocities.size() * sizeof(glm::dvec3)))
-            << method;
+        expectSameBits(restored, kept, std::string(method) + ", restored");
         ASSERT_FALSE(gpu->step(4).unstable) << method;
         std::unique_ptr<Solver> written = makeGpuSolver(scene);
         ASSERT_FALSE(written->step(5).unstable) << method;
         written->write(kept);
         ASSERT_FALSE(written->step(4).unstable) << method;
-        EXPECT_EQ(0, std::memcmp(gpu->read().positions.data(), written->read().positions.data(),
-                                 kept.positions.size() * sizeof(glm::dvec3)))
-            << method;
+        expectSameBits(gpu->read(), written->read(), std::string(method) + ", stepped on");
     }
 }
 
