@@ -16,6 +16,7 @@
 #include "model/collider_mesh.h"
 #include "model/errors.h"
 #include "reference/reference_colliders.h"
+#include "support/process.h"
 
 namespace cloth {
 namespace {
@@ -24,9 +25,7 @@ namespace fs = std::filesystem;
 using D3 = glm::dvec3;
 
 std::string tempObj(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / "clothsim_mesh_sdf_test";
-    fs::create_directories(dir);
-    return (dir / name).string();
+    return (test::testTempDir() / name).string();
 }
 
 // The test's own OBJ writer: `v` lines and 1-based `f` lines, nothing else.

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "reference/self_intersection.h"
+#include "support/process.h"
 
 namespace cloth {
 namespace {
@@ -19,10 +20,9 @@ using ref::TriangleMesh;
 using V3 = std::array<double, 3>;
 
 fs::path writeFile(const std::string& name, const std::string& text) {
-    const fs::path dir = fs::temp_directory_path() / "clothsim_read_obj_test";
-    fs::create_directories(dir);
-    std::ofstream(dir / name) << text;
-    return dir / name;
+    const fs::path path = test::testTempDir() / name;
+    std::ofstream(path) << text;
+    return path;
 }
 
 std::string readError(const fs::path& path) {

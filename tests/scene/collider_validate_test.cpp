@@ -14,6 +14,7 @@
 
 #include "model/collider_mesh.h"
 #include "model/errors.h"
+#include "support/process.h"
 
 namespace cloth {
 namespace {
@@ -88,8 +89,7 @@ TEST(ColliderValidate, MotionNumbersNameTheirKey) {
 }
 
 TEST(ColliderValidate, MeshFileProblemsNameTheFileKey) {
-    const fs::path dir = fs::temp_directory_path() / "clothsim_validate_test";
-    fs::create_directories(dir);
+    const fs::path dir = test::testTempDir();
     const KeyRef mesh{(dir / "scene.json").string(), "colliders[2]"};
     const auto key = [&](const std::function<void()>& f) {
         try {

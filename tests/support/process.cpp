@@ -1,6 +1,7 @@
 #include "support/process.h"
 
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/resource.h>
@@ -10,7 +11,9 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <iostream>
 #include <stdexcept>
+#include <vector>
 
 namespace cloth::test {
 namespace {
@@ -117,13 +120,83 @@ std::string describe(const ProcessResult& r) {
            r.out.substr(0, 2000);
 }
 
+namespace {
+
+// Removes the folders freshTempDir made once their owner has passed: a test's at its end, a
+// suite's (made outside any test, in SetUpTestSuite) at the suite's end.
+class TempDirCleanup : public ::testing::EmptyTestEventListener {
+public:
+    void made(const std::filesystem::path& d) { (inTest_ ? testDirs_ : suiteDirs_).push_back(d); }
+
+    std::filesystem::path testDir() {
+        if (testDir_.empty()) {
+            const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+            if (info == nullptr) throw std::logic_error("testTempDir() called outside a test");
+            const auto flat = [](std::string s) {
+                for (char& c : s) c = c == '/' ? '_' : c;
+                return s;
+            };
+            testDir_ = freshTempDir(flat(info->test_suite_name()), flat(info->name()));
+        }
+        return testDir_;
+    }
+
+private:
+    void OnTestStart(const ::testing::TestInfo&) override { inTest_ = true; }
+    void OnTestEnd(const ::testing::TestInfo& info) override {
+        inTest_ = false;
+        testDir_.clear();
+        settle(testDirs_, info.result()->Passed());
+    }
+    void OnTestSuiteEnd(const ::testing::TestSuite& suite) override {
+        settle(suiteDirs_, suite.Passed());
+    }
+
+    static void settle(std::vector<std::filesystem::path>& dirs, bool passed) {
+        for (const auto& d : dirs) {
+            std::error_code ignored;
+            if (passed) {
+                std::filesystem::remove_all(d, ignored);
+            } else {
+                std::cerr << "kept for inspection: " << d.string() << "\n";
+            }
+        }
+        dirs.clear();
+    }
+
+    bool inTest_ = false;
+    std::filesystem::path testDir_;
+    std::vector<std::filesystem::path> testDirs_;
+    std::vector<std::filesystem::path> suiteDirs_;
+};
+
+TempDirCleanup& tempDirCleanup() {
+    // gtest owns the listener once appended; it lives until the program ends.
+    static TempDirCleanup* const cleanup = [] {
+        auto* c = new TempDirCleanup;
+        ::testing::UnitTest::GetInstance()->listeners().Append(c);
+        return c;
+    }();
+    return *cleanup;
+}
+
+// Listening from the start, so that a folder made in the first test counts as that test's.
+[[maybe_unused]] const bool kCleanupListening = (tempDirCleanup(), true);
+
+}  // namespace
+
 std::filesystem::path freshTempDir(const std::string& suite, const std::string& name) {
     namespace fs = std::filesystem;
     const fs::path d = fs::temp_directory_path() /
                        ("clothsim_" + suite + "_" + name + "_" + std::to_string(getpid()));
     fs::remove_all(d);
     fs::create_directories(d);
+    tempDirCleanup().made(d);
     return d;
+}
+
+std::filesystem::path testTempDir() {
+    return tempDirCleanup().testDir();
 }
 
 }  // namespace cloth::test

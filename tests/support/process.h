@@ -32,7 +32,13 @@ ProcessResult runProcess(const std::vector<std::string>& argv, double timeoutSec
 std::string describe(const ProcessResult& r);
 
 // An empty folder temp/clothsim_<suite>_<name>_<pid>, made afresh: one per process and test,
-// so tests that ctest runs side by side never share one.
+// so tests that ctest runs side by side never share one. It is removed when the test that made
+// it passes (made in SetUpTestSuite: when its suite passes); after a failure it is kept, and
+// its path printed, for inspection.
 std::filesystem::path freshTempDir(const std::string& suite, const std::string& name);
+
+// The running test's own folder, freshTempDir(<suite>, <test>) ('/' of parameterised names as
+// '_'): made at the test's first call, the same folder at the next ones.
+std::filesystem::path testTempDir();
 
 }  // namespace cloth::test

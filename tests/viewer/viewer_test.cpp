@@ -293,9 +293,7 @@ TEST(ViewerCommand, HelpAndBadInputNeedNoDisplay) {
 class ViewerWindow : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(ViewerWindow, DrapeScreenshotShowsClothSphereAndGround) {
-    const fs::path d = fs::temp_directory_path() / "clothsim_viewer_test" / GetParam();
-    fs::remove_all(d);
-    fs::create_directories(d);
+    const fs::path d = test::testTempDir();
     const fs::path png = d / "view.png";
     test::ProcessResult r;
     viewScreenshot(GetParam(), png, &r);
