@@ -31,11 +31,10 @@ double CpuSolver<T>::stretchGrowth() {
         for (int j = 0; j + dj < grid_.nv; ++j)
             for (int i = 0; i + di < grid_.nu; ++i) {
                 const std::int64_t a = grid_.index(i, j), b = grid_.index(i + di, j + dj);
-                const double growth =
-                    (std::max(length(x_, a, b), rest) - std::max(length(keptX_, a, b), rest)) /
-                    rest;
-                if (std::isnan(growth)) return std::numeric_limits<double>::infinity();
-                largest = std::max(largest, growth);
+                const double was = length(keptX_, a, b), is = length(x_, a, b);
+                if (!std::isfinite(was) || !std::isfinite(is))
+                    return std::numeric_limits<double>::infinity();
+                largest = std::max(largest, (std::max(is, rest) - std::max(was, rest)) / rest);
             }
     }
     return largest;

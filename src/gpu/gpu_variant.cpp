@@ -100,8 +100,31 @@ void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
                          " bytes per SSBO: use \"jacobi\", a coarser grid or the CPU backend");
 }
 
+void checkWideBuffersFit(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
+    const int nu = scene.cloth.nu, nv = scene.cloth.nv;
+    const long long n = static_cast<long long>(nu) * nv;
+    const long long groups = ((nu + wg.x - 1LL) / wg.x) * ((nv + wg.y - 1LL) / wg.y);
+    auto refuse = [&](long long bytes, const char* key, const std::string& what) {
+        if (bytes <= info.maxStorageBlockSize) return;
+        throw InputError(scene.source, key,
+                         what + " on the " + std::to_string(nu) + "x" + std::to_string(nv) +
+                             " grid need a " + std::to_string(bytes) + "-byte buffer; " +
+                             info.renderer + " allows at most " +
+                             std::to_string(info.maxStorageBlockSize) +
+                             " bytes per SSBO: a coarser grid or the CPU backend");
+    };
+    if (scene.integrator.method == Method::ImplicitEuler &&
+        scene.integrator.preconditioner == Preconditioner::Jacobi)
+        refuse(2 * n * kBytesPerVertexBuffer, "integrator.preconditioner",
+               "\"jacobi\"'s inverse blocks (two vec4 a vertex)");
+    if (Features::of(scene).stepControl)
+        refuse((2 * n + groups) * kBytesPerVertexBuffer, "integrator.max_step_strain",
+               "the step control's kept positions and velocities (two vec4 a vertex)");
+}
+
 void checkSceneFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
     checkGridFits(scene, wg, info);
+    checkWideBuffersFit(scene, wg, info);
     if (scene.integrator.method == Method::ImplicitEuler &&
         scene.integrator.preconditioner == Preconditioner::Multigrid)
         checkMultigridFits(scene, info);

@@ -109,9 +109,14 @@ MultigridBytes multigridBytes(int nu, int nv);
 // of `info`'s device.
 void checkMultigridFits(const Scene& scene, const GpuInfo& info);
 
+// Throws InputError (naming the key) when a buffer of more than one vec4 a vertex exceeds one SSBO
+// binding of `info`'s device: block-Jacobi's inverses, the step control's kept state.
+void checkWideBuffersFit(const Scene& scene, WorkGroup wg, const GpuInfo& info);
+
 // Throws InputError (naming the key) when the scene needs more of the device than it offers: its
-// grid (checkGridFits) and, with implicit_euler's multigrid preconditioner, that one's buffers
-// (checkMultigridFits). GpuSolver checks it first; --backend auto asks it (gpuSceneRefusal).
+// grid (checkGridFits), its wider buffers (checkWideBuffersFit) and, with implicit_euler's
+// multigrid preconditioner, that one's buffers (checkMultigridFits). GpuSolver checks it first;
+// --backend auto asks it (gpuSceneRefusal).
 void checkSceneFits(const Scene& scene, WorkGroup wg, const GpuInfo& info);
 
 // Whether a scene runs many steps per dispatch (many_steps.comp): as asked, or with Auto for

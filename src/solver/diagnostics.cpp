@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "model/bending.h"
 #include "model/stiffness.h"
@@ -93,8 +94,9 @@ SpringStrain largestStretchGrowth(const Scene& scene, const SimState& before,
                 const std::int64_t a = g.index(i, j), b = g.index(i + di, j + dj);
                 const double was = glm::length(before.positions[b] - before.positions[a]);
                 const double is = glm::length(after.positions[b] - after.positions[a]);
+                if (!std::isfinite(was) || !std::isfinite(is))  // the worst, before or after
+                    return {std::numeric_limits<double>::infinity(), a, b};
                 const double growth = (std::max(is, rest) - std::max(was, rest)) / rest;
-                if (std::isnan(growth)) return {growth, a, b};  // a NaN is the worst
                 if (growth > worst.strain) worst = {growth, a, b};
             }
     }

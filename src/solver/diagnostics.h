@@ -35,7 +35,8 @@ SpringStrain largestStrain(const Scene& scene, const SimState& state);
 // The structural spring whose stretch max(0, (|d| − L)/L) grew most from `before` to `after` (two
 // states of the same grid), by how much: the step control's measure of a step
 // (solver/step_control.h). A membrane torn by a step stretches; one that folds or shears
-// shortens its bend and shear springs, and buckling compresses, as the cloth may.
+// shortens its bend and shear springs, and buckling compresses, as the cloth may. +inf where a
+// length is not finite, before or after.
 SpringStrain largestStretchGrowth(const Scene& scene, const SimState& before,
                                   const SimState& after);
 

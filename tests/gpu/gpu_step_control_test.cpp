@@ -4,6 +4,7 @@
 // sheet through the drape's impact as the CPU does, and reads no state back to do it.
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -43,7 +44,7 @@ SimState restState(const Scene& scene) {
 
 // The device's measure is the host's (largestStretchGrowth, in double) to float rounding: the
 // largest growth wherever it lies, along u or v, in the last row or column of work groups, and
-// +inf where a position is not finite.
+// +inf where a position is not finite, now or at the kept start.
 TEST_F(GpuStepControl, DeviceCheckMeasuresWhatTheHostMeasures) {
     const Scene scene = controlledSheet("symplectic_euler");
     std::unique_ptr<Solver> gpu = makeGpuSolver(scene);
@@ -74,9 +75,19 @@ TEST_F(GpuStepControl, DeviceCheckMeasuresWhatTheHostMeasures) {
         EXPECT_NEAR(host, expected[m], 1e-9) << "move " << m;
         EXPECT_NEAR(device, host, 1e-5) << "move " << m;
     }
-    after.positions[std::size_t(g.index(10, 6))].y = std::nan("");
+    const double inf = std::numeric_limits<double>::infinity();
+    SimState torn = after;
+    torn.positions[std::size_t(g.index(10, 6))].y = std::nan("");
+    gpu->write(torn);
+    EXPECT_EQ(check->stretchGrowth(), inf);
+    EXPECT_EQ(largestStretchGrowth(scene, before, torn).strain, inf);
+    SimState huge = after;  // a length of +inf (not NaN) at the start, a finite one now
+    huge.positions[std::size_t(g.index(10, 6))].y = 1e300;
+    gpu->write(huge);
+    check->keep();
     gpu->write(after);
-    EXPECT_TRUE(std::isinf(check->stretchGrowth()));
+    EXPECT_EQ(check->stretchGrowth(), inf);
+    EXPECT_EQ(largestStretchGrowth(scene, huge, after).strain, inf);
 }
 
 // restore() puts the kept state back bit for bit, with its time, for every integrator whose

@@ -1,13 +1,13 @@
-// The GPU backend's speed variants (docs/performance.md) change how the work is dispatched, never the
-// physics: the shared-memory tile, every work-group shape and many steps per dispatch give the
+// The GPU backend's speed variants (docs/performance.md) change how the work is dispatched, never
+// the physics: the shared-memory tile, every work-group shape and many steps per dispatch give the
 // plain per-step pass's state bit for bit, the instability flag stops a many-steps run at the
 // same step, and the buffers hold a 4096² cloth within 100 bytes per vertex.
 #include <nlohmann/json.hpp>
 
-#include "model/errors.h"
 #include "gpu/gpu_solver.h"
 #include "gpu/gpu_test_support.h"
 #include "gpu/gpu_variant.h"
+#include "model/errors.h"
 #include "support/process.h"
 
 namespace cloth::test {
@@ -172,6 +172,39 @@ TEST_F(GpuVariants, FourThousandSquaredFitsInOneHundredBytesPerVertex) {
     EXPECT_EQ(r.exitCode, 2) << describe(r);
     EXPECT_NE(r.err.find("--sizes"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("bytes per SSBO"), std::string::npos) << r.err;
+}
+
+// Buffers of two vec4 a vertex must fit one binding as the vertex buffers do: on a device whose
+// limit is exactly the grid's vertex buffer, the grid runs, block-Jacobi's inverses and the step
+// control's kept state are refused naming their keys, and without them nothing is.
+TEST(GpuVariantLimits, TwoVec4AVertexBuffersAreRefusedPastOneBindingNamingTheirKeys) {
+    const int nu = 300, nv = 200;
+    const GpuInfo device = deviceWith(16LL * nu * nv, 32768);
+    const auto refusal = [&](Scene s) -> std::string {
+        try {
+            checkSceneFits(s, {16, 16}, device);
+        } catch (const InputError& e) {
+            return e.key() + ": " + e.reason();
+        }
+        return "";
+    };
+    Scene plain = everythingScene("implicit_euler", nu, nv);
+    plain.integrator.preconditioner = Preconditioner::None;
+    EXPECT_EQ(refusal(plain), "");
+    Scene jacobi = plain;
+    jacobi.integrator.preconditioner = Preconditioner::Jacobi;
+    EXPECT_NE(refusal(jacobi).find("integrator.preconditioner: \"jacobi\"'s inverse blocks"),
+              std::string::npos)
+        << refusal(jacobi);
+    Scene controlled = plain;
+    controlled.integrator.maxStepStrain = 0.1;
+    const std::string why = refusal(controlled);
+    EXPECT_NE(why.find("integrator.max_step_strain: the step control's"), std::string::npos) << why;
+    EXPECT_NE(why.find(std::to_string(16LL * (2 * nu * nv + 19 * 13)) + "-byte buffer"),
+              std::string::npos)
+        << why;  // two vec4 a vertex and one for each of the 19 x 13 work groups
+    EXPECT_NE(why.find("allows at most " + std::to_string(16LL * nu * nv)), std::string::npos)
+        << why;
 }
 
 // The tile of a shape and its 2-vertex halo must fit the device's shared memory.

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -68,15 +69,21 @@ TEST(StepControl, StretchGrowthIsTheStructuralSpringsStretch) {
     later.positions[std::size_t(g.index(0, 3))].x -= 0.5 * du;
     s = largestStretchGrowth(scene, after, later);
     EXPECT_NEAR(s.strain, 0.05, 1e-12);
-    // A NaN is the worst wherever it lies, not only on the last spring looked at.
+    // A length that is not finite, before or after, is the worst (+inf) wherever it lies, not
+    // only on the last spring looked at.
+    const double inf = std::numeric_limits<double>::infinity();
+    SimState huge = later;
+    huge.positions[std::size_t(g.index(3, 2))].y = 1e300;  // finite, its spring's length not
+    EXPECT_EQ(largestStretchGrowth(scene, huge, later).strain, inf);
     later.positions[std::size_t(g.index(3, 2))].y = std::nan("");
-    EXPECT_TRUE(std::isnan(largestStretchGrowth(scene, after, later).strain));
+    EXPECT_EQ(largestStretchGrowth(scene, after, later).strain, inf);
     EXPECT_TRUE(std::isnan(largestStrain(scene, later).strain));
 }
 
 // The CPU's own check (cpu/cpu_step_check.cpp) decides as the states read back would: its
 // measure is largestStretchGrowth's of read() before and after, in float and double, +inf where
-// a position is NaN; and restore() gives back the kept state bit for bit, with its time.
+// a length is not finite now or at the kept start; and restore() gives back the kept state bit
+// for bit, with its time.
 TEST(StepControl, TheCpusCheckMeasuresWhatTheStatesReadBackDo) {
     const Scene scene = withControl(hangingSheet(0.001), 0.1);
     for (Precision p : {Precision::Float, Precision::Double}) {
@@ -94,10 +101,17 @@ TEST(StepControl, TheCpusCheckMeasuresWhatTheStatesReadBackDo) {
         SimState torn = cpu->read();
         torn.positions[std::size_t(scene.grid().index(3, 2))].y = std::nan("");
         cpu->write(torn);
-        EXPECT_TRUE(std::isinf(check->stretchGrowth())) << precisionName(p);
+        const double inf = std::numeric_limits<double>::infinity();
+        EXPECT_EQ(check->stretchGrowth(), inf) << precisionName(p);
         check->restore();
         test::expectSameBits(cpu->read(), before, precisionName(p));
         EXPECT_EQ(cpu->time(), before.time) << precisionName(p);
+        SimState huge = before;  // a length of +inf (not NaN) at the start, a finite one now
+        huge.positions[std::size_t(scene.grid().index(3, 2))].y = 1e300;
+        cpu->write(huge);
+        check->keep();
+        cpu->write(before);
+        EXPECT_EQ(check->stretchGrowth(), inf) << precisionName(p);
     }
     EXPECT_EQ(makeCpuSolver(withControl(scene, 0), {Precision::Double, 1})->stepCheck(), nullptr);
 }
