@@ -122,8 +122,8 @@ std::string describe(const ProcessResult& r) {
 
 namespace {
 
-// Removes the folders freshTempDir made once their owner has passed: a test's at its end, a
-// suite's (made outside any test, in SetUpTestSuite) at the suite's end.
+// Removes the folders freshTempDir made once their owner has passed (or was skipped): a test's at
+// its end, a suite's (made outside any test, in SetUpTestSuite) at the suite's end.
 class TempDirCleanup : public ::testing::EmptyTestEventListener {
 public:
     void made(const std::filesystem::path& d) { (inTest_ ? testDirs_ : suiteDirs_).push_back(d); }
@@ -146,16 +146,16 @@ private:
     void OnTestEnd(const ::testing::TestInfo& info) override {
         inTest_ = false;
         testDir_.clear();
-        settle(testDirs_, info.result()->Passed());
+        settle(testDirs_, info.result()->Failed());
     }
     void OnTestSuiteEnd(const ::testing::TestSuite& suite) override {
-        settle(suiteDirs_, suite.Passed());
+        settle(suiteDirs_, suite.Failed());
     }
 
-    static void settle(std::vector<std::filesystem::path>& dirs, bool passed) {
+    static void settle(std::vector<std::filesystem::path>& dirs, bool failed) {
         for (const auto& d : dirs) {
             std::error_code ignored;
-            if (passed) {
+            if (!failed) {
                 std::filesystem::remove_all(d, ignored);
             } else {
                 std::cerr << "kept for inspection: " << d.string() << "\n";

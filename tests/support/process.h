@@ -33,8 +33,8 @@ std::string describe(const ProcessResult& r);
 
 // An empty folder temp/clothsim_<suite>_<name>_<pid>, made afresh: one per process and test,
 // so tests that ctest runs side by side never share one. It is removed when the test that made
-// it passes (made in SetUpTestSuite: when its suite passes); after a failure it is kept, and
-// its path printed, for inspection.
+// it passes or is skipped (made in SetUpTestSuite: when its suite passes); after a failure it is
+// kept, and its path printed, for inspection.
 std::filesystem::path freshTempDir(const std::string& suite, const std::string& name);
 
 // The running test's own folder, freshTempDir(<suite>, <test>) ('/' of parameterised names as
