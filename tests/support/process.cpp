@@ -122,7 +122,7 @@ std::string describe(const ProcessResult& r) {
 
 namespace {
 
-// Removes the folders freshTempDir made once their owner has passed (or was skipped): a test's at
+// Removes the folders freshTempDir made once their owner has ended without failing: a test's at
 // its end, a suite's (made outside any test, in SetUpTestSuite) at the suite's end.
 class TempDirCleanup : public ::testing::EmptyTestEventListener {
 public:

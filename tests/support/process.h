@@ -32,8 +32,8 @@ ProcessResult runProcess(const std::vector<std::string>& argv, double timeoutSec
 std::string describe(const ProcessResult& r);
 
 // An empty folder temp/clothsim_<suite>_<name>_<pid>, made afresh: one per process and test,
-// so tests that ctest runs side by side never share one. It is removed when the test that made
-// it passes or is skipped (made in SetUpTestSuite: when its suite passes); after a failure it is
+// so tests that ctest runs side by side never share one. It is removed at the end of the test
+// that made it (made in SetUpTestSuite: of its suite) unless that failed; after a failure it is
 // kept, and its path printed, for inspection.
 std::filesystem::path freshTempDir(const std::string& suite, const std::string& name);
 
