@@ -18,9 +18,14 @@ void CpuMultigrid<T>::relaxLine(Level& g, int direction, int line, const Vec3<S>
     auto entry = [&](std::size_t row, std::size_t col) {
         return f[row * width + (kBand - (row - col))];
     };
+    const std::int64_t along = direction == 0 ? 1 : nu;  // from one vertex of the line to the next
     for (int a = 0; a < m; ++a) {
         const int i = direction == 0 ? a : line, j = direction == 0 ? line : a;
         const std::int64_t k = std::int64_t(j) * nu + i;
+        if (a + kAhead < m)
+            for (int slot = 0; slot < kStencil; ++slot)
+                if (g.reaches(slot) && (direction == 0 ? slot / 5 != 2 : slot % 5 != 2))
+                    g.prefetch(k + kAhead * along, slot);
         Vec3<S> sum(0);
         if (!g.pinned[std::size_t(k)]) {
             sum = r[k];
@@ -28,8 +33,9 @@ void CpuMultigrid<T>::relaxLine(Level& g, int direction, int line, const Vec3<S>
             const int di0 = std::max(-2, -i), di1 = std::min(2, nu - 1 - i);
             for (int dj = dj0; dj <= dj1; ++dj)
                 for (int di = di0; di <= di1; ++di) {
-                    if (direction == 0 ? dj == 0 : di == 0) continue;  // on the line
-                    sum -= g.times(k, stencilSlot(di, dj), z[k + std::int64_t(dj) * nu + di]);
+                    const int slot = stencilSlot(di, dj);
+                    if ((direction == 0 ? dj == 0 : di == 0) || !g.reaches(slot)) continue;
+                    sum -= g.times(k, slot, z[k + std::int64_t(dj) * nu + di]);
                 }
         }
         for (int c = 0; c < 3; ++c) y[3 * std::size_t(a) + std::size_t(c)] = double(sum[c]);
@@ -157,7 +163,9 @@ void CpuMultigrid<T>::cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThre
                 const int di0 = std::max(-2, -i), di1 = std::min(2, nu - 1 - i);
                 for (int dj = dj0; dj <= dj1; ++dj)
                     for (int di = di0; di <= di1; ++di)
-                        sum -= g.times(k, stencilSlot(di, dj), z[k + std::int64_t(dj) * nu + di]);
+                        if (g.reaches(stencilSlot(di, dj)))
+                            sum -=
+                                g.times(k, stencilSlot(di, dj), z[k + std::int64_t(dj) * nu + di]);
             }
             g.t[std::size_t(k)] = sum;
         }

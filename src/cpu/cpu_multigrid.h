@@ -99,9 +99,22 @@ private:
         // symmetric (half the memory traffic of the sweeps), a coarse grid's full.
         std::vector<Sym3<S>> symmetric;
         std::vector<Block> a;
+        // The slots that can be nonzero, a bit each: the fine grid's springs and bending reach
+        // 13 of the 25 offsets (set per step in linearise), a coarse grid's Galerkin product all.
+        std::uint32_t reach = (1u << kStencil) - 1;
+        bool reaches(int slot) const { return (reach >> slot) & 1u; }
         Block block(std::int64_t k, int slot) const {
             const std::size_t at = std::size_t(k * kStencil + slot);
             return symmetric.empty() ? a[at] : symmetric[at].matrix();
+        }
+        // Asks the cache for a block ahead of its use (a column's vertices lie a row apart).
+        void prefetch(std::int64_t k, int slot) const {
+            const std::size_t at = std::size_t(k * kStencil + slot);
+            const char* start = symmetric.empty() ? reinterpret_cast<const char*>(&a[at])
+                                                  : reinterpret_cast<const char*>(&symmetric[at]);
+            const std::size_t bytes = symmetric.empty() ? sizeof(Block) : sizeof(Sym3<S>);
+            __builtin_prefetch(start);
+            __builtin_prefetch(start + bytes - 1);
         }
         Vec3<S> times(std::int64_t k, int slot, const Vec3<S>& w) const {
             const std::size_t at = std::size_t(k * kStencil + slot);
@@ -122,6 +135,11 @@ private:
 
     static Axis coarsen(int n);
     static constexpr int stencilSlot(int di, int dj) { return 5 * (dj + 2) + di + 2; }
+    // The offsets the bending stencil reaches: second differences along u and v, the twists of
+    // the four cells around the vertex.
+    static constexpr int kBendReach[13][2] = {{0, 0},  {-1, 0}, {1, 0},  {-2, 0}, {2, 0},
+                                              {0, -1}, {0, 1},  {0, -2}, {0, 2},  {-1, -1},
+                                              {1, -1}, {-1, 1}, {1, 1}};
     // The cells of an axis that have coarse index I as a corner: I − 1 and I, where they exist.
     template <typename Fn>
     static void forEachCellOf(const Axis& axis, int I, const Fn& fn) {
@@ -134,7 +152,8 @@ private:
     Vec3<S> prolongAt(int l, std::int64_t k, const Vec3<S>* coarse) const;  // (P z_c)_k
     void smoother(int l, const CycleThreads& threads);
     void relaxLine(Level& g, int direction, int line, const Vec3<S>* r, Vec3<S>* z);
-    static constexpr int kBand = 8;  // a line's half bandwidth in unknowns: 3 × 2 + 2
+    static constexpr int kAhead = 4;  // vertices ahead along a line whose blocks are prefetched
+    static constexpr int kBand = 8;   // a line's half bandwidth in unknowns: 3 × 2 + 2
     void cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThreads& threads);
     void factorCoarsest();
     void solveCoarsest();

@@ -87,11 +87,6 @@ void CpuMultigrid<T>::assembleFine(const FineSystemS& fine, const CycleThreads& 
     Level& level = levels_[0];
     const int nu = level.nu, nv = level.nv;
     const S h = fine.h, h2 = h * h;
-    // The offsets the bending stencil reaches: second differences along u and v, the twists of
-    // the four cells around the vertex.
-    static constexpr int kBendReach[13][2] = {{0, 0},  {-1, 0}, {1, 0},  {-2, 0}, {2, 0},
-                                              {0, -1}, {0, 1},  {0, -2}, {0, 2},  {-1, -1},
-                                              {1, -1}, {-1, 1}, {1, 1}};
     auto bendWeight = [&](int i, int j, int qi, int qj) {
         auto unit = [&](int a, int b) { return Vec3<S>(a == qi && b == qj ? 1 : 0); };
         return -bendingForce<S>(fine.bending, i, j, unit).x;
@@ -186,6 +181,12 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
         for (const StencilSpring<T>& s : *fine.springs)
             springs_.push_back({s.di, s.dj, s.indexOffset, S(s.stiffness), S(s.restLength),
                                 s.halvedOnBorder, S(s.damping)});
+        // The fine stencil's slots that assembleFine can write; the sweeps skip the others.
+        std::uint32_t& reach = levels_[0].reach;
+        reach = 1u << stencilSlot(0, 0);
+        for (const StencilSpring<S>& s : springs_) reach |= 1u << stencilSlot(s.di, s.dj);
+        if (fine.bending.active())
+            for (const auto& o : kBendReach) reach |= 1u << stencilSlot(o[0], o[1]);
         const std::int64_t n = std::int64_t(fine.nu) * fine.nv;
         if (std::int64_t(inverseMass_.size()) != n) {
             inverseMass_.assign(std::size_t(n), S(0));

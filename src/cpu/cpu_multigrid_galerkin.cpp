@@ -92,7 +92,7 @@ void CpuMultigrid<T>::galerkin(int l, const CycleThreads& threads) {
                 const int qi = i + di;
                 if (qi < 0 || qi >= f.nu) continue;
                 const std::int64_t q = std::int64_t(qj) * f.nu + qi;
-                if (f.pinned[std::size_t(q)]) continue;
+                if (f.pinned[std::size_t(q)] || !f.reaches(stencilSlot(di, dj))) continue;
                 const Block a = f.block(k, stencilSlot(di, dj));
                 const int Qi = c.u.lower[std::size_t(qi)], Qj = c.v.lower[std::size_t(qj)];
                 for (int cq = 0; cq < 4; ++cq) {
