@@ -132,8 +132,8 @@ std::vector<Vec3<typename CpuMultigrid<T>::S>> CpuMultigrid<T>::stencilTimes(
         const int i = int(k % g.nu), j = int(k / g.nu);
         for (int dj = std::max(-2, -j); dj <= std::min(2, g.nv - 1 - j); ++dj)
             for (int di = std::max(-2, -i); di <= std::min(2, g.nu - 1 - i); ++di)
-                out[std::size_t(k)] += g.times(k, stencilSlot(di, dj),
-                                               w[std::size_t(k + std::int64_t(dj) * g.nu + di)]);
+                out[std::size_t(k)] += g.block(k, stencilSlot(di, dj)) *
+                                       w[std::size_t(k + std::int64_t(dj) * g.nu + di)];
     }
     return out;
 }

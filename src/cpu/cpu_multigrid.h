@@ -22,6 +22,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <barrier>
 #include <cstdint>
 #include <utility>
@@ -95,30 +96,35 @@ private:
     struct Level {
         int nu = 0, nv = 0;
         Axis u, v;  // from the grid above (unused on the fine grid)
-        // kStencil blocks per vertex, offset (di, dj) at 5(dj+2)+di+2: the fine grid's are
-        // symmetric (half the memory traffic of the sweeps), a coarse grid's full.
+        // A vertex's stencil: the block of offset (di, dj), slot 5(dj+2)+di+2, lies at place[slot]
+        // in the vertex's record of perVertex blocks, or nowhere (place −1: the block is 0).
+        // A coarse grid's Galerkin product reaches all 25 offsets, full blocks in slot order.
+        // The fine grid's springs and bending reach 13 (kFinePlaces), symmetric blocks: half the
+        // memory traffic of the sweeps, whose loads bound them.
         std::vector<Sym3<S>> symmetric;
         std::vector<Block> a;
-        // The slots that can be nonzero, a bit each: the fine grid's springs and bending reach
-        // 13 of the 25 offsets (set per step in linearise), a coarse grid's Galerkin product all.
-        std::uint32_t reach = (1u << kStencil) - 1;
-        bool reaches(int slot) const { return (reach >> slot) & 1u; }
+        std::array<std::int8_t, kStencil> place{};
+        int perVertex = kStencil;
+        bool reaches(int slot) const { return place[std::size_t(slot)] >= 0; }
+        std::size_t at(std::int64_t k, int slot) const {
+            return std::size_t(k * perVertex + place[std::size_t(slot)]);
+        }
         Block block(std::int64_t k, int slot) const {
-            const std::size_t at = std::size_t(k * kStencil + slot);
-            return symmetric.empty() ? a[at] : symmetric[at].matrix();
+            if (!reaches(slot)) return Block(0);
+            return symmetric.empty() ? a[at(k, slot)] : symmetric[at(k, slot)].matrix();
         }
         // Asks the cache for a block ahead of its use (a column's vertices lie a row apart).
         void prefetch(std::int64_t k, int slot) const {
-            const std::size_t at = std::size_t(k * kStencil + slot);
-            const char* start = symmetric.empty() ? reinterpret_cast<const char*>(&a[at])
-                                                  : reinterpret_cast<const char*>(&symmetric[at]);
+            const char* start = symmetric.empty()
+                                    ? reinterpret_cast<const char*>(&a[at(k, slot)])
+                                    : reinterpret_cast<const char*>(&symmetric[at(k, slot)]);
             const std::size_t bytes = symmetric.empty() ? sizeof(Block) : sizeof(Sym3<S>);
             __builtin_prefetch(start);
             __builtin_prefetch(start + bytes - 1);
         }
+        // Block (k, slot) times w, for a slot that reaches.
         Vec3<S> times(std::int64_t k, int slot, const Vec3<S>& w) const {
-            const std::size_t at = std::size_t(k * kStencil + slot);
-            return symmetric.empty() ? a[at] * w : symmetric[at] * w;
+            return symmetric.empty() ? a[at(k, slot)] * w : symmetric[at(k, slot)] * w;
         }
         std::vector<Vec3<S>> x;  // the vertices' positions (a coarse one: its fine vertex's)
         // P from this grid to the one above (unused on the fine grid): 4 blocks per vertex of
@@ -137,9 +143,25 @@ private:
     static constexpr int stencilSlot(int di, int dj) { return 5 * (dj + 2) + di + 2; }
     // The offsets the bending stencil reaches: second differences along u and v, the twists of
     // the four cells around the vertex.
+    // The fine grid's offsets in the order of its records: those across a row (what a row's
+    // sweep reads), the diagonals, those along a row (what a column's sweep reads with the
+    // diagonals), the vertex itself. The springs of the 12-neighbour stencil reach no others.
+    static constexpr int kFinePlaces[13][2] = {{0, -2}, {0, -1}, {0, 1}, {0, 2},  {-1, -1},
+                                               {1, -1}, {-1, 1}, {1, 1}, {-2, 0}, {-1, 0},
+                                               {1, 0},  {2, 0},  {0, 0}};
     static constexpr int kBendReach[13][2] = {{0, 0},  {-1, 0}, {1, 0},  {-2, 0}, {2, 0},
                                               {0, -1}, {0, 1},  {0, -2}, {0, 2},  {-1, -1},
                                               {1, -1}, {-1, 1}, {1, 1}};
+    static constexpr bool isFinePlace(int di, int dj) {
+        for (const auto& o : kFinePlaces)
+            if (o[0] == di && o[1] == dj) return true;
+        return false;
+    }
+    static constexpr bool bendingIsPlaced() {
+        for (const auto& o : kBendReach)
+            if (!isFinePlace(o[0], o[1])) return false;
+        return true;
+    }
     // The cells of an axis that have coarse index I as a corner: I − 1 and I, where they exist.
     template <typename Fn>
     static void forEachCellOf(const Axis& axis, int I, const Fn& fn) {

@@ -49,10 +49,18 @@ void CpuMultigrid<T>::configure(int nu, int nv) {
     for (std::size_t l = 0; l < levels_.size(); ++l) {
         Level& level = levels_[l];
         const std::size_t n = std::size_t(level.count());
-        if (l == 0)
-            level.symmetric.assign(n * kStencil, Sym3<S>{});
-        else
+        if (l == 0) {
+            level.place.fill(-1);
+            for (int e = 0; e < 13; ++e)
+                level.place[std::size_t(stencilSlot(kFinePlaces[e][0], kFinePlaces[e][1]))] =
+                    std::int8_t(e);
+            level.perVertex = 13;
+            level.symmetric.assign(n * 13, Sym3<S>{});
+        } else {
+            for (int slot = 0; slot < kStencil; ++slot)
+                level.place[std::size_t(slot)] = std::int8_t(slot);
             level.a.assign(n * kStencil, Block(0));
+        }
         level.x.assign(n, Vec3<S>(0));
         if (l > 0) level.p.assign(4 * std::size_t(levels_[l - 1].count()), Block(0));
         level.lines[0].assign(std::size_t(level.nv) * 3 * std::size_t(level.nu) * (kBand + 1), 0.0);
@@ -93,10 +101,12 @@ void CpuMultigrid<T>::assembleFine(const FineSystemS& fine, const CycleThreads& 
     };
     const auto [begin, end] = slice(nu, nv, threads);
     for (std::int64_t k = begin; k < end; ++k) {
-        Sym3<S>* blocks = &level.symmetric[std::size_t(k * kStencil)];
-        for (int o = 0; o < kStencil; ++o) blocks[o] = {};
+        auto blockAt = [&](int di, int dj) -> Sym3<S>& {
+            return level.symmetric[level.at(k, stencilSlot(di, dj))];
+        };
+        for (const auto& o : kFinePlaces) blockAt(o[0], o[1]) = {};
         level.pinned[std::size_t(k)] = fine.pinned[k];
-        Sym3<S>& diagonal = blocks[stencilSlot(0, 0)];
+        Sym3<S>& diagonal = blockAt(0, 0);
         if (fine.pinned[k]) {
             diagonal = Sym3<S>::identity(1);
             continue;
@@ -113,14 +123,14 @@ void CpuMultigrid<T>::assembleFine(const FineSystemS& fine, const CycleThreads& 
             Sym3<S> a = b.stiffness * h2;
             if (fine.springDamping) a += b.damping * h;
             diagonal += a;
-            if (!fine.pinned[q]) blocks[stencilSlot(s.di, s.dj)] += a * S(-1);
+            if (!fine.pinned[q]) blockAt(s.di, s.dj) += a * S(-1);
         }
         if (fine.bending.active())
             for (const auto& o : kBendReach) {
                 const int qi = i + o[0], qj = j + o[1];
                 if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
                 if (fine.pinned[std::int64_t(qj) * nu + qi]) continue;
-                blocks[stencilSlot(o[0], o[1])].addDiagonal(h2 * bendWeight(i, j, qi, qj));
+                blockAt(o[0], o[1]).addDiagonal(h2 * bendWeight(i, j, qi, qj));
             }
         if (k == fine.grabVertex) diagonal.addDiagonal(h2 * fine.grabStiffness);
     }
@@ -181,12 +191,10 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
         for (const StencilSpring<T>& s : *fine.springs)
             springs_.push_back({s.di, s.dj, s.indexOffset, S(s.stiffness), S(s.restLength),
                                 s.halvedOnBorder, S(s.damping)});
-        // The fine stencil's slots that assembleFine can write; the sweeps skip the others.
-        std::uint32_t& reach = levels_[0].reach;
-        reach = 1u << stencilSlot(0, 0);
-        for (const StencilSpring<S>& s : springs_) reach |= 1u << stencilSlot(s.di, s.dj);
-        if (fine.bending.active())
-            for (const auto& o : kBendReach) reach |= 1u << stencilSlot(o[0], o[1]);
+        static_assert(bendingIsPlaced(), "the bending stencil reaches past the fine records");
+        for (const StencilSpring<S>& s : springs_)
+            if (!isFinePlace(s.di, s.dj))
+                throw std::logic_error("multigrid: a spring outside the fine stencil's offsets");
         const std::int64_t n = std::int64_t(fine.nu) * fine.nv;
         if (std::int64_t(inverseMass_.size()) != n) {
             inverseMass_.assign(std::size_t(n), S(0));
@@ -223,7 +231,7 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
         for (std::int64_t k = begin; k < end; ++k) {
             const Vec3<S> n(fine.contacts[k].normal);
             if (fine.pinned[k] || n == Vec3<S>(0)) continue;
-            Sym3<S>& d = level.symmetric[std::size_t(k * kStencil + stencilSlot(0, 0))];
+            Sym3<S>& d = level.symmetric[level.at(k, stencilSlot(0, 0))];
             d.addOuter(kContactPenalty * (d.xx + d.yy + d.zz) / 3, n);
         }
     }
