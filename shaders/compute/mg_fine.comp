@@ -68,7 +68,9 @@ void main() {
     for (int dj = -2; dj <= 2; ++dj)
         for (int di = -2; di <= 2; ++di) {
             gProbe = ij + ivec2(di, dj);
-            if (!insideGrid(gProbe) || positions[vertexIndex(gProbe)].w == 0.0) continue;
+            if (!stencilReaches(0, di, dj) || !insideGrid(gProbe) ||
+                positions[vertexIndex(gProbe)].w == 0.0)
+                continue;
             double w = -double(bendingForce(ij, params.bending.xyz).x);
             if (w == 0.0lf) continue;
             if (di == 0 && dj == 0) {

@@ -39,7 +39,9 @@ void main() {
                             if (qj < 0 || qj >= nv) continue;
                             for (int di = -2; di <= 2; ++di) {
                                 int qi = i + di;
-                                if (qi < 0 || qi >= nu || pinnedAt(f, ivec2(qi, qj))) continue;
+                                if (qi < 0 || qi >= nu || pinnedAt(f, ivec2(qi, qj)) ||
+                                    !stencilReaches(f, di, dj))
+                                    continue;
                                 dmat3 m = pkT * loadBlock(blockAt(f, k, stencilSlot(di, dj)));
                                 ivec2 cellQ;
                                 dmat3 pq[4];

@@ -50,6 +50,11 @@ int levelV(int l) { return kMgLevels[l].y; }
 int levelFirst(int l) { return kMgLevels[l].z; }
 
 int stencilSlot(int di, int dj) { return 5 * (dj + 2) + di + 2; }
+// Whether block (di, dj) of level l can be nonzero: a coarse grid's Galerkin product reaches
+// all 25 offsets; the fine grid's springs and bending only the 13 with |di| + |dj| ≤ 2
+// (mg_fine.comp leaves the other 12 at 0; src/cpu/cpu_multigrid.h kFinePlaces). The sweeps
+// and the first Galerkin product skip those 12 loads.
+bool stencilReaches(int l, int di, int dj) { return l > 0 || abs(di) + abs(dj) <= 2; }
 
 // Where block `slot` of vertex k of level l starts in mgStencil.
 int blockAt(int l, int k, int slot) { return ((levelFirst(l) + k) * 25 + slot) * 9; }
@@ -186,7 +191,8 @@ dvec3 residualAt(int l, ivec2 ij, int k, int skip) {
     dvec3 sum = loadVector(l, k, kMgR);
     for (int dj = max(-2, -ij.y); dj <= min(2, nv - 1 - ij.y); ++dj)
         for (int di = max(-2, -ij.x); di <= min(2, nu - 1 - ij.x); ++di) {
-            if ((skip == 0 && dj == 0) || (skip == 1 && di == 0)) continue;
+            if ((skip == 0 && dj == 0) || (skip == 1 && di == 0) || !stencilReaches(l, di, dj))
+                continue;
             sum -= loadBlock(blockAt(l, k, stencilSlot(di, dj))) * loadVector(l, k + dj * nu + di, kMgZ);
         }
     return sum;
