@@ -23,12 +23,12 @@
 
 #include <algorithm>
 #include <array>
-#include <barrier>
 #include <cstdint>
 #include <utility>
 #include <vector>
 
 #include "cpu/cpu_soa.h"
+#include "cpu/spin_barrier.h"
 #include "model/implicit_system.h"
 #include "model/multigrid_levels.h"
 
@@ -37,7 +37,7 @@ namespace cloth {
 // The threads that run a V-cycle together: thread `index` of `count`, a barrier between passes.
 struct CycleThreads {
     int index = 0, count = 1;
-    std::barrier<>* barrier = nullptr;
+    SpinBarrier* barrier = nullptr;
     void sync() const {
         if (barrier) barrier->arrive_and_wait();
     }
@@ -74,7 +74,7 @@ public:
     std::vector<Vec3<S>> stencilTimes(int l, const std::vector<Vec3<S>>& w) const;
 
     static constexpr int kCoarsest = kMultigridCoarsest;  // vertices of the grid solved exactly
-    static constexpr int kSerialBelow = 4096;  // grids smaller than this run on one thread
+    static constexpr int kSerialBelow = 1024;  // grids smaller than this run on one thread
     static constexpr int kSweeps = 1;          // smoothing sweeps before and after
     static constexpr int kStencil = 25;        // blocks per vertex: offsets (−2..2)²
     // A contact in the solve fixes its vertex's normal velocity (model/solve_contact.h). The

@@ -1,6 +1,5 @@
 #include "cpu/cpu_solver.h"
 
-#include <barrier>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -18,7 +17,7 @@ Vec3<T> cast(const glm::dvec3& v) {
 }
 
 // Vertices below this count run on one thread: a barrier costs more than their whole step.
-constexpr std::int64_t kMinVerticesPerThread = 4096;
+constexpr std::int64_t kMinVerticesPerThread = 1024;
 // Self-collision costs some 50 times a step's work per vertex (docs/performance.md): its
 // scenes are threaded from a fiftieth of that count.
 constexpr std::int64_t kSelfCollisionWork = 50;
@@ -283,7 +282,7 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     // Every vertex's update reads only its own force and the previous positions, and dot
     // products sum fixed chunks in order, so the result is bit-identical to a serial run
     // whatever the number of threads.
-    std::barrier sync(std::ptrdiff_t(bands_.size()));
+    SpinBarrier sync(int(bands_.size()));
     const Team team{&sync};
     // The end of a step: once every band is done, the fused sweep's new positions become x_.
     // The moving colliders are posed for the next step there too, while every thread waits.
@@ -301,8 +300,8 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
         selfStart_ = x_;
         poseColliders(++posed);
     };
-    std::barrier stepEnd(std::ptrdiff_t(bands_.size()), swapPositions);
-    std::barrier selfEnd(std::ptrdiff_t(bands_.size()), selfDone);
+    SpinBarrier stepEnd(int(bands_.size()), swapPositions);
+    SpinBarrier selfEnd(int(bands_.size()), selfDone);
     const std::function<void()> selfSync = [&sync] { sync.arrive_and_wait(); };
     long taken = 0;
     const bool forcesValid = forcesValid_;

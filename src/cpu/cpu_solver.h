@@ -7,7 +7,6 @@
 
 #include <array>
 #include <atomic>
-#include <barrier>
 #include <functional>
 #include <memory>
 #include <utility>
@@ -20,6 +19,7 @@
 #include "cpu/cpu_self_collision.h"
 #include "cpu/cpu_soa.h"
 #include "cpu/cpu_vbd_phases.h"
+#include "cpu/spin_barrier.h"
 #include "cpu/worker_pool.h"
 #include "model/bending.h"
 #include "model/implicit_system.h"
@@ -98,7 +98,7 @@ private:
     };
     // The threads of one step(n) call: sync() is a barrier between passes (none when serial).
     struct Team {
-        std::barrier<>* barrier = nullptr;
+        SpinBarrier* barrier = nullptr;
         void sync() const {
             if (barrier) barrier->arrive_and_wait();
         }

@@ -1,5 +1,5 @@
 // A fixed set of threads that run one job together: job(t) on every thread t, the caller being
-// thread 0. Jobs synchronise their phases with std::barrier; the pool only starts and joins them.
+// thread 0. Jobs synchronise their phases with a SpinBarrier; the pool only starts and joins them.
 #pragma once
 
 #include <condition_variable>
