@@ -29,6 +29,7 @@
 
 #include "cpu/cpu_soa.h"
 #include "cpu/spin_barrier.h"
+#include "model/grid.h"
 #include "model/implicit_system.h"
 #include "model/multigrid_levels.h"
 
@@ -93,6 +94,12 @@ private:
         std::vector<S> weight;
         int cells() const { return int(first.size()) - 1; }
     };
+    // Every slot in its own place, in slot order: a coarse grid's records.
+    static constexpr std::array<std::int8_t, kStencil> slotOrder() {
+        std::array<std::int8_t, kStencil> order{};
+        for (int slot = 0; slot < kStencil; ++slot) order[std::size_t(slot)] = std::int8_t(slot);
+        return order;
+    }
     struct Level {
         int nu = 0, nv = 0;
         Axis u, v;  // from the grid above (unused on the fine grid)
@@ -103,7 +110,7 @@ private:
         // memory traffic of the sweeps, whose loads bound them.
         std::vector<Sym3<S>> symmetric;
         std::vector<Block> a;
-        std::array<std::int8_t, kStencil> place{};
+        std::array<std::int8_t, kStencil> place = slotOrder();
         int perVertex = kStencil;
         bool reaches(int slot) const { return place[std::size_t(slot)] >= 0; }
         std::size_t at(std::int64_t k, int slot) const {
@@ -157,9 +164,13 @@ private:
             if (o[0] == di && o[1] == dj) return true;
         return false;
     }
-    static constexpr bool bendingIsPlaced() {
+    // Every offset the fine assembly writes (the springs of kSpringOffsets, the bending) has a
+    // place in the fine records.
+    static constexpr bool stencilIsPlaced() {
         for (const auto& o : kBendReach)
             if (!isFinePlace(o[0], o[1])) return false;
+        for (const SpringOffset& o : kSpringOffsets)
+            if (!isFinePlace(o.di, o.dj)) return false;
         return true;
     }
     // The cells of an axis that have coarse index I as a corner: I − 1 and I, where they exist.

@@ -57,8 +57,7 @@ void CpuMultigrid<T>::configure(int nu, int nv) {
             level.perVertex = 13;
             level.symmetric.assign(n * 13, Sym3<S>{});
         } else {
-            for (int slot = 0; slot < kStencil; ++slot)
-                level.place[std::size_t(slot)] = std::int8_t(slot);
+            level.place = slotOrder();
             level.a.assign(n * kStencil, Block(0));
         }
         level.x.assign(n, Vec3<S>(0));
@@ -191,10 +190,7 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
         for (const StencilSpring<T>& s : *fine.springs)
             springs_.push_back({s.di, s.dj, s.indexOffset, S(s.stiffness), S(s.restLength),
                                 s.halvedOnBorder, S(s.damping)});
-        static_assert(bendingIsPlaced(), "the bending stencil reaches past the fine records");
-        for (const StencilSpring<S>& s : springs_)
-            if (!isFinePlace(s.di, s.dj))
-                throw std::logic_error("multigrid: a spring outside the fine stencil's offsets");
+        static_assert(stencilIsPlaced(), "a spring or the bending reaches past the fine records");
         const std::int64_t n = std::int64_t(fine.nu) * fine.nv;
         if (std::int64_t(inverseMass_.size()) != n) {
             inverseMass_.assign(std::size_t(n), S(0));

@@ -289,10 +289,15 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     long posed = steps_ + 1;
     poseColliders(posed);
     std::atomic<bool> bad{false};
+    // Whether the threads stop after this step: decided once, in the step end's completion, so
+    // that every thread reads the same answer (a fast thread may already have set `bad` in the
+    // next step while a slow one is still leaving the barrier).
+    bool stop = false;
     // With self-collision the threads resolve the step's contacts between the two barriers,
     // with the colliders still at the step's pose; the second poses them for the next.
     const bool self = self_.active();
-    auto swapPositions = [this, &posed, self]() noexcept {
+    auto swapPositions = [this, &posed, &bad, &stop, self]() noexcept {
+        stop = bad.load(std::memory_order_relaxed);
         if (fused()) swapFused();
         if (!self) poseColliders(++posed);
     };
@@ -314,7 +319,7 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
                 bad.store(true, std::memory_order_relaxed);
             ++s;
             stepEnd.arrive_and_wait();
-            if (bad.load(std::memory_order_relaxed)) break;
+            if (stop) break;
             if (self) {
                 resolveSelfContacts(t, int(bands_.size()), selfSync);
                 selfEnd.arrive_and_wait();

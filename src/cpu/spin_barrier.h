@@ -1,6 +1,7 @@
 // The barrier between the passes of one threaded step (cpu_solver.h Team, cpu_multigrid.h
 // CycleThreads). Its threads meet thousands of times a second, usually a few microseconds
-// apart: an arrival spins first (about 50 µs at most), then sleeps on the generation (a futex),
+// apart: an arrival spins first (1000 pauses: about 50 µs on recent Intel cores, a few µs where
+// a pause is short), then sleeps on the generation (a futex),
 // so that a thread whose partner was descheduled does not hold its core. std::barrier sleeps
 // almost at once: 9–14 µs a meeting of two threads on this project's machines, against 0.2–0.3
 // µs spinning (docs/performance.md, "The passes' barrier").
@@ -9,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <stdexcept>
 #include <utility>
 
 #if defined(__x86_64__) || defined(__i386__)
@@ -20,17 +22,23 @@ namespace cloth {
 class SpinBarrier {
 public:
     // `completion` runs once a meeting, on the last thread to arrive, before any thread leaves.
+    // count ≥ 1 threads. The completion must not throw: arrive_and_wait is noexcept, so a throw
+    // ends the process instead of leaving the others waiting forever.
     explicit SpinBarrier(int count, std::function<void()> completion = {})
-        : count_(count), completion_(std::move(completion)) {}
+        : count_(count), completion_(std::move(completion)) {
+        if (count < 1) throw std::invalid_argument("SpinBarrier: count must be at least 1");
+    }
     SpinBarrier(const SpinBarrier&) = delete;
     SpinBarrier& operator=(const SpinBarrier&) = delete;
 
-    void arrive_and_wait() {
+    void arrive_and_wait() noexcept {
         const std::uint32_t meeting = generation_.load(std::memory_order_acquire);
         if (arrived_.fetch_add(1, std::memory_order_acq_rel) + 1 == count_) {
             if (completion_) completion_();
-            arrived_.store(0, std::memory_order_relaxed);  // before the release below
-            generation_.store(meeting + 1, std::memory_order_release);
+            arrived_.store(0, std::memory_order_relaxed);  // before the publication below
+            // seq_cst: a full fence between the publication and notify_all's look at the
+            // waiters, which a release store would let the CPU reorder (a lost wake-up).
+            generation_.store(meeting + 1, std::memory_order_seq_cst);
             generation_.notify_all();
             return;
         }

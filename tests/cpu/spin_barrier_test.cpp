@@ -7,6 +7,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <thread>
 #include <vector>
 
@@ -68,6 +70,32 @@ TEST(SpinBarrier, ThreadsWaitForAPartnerThatSleepsPastTheSpin) {
     const Meetings m = meet(3, 200, 4);
     EXPECT_EQ(m.early, 0);
     EXPECT_EQ(m.completionsWrong, 0);
+}
+
+// Two threads meeting back to back, the case where a thread that has just left arrives at the
+// next meeting before the last one has finished resetting the count. A barrier that publishes
+// the generation before the reset loses an arrival and hangs (within 200 000 meetings every time
+// on this project's machines); a hang here ends the process after 60 s with its message.
+TEST(SpinBarrier, ThreadsMeetingBackToBackNeverLoseAnArrival) {
+    constexpr int kMeetings = 200000;
+    SpinBarrier barrier(2);
+    std::atomic<int> finished{0};
+    auto run = [&] {
+        for (int m = 0; m < kMeetings; ++m) barrier.arrive_and_wait();
+        finished.fetch_add(1);
+    };
+    std::thread a(run), b(run);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (finished.load() < 2) {
+        if (std::chrono::steady_clock::now() > deadline) {
+            std::fprintf(stderr, "SpinBarrier: two threads hung after 60 s of meetings\n");
+            std::abort();  // the threads cannot be joined
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    a.join();
+    b.join();
+    EXPECT_EQ(finished.load(), 2);
 }
 
 }  // namespace
