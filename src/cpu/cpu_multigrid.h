@@ -148,14 +148,15 @@ private:
 
     static Axis coarsen(int n);
     static constexpr int stencilSlot(int di, int dj) { return 5 * (dj + 2) + di + 2; }
-    // The offsets the bending stencil reaches: second differences along u and v, the twists of
-    // the four cells around the vertex.
     // The fine grid's offsets in the order of its records: those across a row (what a row's
     // sweep reads), the diagonals, those along a row (what a column's sweep reads with the
     // diagonals), the vertex itself. The springs of the 12-neighbour stencil reach no others.
-    static constexpr int kFinePlaces[13][2] = {{0, -2}, {0, -1}, {0, 1}, {0, 2},  {-1, -1},
-                                               {1, -1}, {-1, 1}, {1, 1}, {-2, 0}, {-1, 0},
-                                               {1, 0},  {2, 0},  {0, 0}};
+    static constexpr int kFineBlocks = 13;  // blocks a fine vertex stores
+    static constexpr int kFinePlaces[kFineBlocks][2] = {{0, -2}, {0, -1}, {0, 1}, {0, 2},  {-1, -1},
+                                                        {1, -1}, {-1, 1}, {1, 1}, {-2, 0}, {-1, 0},
+                                                        {1, 0},  {2, 0},  {0, 0}};
+    // The offsets the bending stencil reaches: second differences along u and v, the twists of
+    // the four cells around the vertex.
     static constexpr int kBendReach[13][2] = {{0, 0},  {-1, 0}, {1, 0},  {-2, 0}, {2, 0},
                                               {0, -1}, {0, 1},  {0, -2}, {0, 2},  {-1, -1},
                                               {1, -1}, {-1, 1}, {1, 1}};

@@ -51,11 +51,11 @@ void CpuMultigrid<T>::configure(int nu, int nv) {
         const std::size_t n = std::size_t(level.count());
         if (l == 0) {
             level.place.fill(-1);
-            for (int e = 0; e < 13; ++e)
+            for (int e = 0; e < kFineBlocks; ++e)
                 level.place[std::size_t(stencilSlot(kFinePlaces[e][0], kFinePlaces[e][1]))] =
                     std::int8_t(e);
-            level.perVertex = 13;
-            level.symmetric.assign(n * 13, Sym3<S>{});
+            level.perVertex = kFineBlocks;
+            level.symmetric.assign(n * kFineBlocks, Sym3<S>{});
         } else {
             level.place = slotOrder();
             level.a.assign(n * kStencil, Block(0));

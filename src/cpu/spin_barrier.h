@@ -1,10 +1,10 @@
 // The barrier between the passes of one threaded step (cpu_solver.h Team, cpu_multigrid.h
 // CycleThreads). Its threads meet thousands of times a second, usually a few microseconds
 // apart: an arrival spins first (1000 pauses: about 50 µs on recent Intel cores, a few µs where
-// a pause is short), then sleeps on the generation (a futex),
-// so that a thread whose partner was descheduled does not hold its core. std::barrier sleeps
-// almost at once: 9–14 µs a meeting of two threads on this project's machines, against 0.2–0.3
-// µs spinning (docs/performance.md, "The passes' barrier").
+// a pause is short), then sleeps on the generation (a futex), so that a thread whose partner
+// was descheduled does not hold its core. std::barrier sleeps almost at once: 9–14 µs a meeting
+// of two threads on this project's machines, against 0.2–0.3 µs spinning (docs/performance.md,
+// "The passes' barrier").
 #pragma once
 
 #include <atomic>
