@@ -167,6 +167,17 @@ private:
     }
     // Every offset the fine assembly writes (the springs of kSpringOffsets, the bending) has a
     // place in the fine records.
+    // The places are the 13 offsets with |di| + |dj| ≤ 2, each once: the set the GPU's
+    // stencilReaches (shaders/compute/multigrid.glsl) keeps.
+    static constexpr bool placesAreTheDiamond() {
+        for (int e = 0; e < kFineBlocks; ++e) {
+            const int di = kFinePlaces[e][0], dj = kFinePlaces[e][1];
+            if ((di < 0 ? -di : di) + (dj < 0 ? -dj : dj) > 2) return false;
+            for (int f = 0; f < e; ++f)
+                if (kFinePlaces[f][0] == di && kFinePlaces[f][1] == dj) return false;
+        }
+        return true;
+    }
     static constexpr bool stencilIsPlaced() {
         for (const auto& o : kBendReach)
             if (!isFinePlace(o[0], o[1])) return false;

@@ -191,6 +191,7 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
             springs_.push_back({s.di, s.dj, s.indexOffset, S(s.stiffness), S(s.restLength),
                                 s.halvedOnBorder, S(s.damping)});
         static_assert(stencilIsPlaced(), "a spring or the bending reaches past the fine records");
+        static_assert(placesAreTheDiamond(), "the fine records differ from the GPU's reach");
         const std::int64_t n = std::int64_t(fine.nu) * fine.nv;
         if (std::int64_t(inverseMass_.size()) != n) {
             inverseMass_.assign(std::size_t(n), S(0));
