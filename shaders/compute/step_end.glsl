@@ -9,27 +9,23 @@ layout(location = 2) uniform uint uStep;
 // Mirrors gpu::Status (src/gpu/gpu_layout.h). The host reads it every few steps only.
 layout(std430, binding = 7) STATE_COHERENT buffer Status {
     uint firstBadStep;  // atomicMin of the step number; 0xffffffff while stable
-    uint badVertex;
-    uint badKind;       // 1 non-finite, 2 too fast
-    float badSpeed;     // [m/s]
+    uint badVertex;     // atomicMin of the bad vertices' k at that step; 0xffffffff before
 } status;
 
 // Once a step went bad the state stays as it was after that step, for the host to report.
 bool frozen(uint step) { return status.firstBadStep < step; }
 
 // DESIGN.md §2: unstable after a step that leaves a position or velocity non-finite or a speed
-// above max_speed. Only the first invocation to report the earliest step writes the details.
+// above max_speed. Every vertex bad at the earliest step offers its k and the lowest stays, the
+// vertex the CPU reports (the first in grid order), whatever order the invocations run in; the
+// host reads its kind and speed from the state, which that step left as it is.
 void checkStability(uint step, uint k, vec3 p, vec3 v) {
     // As the CPU backend tests it (src/cpu/cpu_solver.cpp): a sum of the coordinates and |v|²
     // that overflow float count as non-finite, so both backends stop at the same step.
     float speed2 = dot(v, v);
     bool bad = nonFinite(vec3(p.x + p.y + p.z, speed2, 0.0));
     if (!bad && !(speed2 > params.maxSpeedSquared)) return;
-    if (atomicMin(status.firstBadStep, step) > step) {
-        status.badVertex = k;
-        status.badKind = bad ? 1u : 2u;
-        status.badSpeed = sqrt(speed2);
-    }
+    if (atomicMin(status.firstBadStep, step) >= step) atomicMin(status.badVertex, k);
 }
 
 #ifdef HAS_COLLIDERS

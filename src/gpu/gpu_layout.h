@@ -131,20 +131,16 @@ static_assert(offsetof(Params, springDamping) == 176);
 inline constexpr std::size_t kMinUniformBlockSize = 16384;
 static_assert(sizeof(Params) <= kMinUniformBlockSize);
 
-// Written by integrate.comp when a vertex goes bad (DESIGN.md §2 "Instability").
+// Written by step_end.glsl when a vertex goes bad (DESIGN.md §2 "Instability").
 struct Status {
     std::uint32_t firstBadStep;  // 1-based global step, atomicMin; kNoBadStep while stable
-    std::uint32_t badVertex;     // k of one vertex that went bad at that step
-    std::uint32_t badKind;       // kBadNonFinite or kBadSpeed
-    float badSpeed;              // |v| there [m/s]
+    std::uint32_t badVertex;     // the lowest k that went bad at that step, atomicMin
 };
-static_assert(sizeof(Status) == 16);
+static_assert(sizeof(Status) == 8);
 static_assert(offsetof(Status, firstBadStep) == 0);
 static_assert(offsetof(Status, badVertex) == 4);
-static_assert(offsetof(Status, badKind) == 8);
-static_assert(offsetof(Status, badSpeed) == 12);
 inline constexpr std::uint32_t kNoBadStep = 0xffffffffu;
-inline constexpr std::uint32_t kBadNonFinite = 1, kBadSpeed = 2;
+inline constexpr Status kStable{kNoBadStep, 0xffffffffu};
 
 // implicit_euler's solve scalars, written by cg_reduce.comp (layout.glsl's CgState).
 struct CgState {

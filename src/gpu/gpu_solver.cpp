@@ -3,9 +3,11 @@
 #include <GL/glew.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
+#include <utility>
 #include <vector>
 
 #include "gpu/egl_context.h"
@@ -198,7 +200,7 @@ void GpuSolver::upload(const Scene& scene) {
     pinCapacity_ = std::max(pins_.size(), kMinPinCapacity);
     table.resize(pinCapacity_, glm::vec4(0));
     bufferData(buffers_[gpu::kPins], table);
-    const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
+    const gpu::Status status = gpu::kStable;
     bufferData(buffers_[gpu::kStatus], &status, sizeof status);
     glBindBuffer(GL_UNIFORM_BUFFER, paramsBuffer_);
     glBufferData(GL_UNIFORM_BUFFER, sizeof(gpu::Params), nullptr, GL_DYNAMIC_DRAW);
@@ -307,7 +309,7 @@ StepResult GpuSolver::step(long n) {
     if (timer_ != 0) glBeginQuery(GL_TIME_ELAPSED, timer_);
     const long before = steps_;
     long done = 0;
-    gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
+    gpu::Status status = gpu::kStable;
     // implicit_euler reads back every step anyway (the solve's state): its status too, so no
     // solve after an unstable step is counted in solveStats_.
     const long every = method_ == Method::ImplicitEuler ? 1 : checkEvery_;
@@ -315,7 +317,7 @@ StepResult GpuSolver::step(long n) {
         const long chunk = std::min<long>(n - done, every);
         runSteps(before + done + 1, chunk);
         done += chunk;
-        status = readStatus();  // the only round trip: 16 bytes every checkEvery steps
+        status = readStatus();  // the only round trip: 8 bytes every checkEvery steps
     }
     if (timer_ != 0) glEndQuery(GL_TIME_ELAPSED);
     glFinish();
@@ -330,8 +332,10 @@ StepResult GpuSolver::step(long n) {
     return result;
 }
 
-// The shader recorded the exact first bad step (atomicMin) and froze the state after it, so the
-// range is that one step although the host looked only every checkEvery steps.
+// The shader recorded the exact first bad step and the lowest vertex bad at it (atomicMin), and
+// froze the state after that step, so the range is that one step although the host looked only
+// every checkEvery steps, and the vertex is the one the CPU names. Its kind and speed are read
+// from that state as the shader tested them.
 StepResult GpuSolver::reportUnstable(const gpu::Status& status, long stepsBefore) {
     StepResult r;
     r.unstable = true;
@@ -339,13 +343,20 @@ StepResult GpuSolver::reportUnstable(const gpu::Status& status, long stepsBefore
     r.firstBadStep = r.lastBadStep = long(status.firstBadStep);
     steps_ = long(status.firstBadStep);
     r.stepsTaken = std::max(0L, steps_ - stepsBefore);
-    const int i = int(status.badVertex % unsigned(nu_)), j = int(status.badVertex / unsigned(nu_));
+    const unsigned k = status.badVertex;
+    glm::vec4 p, v;
+    for (auto [binding, to] : {std::pair{gpu::kPositions, &p}, std::pair{gpu::kVelocities, &v}}) {
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[binding]);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(k * gpu::kVec4), gpu::kVec4, to);
+    }
+    const float speed2 = glm::dot(glm::vec3(v), glm::vec3(v));
+    const int i = int(k % unsigned(nu_)), j = int(k / unsigned(nu_));
     char buf[160];
-    if (status.badKind == gpu::kBadNonFinite)
+    if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2))
         std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
     else
         std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
-                      double(status.badSpeed), maxSpeed_, i, j);
+                      double(std::sqrt(speed2)), maxSpeed_, i, j);
     r.reason = buf;
     return r;
 }

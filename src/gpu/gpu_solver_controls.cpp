@@ -55,7 +55,7 @@ void GpuSolver::startAfresh(double time) {
         glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
     }
     // A written state starts afresh: an earlier instability no longer freezes the kernels.
-    const gpu::Status status{gpu::kNoBadStep, 0, 0, 0};
+    const gpu::Status status = gpu::kStable;
     subData(buffers_[gpu::kStatus], 0, &status, sizeof status);
     forcesKept_ = false;
     computeNormals();

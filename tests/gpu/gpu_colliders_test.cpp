@@ -5,11 +5,13 @@
 #include <GL/glew.h>
 #include <gtest/gtest.h>
 
+#include <cfloat>
+#include <cmath>
 #include <random>
 
-#include "model/collider_contact.h"
 #include "gpu/shader_loader.h"
 #include "gpu_test_support.h"
+#include "model/collider_contact.h"
 #include "support/box_regions.h"
 
 namespace cloth {
@@ -81,11 +83,23 @@ std::vector<glm::vec4> probe(const Shapes& s, const std::vector<glm::vec4>& in) 
 }
 
 void expectContact(const glm::vec4& gpu, const ContactT<float>& cpu, bool normal, const char* what,
-                   int k) {
-    EXPECT_NEAR(gpu.w, cpu.phi, kPhiTol) << what << " φ, point " << k;
+                   int k, float phiTol = kPhiTol) {
+    EXPECT_NEAR(gpu.w, cpu.phi, phiTol) << what << " φ, point " << k;
     if (normal) {
         EXPECT_NEAR(glm::length(V3(gpu) - cpu.normal), 0, kNormalTol) << what << " n, point " << k;
     }
+}
+
+// The grid's φ rounds like the others', plus its slope times the rounding of the point's grid
+// coordinates u (a pose, a subtraction and a division: a few ulps of |u|, evaluated in another
+// order on the GPU). The test's values are random in [-1, 1], so its interpolant rises by up to
+// 2 a cell along each axis, 20 m/m, where a baked mesh's rises by 1 m/m: an NVIDIA H200 put 4 of
+// 4000 points 2.3e-6 to 3.0e-6 off, past kPhiTol alone.
+float gridPhiTol(const SdfGrid& g, const SdfColliderT<float>& c, const V3& pWorld) {
+    const V3 u =
+        (glm::transpose(c.rotation) * (pWorld - c.translation) - V3(g.origin)) / float(g.cell);
+    const float slope = 2.0f;  // the largest step between neighbouring values, per cell
+    return kPhiTol + slope * 4.0f * FLT_EPSILON * (std::abs(u.x) + std::abs(u.y) + std::abs(u.z));
 }
 
 class GpuColliders : public test::GpuTest {};
@@ -120,7 +134,7 @@ TEST_F(GpuColliders, GlslShapesAndResponseMatchTheCppHeader) {
         expectContact(o[2], bc, clear, "box", k);
         const ContactT<float> cc = contact(s.capsule, p);
         expectContact(o[3], cc, cc.phi + s.capsule.radius > 1e-2f, "capsule", k);
-        expectContact(o[4], contact(grid, p), true, "grid", k);
+        expectContact(o[4], contact(grid, p), true, "grid", k, gridPhiTol(s.grid, grid, p));
         if (!clear || std::abs(bc.phi - s.params.thickness) < 1e-4f) continue;
         V3 pb = p, vb = v;
         const bool hit = collide(s.box, s.params, vc, pb, vb);

@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# The checks that need a hardware GPU, in the order of what they decide, each cut at its own limit
+# so that one lease (about 10 minutes) runs them all (docs/performance.md, "On an NVIDIA H100/H200"):
+#   1. the GPU tests of colliders, parity with the CPU, implicit Euler, multigrid, vbd and step
+#      control (the colliders did not act on an H100 before their records went in with the
+#      allocation);
+#   2. the real-time frontier of vbd on the drape with the strain check: 10 sweeps, then 20 sweeps
+#      with Chebyshev rho 0.9 (the largest N whose sheet holds at 60 frames a second);
+#   3. bench/gpu_step_check.sh at 1024² (what the device's step check costs);
+#   4. implicit Euler on the drape at 128² and 512², block-Jacobi and the multigrid V-cycle;
+#   5. the rest of the GPU tests.
+#   bench/gpu_checks.sh BUNDLE_DIR OUT_DIR [tests]
+# With `tests`, only the GPU tests (1 and 5) run.
+# BUNDLE_DIR is scripts/gpu-bench.sh's bundle with build/cloth_tests copied in. Everything lands in
+# OUT_DIR/results.tgz (packed again after each check) and OUT_DIR/log.txt.
+set -uo pipefail
+dir=$(cd "${1:?bundle}" && pwd)
+out=${2:?out}
+only=${3:-all}
+here=$(cd "$(dirname "$0")/.." && pwd)
+res=$(mktemp -d)
+mkdir -p "$out"
+exec > >(tee -a "$out/log.txt") 2>&1
+export LD_LIBRARY_PATH="$dir/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" CLOTH_SHADER_DIR="$dir/shaders"
+export CLOTH_REQUIRE_GPU=1
+for f in /usr/share/glvnd/egl_vendor.d/10_nvidia.json /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json; do
+    [ -f "$f" ] && { export __EGL_VENDOR_LIBRARY_FILENAMES=$f; break; }
+done
+# The tests find scenes and shaders through the source path they were built with, and the
+# bundle's test finds the executable in build/.
+mkdir -p "$here/build" && [ -e "$here/build/clothsim" ] || cp "$dir/clothsim" "$here/build/"
+src=$(strings "$dir/cloth_tests" | grep -m1 -o '^/[^ ]*/main$' || true)
+[ -n "$src" ] && [ ! -e "$src" ] && mkdir -p "$(dirname "$src")" && ln -s "$here" "$src"
+exe="$dir/clothsim"
+pack() { tar czf "$out/results.tgz" -C "$res" . ; }
+stamp() { echo "== $(date -u +%H:%M:%S) $*"; }
+
+stamp info
+nvidia-smi -L || true
+"$exe" info | tee "$res/info.txt"
+label=$(sed -n 's/.*GL renderer: *//p' "$res/info.txt" | head -1 | sed 's| (.*||; s|/.*||' |
+    tr 'A-Z' 'a-z' | tr -c 'a-z0-9\n' '_' | sed 's/__*/_/g; s/^_//; s/_$//')
+label=${label:-gpu}
+pack
+
+first='GpuCollider*:GpuCpuParity*:GpuImplicitSolve*:GpuMultigridSolve*:GpuIntegratorParity*:GpuStepControl*:GpuSelfCollision*'
+stamp "tests: $first"
+(cd "$here" && timeout 110 "$dir/cloth_tests" --gtest_filter="$first") > "$res/gpu_tests_first_$label.log" 2>&1
+echo "rc $?"; grep -E '^\[  (PASSED|FAILED) |tests? ran' "$res/gpu_tests_first_$label.log"
+pack
+
+if [ "$only" != tests ]; then
+stamp "realtime vbd, 10 sweeps"
+timeout 120 "$exe" bench realtime --backend gpu --no-error --methods vbd --out "$res" \
+    --label "cotton_vbd10_strain_$label"
+pack
+stamp "realtime vbd, 20 sweeps, rho 0.9"
+timeout 120 "$exe" bench realtime --backend gpu --no-error --methods vbd --out "$res" \
+    --set integrator.iterations=20 --set integrator.chebyshev_rho=0.9 \
+    --label "cotton_vbd20_rho09_strain_$label"
+pack
+
+stamp "step check 1024"
+timeout 70 "$here/bench/gpu_step_check.sh" "$exe" "$res" "$label" 1024
+pack
+
+stamp "implicit Euler"
+for n in 128 512; do
+    for p in jacobi multigrid; do
+        line=$(timeout 20 "$exe" run "$here/scenes/drape.json" --backend gpu \
+            --set "cloth.resolution=[$n,$n]" \
+            --set "integrator={\"method\":\"implicit_euler\",\"dt\":0.016667,\"preconditioner\":\"$p\",\"tolerance\":1e-6,\"max_iterations\":3000}" \
+            --steps 10 --out-solves "$res/implicit_${label}_${n}_$p.csv" 2>&1 |
+            grep -E 'ms/step|CG solves|unstable|error' | tr '\n' ' ' || echo "cut off at 20 s")
+        echo "$n $p: $line" | tee -a "$res/implicit_$label.txt"
+    done
+done
+pack
+fi
+
+stamp "tests: the rest"
+(cd "$here" && timeout 80 "$dir/cloth_tests" --gtest_filter="Gpu*:-$first") > "$res/gpu_tests_rest_$label.log" 2>&1
+echo "rc $?"; grep -E '^\[  (PASSED|FAILED) |tests? ran' "$res/gpu_tests_rest_$label.log"
+pack
+stamp done
