@@ -156,6 +156,7 @@ GpuSolver::~GpuSolver() {
     }
     glDeleteBuffers(GLsizei(buffers_.size()), buffers_.data());  // 0 is silently ignored
     glDeleteBuffers(1, &paramsBuffer_);
+    glDeleteBuffers(1, &stepMaxima_);
     for (unsigned p : programs_) glDeleteProgram(p);
     if (timer_ != 0) glDeleteQueries(1, &timer_);
 }
@@ -280,6 +281,7 @@ std::size_t GpuSolver::bufferBytes() const {
     std::size_t bytes = 0;
     std::vector<unsigned> all(buffers_.begin(), buffers_.end());
     all.push_back(paramsBuffer_);
+    all.push_back(stepMaxima_);
     for (unsigned b : all) {
         if (b == 0) continue;
         GLint64 size = 0;

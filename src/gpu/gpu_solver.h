@@ -187,6 +187,7 @@ private:
     std::array<unsigned, gpu::kBindingCount> buffers_{};  // 0: not used by this integrator
     std::array<unsigned, kKernelCount> programs_{};       // 0: not compiled for this scene
     unsigned paramsBuffer_ = 0;  // the uniform buffer of gpu::Params, at gpu::kParamsBlock
+    unsigned stepMaxima_ = 0;    // the step check's maxima, copied out for the host to read
     unsigned timer_ = 0;
     double secondsPerStep_ = 0;
     bool timedByQuery_ = false;

@@ -1,7 +1,10 @@
 // GpuSolver as the step control's StepCheck (solver/step_check.h): the step's start is copied
 // within the GPU (kStepStart), step_check.comp measures each work group's largest growth of a
 // structural spring's stretch, and the host reads those maxima (16 bytes a work group) instead
-// of the state: 1 kB at 128² with 16x16 work groups, where read() moves 512 kB.
+// of the state: 1 kB at 128² with 16x16 work groups, where read() moves 512 kB. The maxima are
+// copied into a buffer of their own for that read: NVIDIA's driver moves a buffer that the host
+// reads every step into host memory, and the kept state with it would then cross the bus twice
+// a step (docs/performance.md, "The step check on the GPU").
 #include <GL/glew.h>
 
 #include <algorithm>
@@ -40,6 +43,9 @@ void GpuSolver::allocateStepCheck() {
     const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
     glGenBuffers(1, &buffers_[gpu::kStepStart]);
     gpu::bufferData(buffers_[gpu::kStepStart], nullptr, (2 * n + groups) * gpu::kVec4);
+    glGenBuffers(1, &stepMaxima_);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, stepMaxima_);
+    glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(groups * gpu::kVec4), nullptr, GL_STREAM_READ);
 }
 
 // Positions and velocities into the kept state's buffer (`toKept`), or back out of it.
@@ -72,9 +78,11 @@ double GpuSolver::stretchGrowth() {
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
     const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
     std::vector<glm::vec4> maxima(groups);
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[gpu::kStepStart]);
-    glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(2 * n * gpu::kVec4),
-                       GLsizeiptr(groups * gpu::kVec4), maxima.data());
+    glBindBuffer(GL_COPY_READ_BUFFER, buffers_[gpu::kStepStart]);
+    glBindBuffer(GL_COPY_WRITE_BUFFER, stepMaxima_);
+    glCopyBufferSubData(GL_COPY_READ_BUFFER, GL_COPY_WRITE_BUFFER, GLintptr(2 * n * gpu::kVec4), 0,
+                        GLsizeiptr(groups * gpu::kVec4));
+    glGetBufferSubData(GL_COPY_WRITE_BUFFER, 0, GLsizeiptr(groups * gpu::kVec4), maxima.data());
     double largest = 0;
     for (const glm::vec4& m : maxima) {
         if (!(m.x <= std::numeric_limits<float>::max()))  // +inf: a length was not finite
