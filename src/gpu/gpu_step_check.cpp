@@ -2,9 +2,9 @@
 // within the GPU (kStepStart), step_check.comp measures each work group's largest growth of a
 // structural spring's stretch, and the host reads those maxima (16 bytes a work group) instead
 // of the state: 1 kB at 128² with 16x16 work groups, where read() moves 512 kB. The maxima are
-// copied into a buffer of their own for that read: NVIDIA's driver moves a buffer that the host
-// reads every step into host memory, and the kept state with it would then cross the bus twice
-// a step (docs/performance.md, "The step check on the GPU").
+// copied into a buffer of their own for that read. Read from the kept state's buffer they cost
+// 2.3 times as much a step on an H200 at 1024², likely as the driver then keeps that buffer
+// (32 MB) in host memory (docs/performance.md, "The step check on the GPU: its cost").
 #include <GL/glew.h>
 
 #include <algorithm>
