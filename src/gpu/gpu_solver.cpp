@@ -346,6 +346,11 @@ StepResult GpuSolver::reportUnstable(const gpu::Status& status, long stepsBefore
     steps_ = long(status.firstBadStep);
     r.stepsTaken = std::max(0L, steps_ - stepsBefore);
     const unsigned k = status.badVertex;
+    if (k >= unsigned(nu_) * unsigned(nv_)) {  // every report pairs the step with a vertex
+        r.reason =
+            "unstable at step " + std::to_string(status.firstBadStep) + " (no vertex recorded)";
+        return r;
+    }
     glm::vec4 p, v;
     for (auto [binding, to] : {std::pair{gpu::kPositions, &p}, std::pair{gpu::kVelocities, &v}}) {
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[binding]);

@@ -111,6 +111,15 @@ TEST_F(GpuVariants, InstabilityIsReportedAtTheSameStepWithRareReadBacks) {
         EXPECT_EQ(rare->stepsDone(), expected.firstBadStep);
         expectSameState(rare->read(), everyStep->read(), stepDispatchName(d));
     }
+    // The vertex named is the lowest that went bad, the one the CPU names at the same step.
+    const StepResult cpu = makeCpuSolver(s, {Precision::Float, 1})->step(5000);
+    ASSERT_TRUE(cpu.unstable);
+    std::printf("gpu: step %ld, %s\ncpu: step %ld, %s\n", expected.firstBadStep,
+                expected.reason.c_str(), cpu.firstBadStep, cpu.reason.c_str());
+    if (cpu.firstBadStep == expected.firstBadStep) {
+        const auto vertex = [](const std::string& r) { return r.substr(r.rfind("vertex")); };
+        EXPECT_EQ(vertex(expected.reason), vertex(cpu.reason));
+    }
 }
 
 // Auto picks many steps for small explicit/symplectic Euler grids only; forcing it on another
