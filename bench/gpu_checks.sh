@@ -21,11 +21,10 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 res=$(mktemp -d)
 mkdir -p "$out"
 exec > >(tee -a "$out/log.txt") 2>&1
-export LD_LIBRARY_PATH="$dir/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" CLOTH_SHADER_DIR="$dir/shaders"
+source "$here/scripts/gpu-bench.sh"  # use_bundle, device_label
+set +e                                # each check runs under its own limit, whatever the last did
+use_bundle "$dir"
 export CLOTH_REQUIRE_GPU=1
-for f in /usr/share/glvnd/egl_vendor.d/10_nvidia.json /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json; do
-    [ -f "$f" ] && { export __EGL_VENDOR_LIBRARY_FILENAMES=$f; break; }
-done
 # The tests find scenes and shaders through the source path they were built with, and the
 # bundle's test finds the executable in build/.
 mkdir -p "$here/build" && [ -e "$here/build/clothsim" ] || cp "$dir/clothsim" "$here/build/"
@@ -38,8 +37,7 @@ stamp() { echo "== $(date -u +%H:%M:%S) $*"; }
 stamp info
 nvidia-smi -L || true
 "$exe" info | tee "$res/info.txt"
-label=$(sed -n 's/.*GL renderer: *//p' "$res/info.txt" | head -1 | sed 's| (.*||; s|/.*||' |
-    tr 'A-Z' 'a-z' | tr -c 'a-z0-9\n' '_' | sed 's/__*/_/g; s/^_//; s/_$//')
+label=$(device_label < "$res/info.txt")
 label=${label:-gpu}
 pack
 

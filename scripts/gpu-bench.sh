@@ -49,6 +49,21 @@ device_label() {
         sed 's/__*/_/g; s/^_//; s/_$//'
 }
 
+# The environment that runs a bundle's executable (or a build's, where it has no lib/ or shaders/).
+use_bundle() {
+    local dir=$1
+    [ -d "$dir/lib" ] && export LD_LIBRARY_PATH="$dir/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+    [ -d "$dir/shaders" ] && export CLOTH_SHADER_DIR="$dir/shaders"
+    # glvnd finds NVIDIA's EGL through a vendor file; container images keep it beside the driver.
+    if [ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ]; then
+        for f in /usr/share/glvnd/egl_vendor.d/10_nvidia.json \
+                 /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json; do
+            [ -f "$f" ] && { export __EGL_VENDOR_LIBRARY_FILENAMES=$f; break; }
+        done
+    fi
+    return 0
+}
+
 run() {
     local dir=${1:?}; shift
     local out=bench/results quick=0
@@ -61,15 +76,7 @@ run() {
     done
     local exe="$dir/clothsim"
     [ -x "$exe" ] || { echo "gpu-bench: $exe: no such executable" >&2; exit 2; }
-    [ -d "$dir/lib" ] && export LD_LIBRARY_PATH="$dir/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-    [ -d "$dir/shaders" ] && export CLOTH_SHADER_DIR="$dir/shaders"
-    # glvnd finds NVIDIA's EGL through a vendor file; container images keep it beside the driver.
-    if [ -z "${__EGL_VENDOR_LIBRARY_FILENAMES:-}" ]; then
-        for f in /usr/share/glvnd/egl_vendor.d/10_nvidia.json \
-                 /usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json; do
-            [ -f "$f" ] && { export __EGL_VENDOR_LIBRARY_FILENAMES=$f; break; }
-        done
-    fi
+    use_bundle "$dir"
     mkdir -p "$out"
     local info
     info=$("$exe" info)
@@ -91,6 +98,8 @@ run() {
         --out "$out" --label "cotton_$label"
 }
 
+# Sourced (bench/gpu_checks.sh), it only defines the functions above.
+[ "${BASH_SOURCE[0]}" = "$0" ] || return 0
 case "${1:-}" in
     bundle) shift; bundle "$@" ;;
     run) shift; run "$@" ;;
