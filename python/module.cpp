@@ -179,7 +179,12 @@ void bindResults(py::module_& m) {
         .def_readonly("iterations", &SolveStats::iterations, "CG iterations, summed over solves.")
         .def_readonly("most_iterations", &SolveStats::mostIterations, "Most in one solve.")
         .def_readonly("misses", &SolveStats::misses,
-                      "Solves that stopped at integrator.max_iterations.")
+                      "Solves that did not reach the tolerance: stopped at "
+                      "integrator.max_iterations, or broke down.")
+        .def_readonly("breakdowns", &SolveStats::breakdowns,
+                      "Misses that broke down before the cap (p·A p <= 0 or a sum not finite).")
+        .def_readonly("first_breakdown_step", &SolveStats::firstBreakdownStep,
+                      "1-based step of the first breakdown (0: none).")
         .def_readonly("first_miss_step", &SolveStats::firstMissStep,
                       "1-based step of the first miss (0: none).")
         .def_readonly("worst_residual", &SolveStats::worstResidual,

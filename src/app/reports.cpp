@@ -16,13 +16,24 @@ void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& 
 
 void reportSolveMisses(const Scene& scene, const Solver& solver) {
     const SolveStats& s = solver.solveStats();
-    if (s.misses == 0) return;
-    std::fprintf(stderr,
-                 "clothsim: %s: warning: %ld of %ld implicit solves stopped at "
-                 "integrator.max_iterations = %d before |r| <= %g |b| (first at step %ld, worst "
-                 "relative residual %.3g); raise integrator.max_iterations or lower dt\n",
-                 scene.source.c_str(), s.misses, s.solves, scene.integrator.maxIterations,
-                 scene.integrator.tolerance, s.firstMissStep, s.worstResidual);
+    const long capped = s.misses - s.breakdowns;
+    if (capped > 0)
+        std::fprintf(stderr,
+                     "clothsim: %s: warning: %ld of %ld implicit solves stopped at "
+                     "integrator.max_iterations = %d before |r| <= %g |b| (first miss at step %ld, "
+                     "worst relative residual %.3g); raise integrator.max_iterations or lower dt\n",
+                     scene.source.c_str(), capped, s.solves, scene.integrator.maxIterations,
+                     scene.integrator.tolerance, s.firstMissStep, s.worstResidual);
+    if (s.breakdowns > 0)
+        std::fprintf(stderr,
+                     "clothsim: %s: warning: %ld of %ld implicit solves broke down before "
+                     "|r| <= %g |b| (first at step %ld): p·A p was not positive or a sum was not "
+                     "finite, so the preconditioner's output or the state was not finite; those "
+                     "steps went on with the last iterate. [%s] Try integrator.preconditioner = "
+                     "\"jacobi\"%s\n",
+                     scene.source.c_str(), s.breakdowns, s.solves, scene.integrator.tolerance,
+                     s.firstBreakdownStep, solver.name().c_str(),
+                     solver.name().find("gpu") != std::string::npos ? " or --backend cpu" : "");
 }
 
 void warnUnstableDt(const Scene& scene) {

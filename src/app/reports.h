@@ -19,7 +19,8 @@ void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& 
 // stability bound (model/stability.h dtWarning).
 void warnUnstableDt(const Scene& scene);
 
-// A warning on stderr when implicit Euler's CG stopped at its cap in any step (never silent).
+// A warning on stderr when implicit Euler's CG stopped at its cap in any step, and another when
+// it broke down (never silent).
 void reportSolveMisses(const Scene& scene, const Solver& solver);
 
 }  // namespace cloth::app

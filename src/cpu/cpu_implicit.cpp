@@ -183,7 +183,8 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         team.sync();  // the next product reads the neighbours' p
     }
     if (&band == &bands_[0])
-        solveStats_.record(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal);
+        solveStats_.record(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal,
+                           !(rr <= goal) && it < maxIterations_);
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const Vec3<T> v = v_.get(k) + dv_[k];
         if (!finishStep(band, k, x_.get(k) + h * v, v)) return false;

@@ -208,11 +208,12 @@ gpu::CgState GpuSolver::readCgState() const {
     return cg;
 }
 
-// A solve that did not converge (max_iterations reached, or stopped) is a miss: the step went on
-// with the last iterate, and callers report it (docs/integrators.md: never silent).
+// A solve that did not converge (max_iterations reached, or stopped: a breakdown) is a miss: the
+// step went on with the last iterate, and callers report it (docs/integrators.md: never silent).
 void GpuSolver::recordSolve(long stepNumber, const gpu::CgState& cg) {
     const double residual = cg.bb > 0 ? std::sqrt(double(cg.rr) / double(cg.bb)) : 0.0;
-    solveStats_.record(stepNumber, int(cg.iterations), residual, cg.done == gpu::kCgConverged);
+    solveStats_.record(stepNumber, int(cg.iterations), residual, cg.done == gpu::kCgConverged,
+                       cg.done == gpu::kCgStopped);
 }
 
 }  // namespace cloth

@@ -73,17 +73,21 @@ struct SolveStats {
     long solves = 0;
     long iterations = 0;       // summed over solves
     int mostIterations = 0;    // in one solve
-    long misses = 0;           // solves that stopped at max_iterations
+    long misses = 0;           // solves that did not reach the tolerance (either way below)
     long firstMissStep = 0;    // 1-based step of the first miss
     double worstResidual = 0;  // largest final |r|/|b| of a miss
+    // Misses that broke down before max_iterations: p·A p ≤ 0 or a sum not finite, which A
+    // being positive definite leaves to a non-finite state or preconditioner output.
+    long breakdowns = 0;
+    long firstBreakdownStep = 0;  // 1-based, 0: none
     // The last solve's (run --out-solves writes them step by step).
     int lastIterations = 0;
     double lastResidual = 0;  // final |r|/|b|
     bool lastConverged = true;
 
-    // One solve of step `step` (1-based): its iterations, final |r|/|b|, and whether it reached
-    // the tolerance.
-    void record(long step, int taken, double residual, bool converged) {
+    // One solve of step `step` (1-based): its iterations, final |r|/|b|, whether it reached the
+    // tolerance, and whether it broke down (stopped short of both).
+    void record(long step, int taken, double residual, bool converged, bool brokeDown) {
         ++solves;
         iterations += taken;
         mostIterations = std::max(mostIterations, taken);
@@ -93,6 +97,7 @@ struct SolveStats {
         if (converged) return;
         if (misses++ == 0) firstMissStep = step;
         worstResidual = std::max(worstResidual, residual);
+        if (brokeDown && breakdowns++ == 0) firstBreakdownStep = step;
     }
 };
 

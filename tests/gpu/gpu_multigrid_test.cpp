@@ -85,7 +85,9 @@ class GpuMultigridSolve : public GpuTest {};
 // the extent. Seen: llvmpipe 24² cotton 30 steps 169 = 169 iterations, 1.4e-4 to 3.9e-4 apart,
 // 33² stretch 1e6 12 steps 43 against 42, 7.0e-8 apart; the H200 183 against 169 (every step
 // after the contact equal), 5.3e-4 apart, and 46 against 42, 1.4e-7 apart. (Block-Jacobi's GPU
-// and CPU runs of the 24² case part by 4.7e-5.)
+// and CPU runs of the 24² case part by 4.7e-5.) The stiff sheet at 128², 3 steps of free fall, is
+// where NVIDIA's H100 and H200 stopped every solve before its first iteration (|r|/|b| = 1; the
+// defect docs/performance.md describes), while llvmpipe takes the CPU's 7 a step.
 TEST_F(GpuMultigridSolve, TakesTheCpuFloatIterationsStepForStep) {
     struct Case {
         int n;
@@ -94,7 +96,8 @@ TEST_F(GpuMultigridSolve, TakesTheCpuFloatIterationsStepForStep) {
         std::size_t beforeContact;  // steps solved on the same systems
         double tolerance;           // |x_gpu − x_cpu| / extent
     };
-    for (const Case c : {Case{24, 0, 30, 13, 1e-3}, Case{33, 1e6, 12, 12, 1e-6}}) {
+    for (const Case c :
+         {Case{24, 0, 30, 13, 1e-3}, Case{33, 1e6, 12, 12, 1e-6}, Case{128, 1e6, 3, 3, 1e-6}}) {
         const Scene scene = drape(c.n, c.stretch, Preconditioner::Multigrid);
         const Stepped gpu = runGpu(scene, c.steps), cpu = runCpu(scene, c.steps);
         const Mismatches m = countMismatches(gpu, cpu, c.beforeContact, 2);

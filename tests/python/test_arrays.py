@@ -144,5 +144,6 @@ def test_strain_and_solve_stats(root):
     assert all(0 <= x < 8 for x in a + b) and a != b
     stats = sim.solve_stats
     assert stats.solves == 20 and stats.iterations >= 20 and stats.misses == 0
+    assert stats.breakdowns == 0 and stats.first_breakdown_step == 0
     assert stats.last_converged
     assert clothsim.Simulation(root / "scenes/hanging.json").solve_stats.solves == 0
