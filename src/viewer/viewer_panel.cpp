@@ -14,8 +14,6 @@
 namespace cloth::app {
 namespace {
 
-const ImVec4 kWarn{1.0f, 0.8f, 0.2f, 1.0f}, kError{1.0f, 0.35f, 0.3f, 1.0f};
-
 void sceneSection(ViewerSession& session, ViewerUi& ui) {
     const std::string current = session.params().scene.name + ".json";
     if (ImGui::BeginCombo("scene", current.c_str())) {
@@ -125,11 +123,11 @@ bool forcesSection(ViewerParams& p, std::vector<std::string>& drawn) {
     // thickness and friction sliders are the table's, above, while it is on.
     bool self = s.selfCollision.has_value();
     if (s.cloth.nu >= 2 && s.cloth.nv >= 2 && ImGui::Checkbox("self-collision", &self)) {
-        const double cell = std::min(s.cloth.size.x / (s.cloth.nu - 1),
-                                     s.cloth.size.y / (s.cloth.nv - 1));
-        s.selfCollision = self ? std::optional<SelfCollision>(SelfCollision{
-                                     std::min(0.004, 0.5 * cell), 0.3})
-                               : std::nullopt;
+        const double cell =
+            std::min(s.cloth.size.x / (s.cloth.nu - 1), s.cloth.size.y / (s.cloth.nv - 1));
+        s.selfCollision =
+            self ? std::optional<SelfCollision>(SelfCollision{std::min(0.004, 0.5 * cell), 0.3})
+                 : std::nullopt;
         changed = true;
     }
     return changed;

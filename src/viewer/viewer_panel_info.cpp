@@ -7,6 +7,7 @@
 
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
+#include "viewer/viewer_widgets.h"
 
 namespace cloth::app {
 namespace {
@@ -82,6 +83,18 @@ void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui) {
     if (session.params().scene.integrator.method == Method::ImplicitEuler) {
         plot("CG iterations", h.iterations, "per step");
         plot("CG log10 |r|/|b|", h.residual, "");
+        // Never silent (docs/integrators.md): solves that missed the tolerance, each kind apart.
+        const SolveStats& s = solver.solveStats();
+        ImGui::PushStyleColor(ImGuiCol_Text, kWarn);
+        if (s.misses > s.breakdowns)
+            ImGui::TextWrapped("%ld of %ld solves stopped at max_iterations",
+                               s.misses - s.breakdowns, s.solves);
+        if (s.breakdowns > 0)
+            ImGui::TextWrapped(
+                "%ld of %ld solves broke down (p.Ap <= 0 or not finite): try the jacobi "
+                "preconditioner or the other backend",
+                s.breakdowns, s.solves);
+        ImGui::PopStyleColor();
     }
 }
 

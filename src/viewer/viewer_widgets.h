@@ -8,6 +8,9 @@
 
 namespace cloth::app {
 
+// The panel's colours for a warning and for an error.
+inline const ImVec4 kWarn{1.0f, 0.8f, 0.2f, 1.0f}, kError{1.0f, 0.35f, 0.3f, 1.0f};
+
 inline bool dragDouble(const char* label, double& v, float speed, double lo, double hi,
                        const char* format = "%.4g", ImGuiSliderFlags flags = 0) {
     return ImGui::DragScalar(label, ImGuiDataType_Double, &v, speed, &lo, &hi, format,
