@@ -7,7 +7,9 @@
 #   2. the real-time frontier of vbd on the drape with the strain check: 10 sweeps, then 20 sweeps
 #      with Chebyshev rho 0.9 (the largest N whose sheet holds at 60 frames a second);
 #   3. bench/gpu_step_check.sh at 1024² (what the device's step check costs);
-#   4. implicit Euler on the drape at 128² and 512², block-Jacobi and the multigrid V-cycle;
+#   4. implicit Euler on the drape at 128² and 512², block-Jacobi and the multigrid V-cycle, and
+#      128² multigrid capped at 1 iteration (what the per-step build costs, so that the
+#      difference gives the cost of an iteration);
 #   5. the rest of the GPU tests.
 #   bench/gpu_checks.sh BUNDLE_DIR OUT_DIR [tests]
 # With `tests`, only the GPU tests (1 and 5) run.
@@ -73,6 +75,10 @@ for n in 128 512; do
         echo "$n $p: $line" | tee -a "$res/implicit_$label.txt"
     done
 done
+line=$(timeout 20 "$exe" run "$here/scenes/drape.json" --backend gpu --set "cloth.resolution=[128,128]" \
+    --set 'integrator={"method":"implicit_euler","dt":0.016667,"preconditioner":"multigrid","tolerance":1e-6,"max_iterations":1}' \
+    --steps 10 2>&1 | grep -E 'ms/step|CG solves|error' | tr '\n' ' ' || echo "cut off at 20 s")
+echo "128 multigrid, cap 1: $line" | tee -a "$res/implicit_$label.txt"
 pack
 fi
 
