@@ -9,7 +9,9 @@
 #   3. bench/gpu_step_check.sh at 1024² (what the device's step check costs);
 #   4. implicit Euler on the drape at 128² and 512², block-Jacobi and the multigrid V-cycle, and
 #      128² multigrid capped at 1 iteration (what the per-step build costs, so that the
-#      difference gives the cost of an iteration);
+#      difference gives the cost of an iteration); the multigrid hierarchy's trace
+#      (CLOTH_MULTIGRID_TRACE) of the stiff drape at 128², which NVIDIA stopped at iteration 0,
+#      and at 33², which converged;
 #   5. the rest of the GPU tests.
 #   bench/gpu_checks.sh BUNDLE_DIR OUT_DIR [tests]
 # With `tests`, only the GPU tests (1 and 5) run.
@@ -79,6 +81,13 @@ line=$(timeout 20 "$exe" run "$here/scenes/drape.json" --backend gpu --set "clot
     --set 'integrator={"method":"implicit_euler","dt":0.016667,"preconditioner":"multigrid","tolerance":1e-6,"max_iterations":1}' \
     --steps 10 2>&1 | grep -E 'ms/step|CG solves|error' | tr '\n' ' ' || echo "cut off at 20 s")
 echo "128 multigrid, cap 1: $line" | tee -a "$res/implicit_$label.txt"
+for n in 128 33; do
+    CLOTH_MULTIGRID_TRACE=1 timeout 20 "$exe" run "$here/scenes/drape.json" --backend gpu \
+        --set "cloth.resolution=[$n,$n]" --set material.stretch=1e6 \
+        --set 'integrator={"method":"implicit_euler","dt":0.016667,"preconditioner":"multigrid","tolerance":1e-6,"max_iterations":3000}' \
+        --steps 2 > "$res/multigrid_trace_${label}_${n}_1e6.txt" 2>&1
+    cat "$res/multigrid_trace_${label}_${n}_1e6.txt"
+done
 pack
 fi
 

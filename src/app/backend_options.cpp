@@ -73,6 +73,12 @@ GpuSetup gpuSetupFromEnvironment() {
                              std::string("'") + device + "' is not a device index");
         setup.eglDevice = int(index);
     }
+    if (const char* trace = environment("CLOTH_MULTIGRID_TRACE")) {
+        if (std::string(trace) != "0" && std::string(trace) != "1")
+            throw InputError("", "CLOTH_MULTIGRID_TRACE",
+                             std::string("expected 0 or 1, got '") + trace + "'");
+        setup.traceMultigrid = std::string(trace) == "1";
+    }
     return setup;
 }
 

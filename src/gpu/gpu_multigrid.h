@@ -7,13 +7,14 @@
 // coarser grid's Galerkin product (mg_galerkin), every grid's line factors (mg_lines) and the
 // coarsest grid's dense factor. Per application of M⁻¹ (apply): the conjugate gradient's r into
 // the fine grid (mg_begin), then on each grid 5 colours of rows and 5 of columns relaxed
-// (mg_relax_right_hand_side, mg_relax), t = r − A z (mg_residual), r_c = Pᵀ t (mg_restrict), the coarser grid's cycle,
-// z += P z_c (mg_prolong) and the same sweeps in reverse order; the coarsest grid is solved by
-// its factor (mg_coarsest_solve). Nothing leaves the GPU; every kernel of apply returns at once
-// once the solve has converged.
+// (mg_relax_right_hand_side, mg_relax), t = r − A z (mg_residual), r_c = Pᵀ t (mg_restrict), the
+// coarser grid's cycle, z += P z_c (mg_prolong) and the same sweeps in reverse order; the coarsest
+// grid is solved by its factor (mg_coarsest_solve). Nothing leaves the GPU; every kernel of apply
+// returns at once once the solve has converged.
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "gpu/gpu_variant.h"
@@ -35,10 +36,13 @@ public:
     void linearise(const Programs& programs) const;
     void apply(const Programs& programs) const;
     std::size_t bytes() const { return std::size_t(bytes_.stencil + bytes_.work); }
+    // Each level's stencil diagonal, line factors' pivots, |r| and |z|, and what is not finite,
+    // read back (gpu_multigrid_trace.cpp): for CLOTH_MULTIGRID_TRACE.
+    std::string describe() const;
     int levels() const { return int(levels_.size()); }
 
 private:
-    void dispatchLevel(unsigned program, int level) const;  // 2-D over the level's grid
+    void dispatchLevel(unsigned program, int level) const;             // 2-D over the level's grid
     void dispatchLines(unsigned program, int level, int count) const;  // 1-D, 64 a group
     void sweep(const Programs& programs, int level, int direction, bool forward) const;
     void cycle(const Programs& programs, int level) const;

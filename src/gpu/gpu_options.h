@@ -50,6 +50,9 @@ inline const char* stepDispatchName(StepDispatch d) {
 struct GpuSetup {
     std::string shaderDir;  // "": shaders/ next to the executable, else the source tree's
     int eglDevice = -1;     // >= 0: that EGL device alone (CLOTH_EGL_DEVICE), else hardware first
+    // CLOTH_MULTIGRID_TRACE=1: after the first solve's first V-cycle, the multigrid hierarchy
+    // summed up level by level on stderr (GpuMultigrid::describe).
+    bool traceMultigrid = false;
 };
 void configureGpu(const GpuSetup& setup);
 const GpuSetup& gpuSetup();

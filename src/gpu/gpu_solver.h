@@ -154,6 +154,7 @@ private:
     Preconditioner preconditioner_;  // implicit_euler's (a kernel variant: fixed per solver)
     int maxIterations_;              // implicit_euler's cap on CG iterations per step
     std::unique_ptr<GpuMultigrid> multigrid_;  // the "multigrid" preconditioner's hierarchy
+    bool multigridTraced_ = false;             // CLOTH_MULTIGRID_TRACE: once a solver
     // vbd: sweeps per step, Chebyshev's ρ, and the first step whose v_{n−1} is in kVbdPrevious.
     int vbdIterations_;
     double chebyshevRho_;

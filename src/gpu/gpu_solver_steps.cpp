@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "gpu/egl_context.h"
 #include "gpu/gpu_solver.h"
@@ -127,6 +128,11 @@ void GpuSolver::stepImplicit(long stepNumber) {
     }
     runPass(Kernel::CgStart);
     if (multigrid_) precondition(true);
+    if (multigrid_ && gpuSetup().traceMultigrid && !multigridTraced_) {
+        std::fprintf(stderr, "clothsim: multigrid trace, step %ld, the solve's first V-cycle:\n%s",
+                     stepNumber, multigrid_->describe().c_str());
+        multigridTraced_ = true;
+    }
     runReduction(gpu::kReduceStartDirection);
     recordSolve(stepNumber, solve());
     runStepPass(Kernel::ImplicitFinish, stepNumber);

@@ -1,12 +1,15 @@
 // What `run` says when implicit Euler's conjugate gradient misses its tolerance: a solve cut off
 // at integrator.max_iterations is told apart from one that broke down (p·A p not positive or a
 // sum not finite, which a positive definite A leaves to a non-finite preconditioner output or
-// state). Neither is silent, and each names its own remedy.
+// state). Neither is silent, and each names its own remedy. And CLOTH_MULTIGRID_TRACE, which says
+// where the GPU's V-cycle went non-finite.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -40,6 +43,33 @@ bool says(const std::string& text, const std::string& what) {
     return text.find(what) != std::string::npos;
 }
 
+// A copy of shaders/ in a fresh temporary folder with `kernel` changed by `edit`; empty if
+// `edit` found nothing to change (the kernel changed: update the test).
+fs::path brokenShaders(const std::string& kernel, const std::function<bool(std::string&)>& edit) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("clothsim_broken_shaders_" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    fs::copy(CLOTH_SOURCE_DIR "/shaders", dir, fs::copy_options::recursive);
+    const fs::path file = dir / "compute" / kernel;
+    std::stringstream source;
+    source << std::ifstream(file).rdbuf();
+    std::string text = source.str();
+    if (!edit(text)) return {};
+    std::ofstream(file) << text;
+    return dir;
+}
+
+// Every count of "not finite: …" in the trace, in order.
+std::vector<long> notFiniteCounts(const std::string& trace) {
+    static const std::regex kCount(
+        R"((\d+) (in the stencil|in the line factors|in r, z, t)|not finite: (\d+))");
+    std::vector<long> counts;
+    for (auto it = std::sregex_iterator(trace.begin(), trace.end(), kCount);
+         it != std::sregex_iterator(); ++it)
+        counts.push_back(std::stol((*it)[1].matched ? (*it)[1].str() : (*it)[3].str()));
+    return counts;
+}
+
 // A cap of one iteration: every solve stops there, and the warning says the cap, not a breakdown.
 TEST(SolveReport, ACappedSolveNamesTheCap) {
     const auto r = runProcess(implicitDrape("jacobi", 1), 60);
@@ -61,19 +91,13 @@ TEST(SolveReport, ABrokenDownSolveIsNotCalledTheCap) {
     ASSERT_EQ(clean.exitCode, 0) << test::describe(clean);
     EXPECT_FALSE(says(clean.err, "implicit solves")) << clean.err;
 
-    const fs::path dir =
-        fs::temp_directory_path() / ("clothsim_nan_vcycle_" + std::to_string(getpid()));
-    fs::remove_all(dir);
-    fs::copy(CLOTH_SOURCE_DIR "/shaders", dir, fs::copy_options::recursive);
-    const fs::path kernel = dir / "compute" / "cg_preconditioned.comp";
-    std::stringstream source;
-    source << std::ifstream(kernel).rdbuf();
-    std::string text = source.str();
-    const std::string line = "vec3 r = cgResidual[k].xyz, z = ";
-    const std::size_t at = text.find(line);
-    ASSERT_NE(at, std::string::npos) << "cg_preconditioned.comp changed: update this test";
-    text.insert(text.find('\n', at) + 1, "        z = vec3(uintBitsToFloat(0x7fc00000u));\n");
-    std::ofstream(kernel) << text;
+    const fs::path dir = brokenShaders("cg_preconditioned.comp", [](std::string& text) {
+        const std::size_t at = text.find("vec3 r = cgResidual[k].xyz, z = ");
+        if (at == std::string::npos) return false;
+        text.insert(text.find('\n', at) + 1, "        z = vec3(uintBitsToFloat(0x7fc00000u));\n");
+        return true;
+    });
+    ASSERT_FALSE(dir.empty()) << "cg_preconditioned.comp changed: update this test";
 
     argv.insert(argv.begin(), {"/usr/bin/env", "CLOTH_SHADER_DIR=" + dir.string()});
     const auto broken = runProcess(argv, 120);
@@ -85,6 +109,46 @@ TEST(SolveReport, ABrokenDownSolveIsNotCalledTheCap) {
         << broken.err;
     EXPECT_FALSE(says(broken.err, "max_iterations")) << broken.err;
     EXPECT_TRUE(says(broken.out, "0.0 iterations on average")) << broken.out;
+}
+
+// CLOTH_MULTIGRID_TRACE=1 sums up the GPU's multigrid hierarchy after the first V-cycle, one line
+// a level (16²: 16, 9 and 5 on a side) and the coarsest grid's factor: every value finite on the
+// shipped shaders. With the line factors given a non-finite entry (a copy of shaders/ with one
+// written into every line's band), the trace counts it in the line factors of every level with
+// lines and in the vectors the sweeps made from it.
+TEST(SolveReport, TheMultigridTraceShowsWhereTheHierarchyWentNonFinite) {
+    std::vector<std::string> argv = implicitDrape("multigrid", 3000);
+    argv.insert(argv.end(), {"--backend", "gpu"});
+    argv.insert(argv.begin(), {"/usr/bin/env", "CLOTH_MULTIGRID_TRACE=1"});
+    const auto clean = runProcess(argv, 120);
+    CLOTH_SKIP_IF_NO_GL(clean);
+    ASSERT_EQ(clean.exitCode, 0) << test::describe(clean);
+    for (const char* level : {"level 0, 16x16", "level 1, 9x9", "level 2, 5x5",
+                              "coarsest grid's dense factor (75 unknowns)"})
+        EXPECT_TRUE(says(clean.err, level)) << level << " in:\n" << clean.err;
+    const std::vector<long> counts = notFiniteCounts(clean.err);
+    EXPECT_EQ(counts.size(), 3u * 3u + 1u) << clean.err;
+    for (long c : counts) EXPECT_EQ(c, 0) << clean.err;
+
+    // The band's first slot (left of the line's start: 0 otherwise) made NaN after the factor.
+    const fs::path dir = brokenShaders("mg_lines.comp", [](std::string& text) {
+        const std::size_t end = text.rfind('}');
+        if (end == std::string::npos) return false;
+        text.insert(end, "    mgWork[f] = double(uintBitsToFloat(0x7fc00000u));\n");
+        return true;
+    });
+    ASSERT_FALSE(dir.empty());
+    std::vector<std::string> broken = argv;
+    broken.insert(broken.begin() + 1, "CLOTH_SHADER_DIR=" + dir.string());
+    const auto r = runProcess(broken, 120);
+    fs::remove_all(dir);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    const std::vector<long> bad = notFiniteCounts(r.err);
+    ASSERT_EQ(bad.size(), 3u * 3u + 1u) << r.err;
+    EXPECT_GT(bad[1], 0) << "level 0's line factors:\n" << r.err;
+    EXPECT_GT(bad[4], 0) << "level 1's line factors:\n" << r.err;
+    EXPECT_GT(bad[2], 0) << "level 0's vectors:\n" << r.err;
+    EXPECT_EQ(bad[0], 0) << "level 0's stencil:\n" << r.err;
 }
 
 }  // namespace
