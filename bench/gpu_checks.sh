@@ -7,9 +7,10 @@
 #   2. the real-time frontier of vbd on the drape with the strain check: 10 sweeps, then 20 sweeps
 #      with Chebyshev rho 0.9 (the largest N whose sheet holds at 60 frames a second);
 #   3. bench/gpu_step_check.sh at 1024² (what the device's step check costs);
-#   4. implicit Euler on the drape at 128² and 512², block-Jacobi and the multigrid V-cycle, and
-#      128² multigrid capped at 1 iteration (what the per-step build costs, so that the
-#      difference gives the cost of an iteration); the multigrid hierarchy's trace
+#   4. implicit Euler on the drape at 128² and 512², block-Jacobi and the multigrid V-cycle; 128²
+#      multigrid with its line solves as one chain a line and in 32 chunks, to convergence and
+#      capped at 1 iteration (what the per-step build costs, so that the difference gives the
+#      cost of an iteration); the multigrid hierarchy's trace
 #      (CLOTH_MULTIGRID_TRACE) of the stiff drape at 128², which NVIDIA stopped at iteration 0,
 #      and at 33², which converged;
 #   5. the rest of the GPU tests.
@@ -77,10 +78,17 @@ for n in 128 512; do
         echo "$n $p: $line" | tee -a "$res/implicit_$label.txt"
     done
 done
-line=$(timeout 20 "$exe" run "$here/scenes/drape.json" --backend gpu --set "cloth.resolution=[128,128]" \
-    --set 'integrator={"method":"implicit_euler","dt":0.016667,"preconditioner":"multigrid","tolerance":1e-6,"max_iterations":1}' \
-    --steps 10 2>&1 | grep -E 'ms/step|CG solves|error' | tr '\n' ' ' || echo "cut off at 20 s")
-echo "128 multigrid, cap 1: $line" | tee -a "$res/implicit_$label.txt"
+# The line solves in chunks (the default on hardware) against one chain a line, at 128², to
+# convergence and capped at 1 iteration.
+for chunks in 1 32; do
+    for cap in 3000 1; do
+        line=$(CLOTH_MULTIGRID_CHUNKS=$chunks timeout 20 "$exe" run "$here/scenes/drape.json" \
+            --backend gpu --set "cloth.resolution=[128,128]" \
+            --set "integrator={\"method\":\"implicit_euler\",\"dt\":0.016667,\"preconditioner\":\"multigrid\",\"tolerance\":1e-6,\"max_iterations\":$cap}" \
+            --steps 10 2>&1 | grep -E 'ms/step|CG solves|error' | tr '\n' ' ' || echo "cut off at 20 s")
+        echo "128 multigrid, $chunks chunks, cap $cap: $line" | tee -a "$res/implicit_$label.txt"
+    done
+done
 for n in 128 33; do
     CLOTH_MULTIGRID_TRACE=1 timeout 20 "$exe" run "$here/scenes/drape.json" --backend gpu \
         --set "cloth.resolution=[$n,$n]" --set material.stretch=1e6 \

@@ -1,80 +1,104 @@
 // implicit_euler's multigrid preconditioner, line Gauss–Seidel's second half on level uLevel
 // (multigrid.glsl; src/cpu/cpu_multigrid.cpp relaxLine): lines uLine.y, uLine.y + 5, … in
-// direction uLine.x, one per invocation, each solved exactly, A_line z_line = t, with its banded
+// direction uLine.x, one per work group, each solved exactly, A_line z_line = t, with its banded
 // factor (t the right-hand side mg_relax_right_hand_side.comp left). Lines of one colour lie 5
-// apart, outside each other's stencil, so they are solved independently.
+// apart, outside each other's stencil, so they are solved independently. With MG_CHUNKS 1 a
+// line is one chain and a work group takes 64 lines.
 //
-// Each substitution is a chain of 3 m dependent rows, so its speed is the latency of a row. The
-// last kMgBand unknowns ride along in registers (`recent`, the newest first) instead of being read
-// back from the store just made, and the next row's band is loaded while this row is computed:
-// a row then waits on its arithmetic, not on memory. The sums run in the CPU's order (oldest
-// column first); a band slot left of the line's start holds 0 (mg_lines.comp), so the forward
-// pass needs no bounds.
+// A substitution is a chain of dependent rows. Along a line of 3 m rows it ran at one row's
+// latency a row; here each invocation takes one chunk of the line (multigrid.glsl
+// chunkVertices), so a chain is a chunk long. Each substitution runs in three parts:
+//   1. every chunk substitutes as if the rows before it were 0 (its last 8 rows' values kept);
+//   2. the 8 rows that enter each chunk follow chunk by chunk: those of chunk p + 1 are chunk
+//      p's last 8 as found in 1, plus chunk p's transfer (mg_line_transfers.comp) times those
+//      that enter chunk p — 8 invocations, one an entry, a chunk a step;
+//   3. every chunk substitutes again from the rows that enter it: the line's exact solution, up
+//      to rounding (the sequential solve's result in other rounding).
+// The back substitution runs the same way from the line's end.
 #include "layout.glsl"
 #include "common.glsl"
 #include "multigrid.glsl"
+#include "mg_chunks.glsl"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = MG_RELAX_GROUP) in;
 
-int lineEntry(int l, int direction, int line, int i, int which) {
-    ivec2 ij = onLine(direction, line, i / 3);
-    return vectorAt(l, ij.y * levelU(l) + ij.x, which) + i % 3;
-}
+shared double transfers[MG_CHUNKS * 64];  // the chunks' transfers of the substitution running
+shared double ends[MG_CHUNKS * kMgBand];  // each chunk's 8 rows next to its neighbour, from 1
+shared double enter[MG_CHUNKS * kMgBand];  // the 8 rows that enter each chunk, from 2
 
-void shiftIn(inout double recent[kMgBand], double newest) {
-    for (int c = kMgBand - 1; c > 0; --c) recent[c] = recent[c - 1];
-    recent[0] = newest;
+void sync() {
+    memoryBarrierShared();
+    barrier();
 }
 
 void main() {
     if (cg.done != 0u) return;
     int l = uLevel, direction = uLine.x;
-    int line = uLine.y + 5 * int(gl_GlobalInvocationID.x);
+    int line = uLine.y + 5 * int(gl_GlobalInvocationID.x / MG_CHUNKS);
     if (line >= (direction == 0 ? levelV(l) : levelU(l))) return;
-    int dofs = 3 * lineLength(l, direction);
+    int m = lineLength(l, direction), dofs = 3 * m;
     int f = lineAt(l, direction, line);
-    double recent[kMgBand];  // z[i − 1 − c] forward, z[i + 1 + c] back
+    int chunks = chunkCount(m), p = int(gl_LocalInvocationID.x) % MG_CHUNKS;
+    bool mine = p < chunks;
+    int a = min(p * 3 * chunkVertices(m), dofs), b = min(a + 3 * chunkVertices(m), dofs);
+    int transfer = transferAt(l, direction, line, min(p, chunks - 1));
+    double recent[kMgBand];  // y of the rows before the row forward, z of those after it back
     for (int c = 0; c < kMgBand; ++c) recent[c] = 0.0lf;
-    // L y' = t: row i of L is its band, columns i − 8 … i, contiguous.
-    double row[kMgBand + 1];
-    double right = mgWork[lineEntry(l, direction, line, 0, kMgT)];
-    for (int c = 0; c <= kMgBand; ++c) row[c] = mgWork[bandAt(f, 0, c - kMgBand)];
-    for (int i = 0; i < dofs; ++i) {
-        double next[kMgBand + 1] = row, nextRight = 0.0lf;
-        if (i + 1 < dofs) {
-            for (int c = 0; c <= kMgBand; ++c) next[c] = mgWork[bandAt(f, i + 1, i + 1 + c - kMgBand)];
-            nextRight = mgWork[lineEntry(l, direction, line, i + 1, kMgT)];
+    if (chunks == 1) {  // one chunk: the line's own substitutions (no barrier: lines may end early)
+        if (mine) {
+            forwardChunk(l, direction, line, f, a, b, true, true, recent);
+            for (int c = 0; c < kMgBand; ++c) recent[c] = 0.0lf;
+            backwardChunk(l, direction, line, f, dofs, a, b, true, true, recent);
         }
-        double s = right;
-        for (int c = 0; c < kMgBand; ++c) s -= row[c] * recent[kMgBand - 1 - c];
-        double y = divide(s, row[kMgBand]);
-        mgWork[lineEntry(l, direction, line, i, kMgZ)] = y;
-        shiftIn(recent, y);
-        row = next;
-        right = nextRight;
-    }
-    // Lᵀ z = y': column i of L, its diagonal and rows i + 1 … i + 8, one entry in each row's band.
-    for (int c = 0; c < kMgBand; ++c) recent[c] = 0.0lf;
-    double column[kMgBand + 1];
-    right = mgWork[lineEntry(l, direction, line, dofs - 1, kMgZ)];
-    for (int c = 0; c <= kMgBand; ++c) column[c] = c == 0 ? mgWork[bandAt(f, dofs - 1, dofs - 1)] : 0.0lf;
-    for (int i = dofs - 1; i >= 0; --i) {
-        double previous[kMgBand + 1] = column, previousRight = 0.0lf;
-        if (i > 0) {
-            for (int c = 0; c <= kMgBand; ++c)
-                previous[c] = i - 1 + c < dofs ? mgWork[bandAt(f, i - 1 + c, i - 1)] : 0.0lf;
-            previousRight = mgWork[lineEntry(l, direction, line, i - 1, kMgZ)];
+    } else {
+        // L y' = t.
+        if (mine) {
+            forwardChunk(l, direction, line, f, a, b, true, false, recent);
+            for (int t = 0; t < kMgBand; ++t) ends[p * kMgBand + t] = recent[kMgBand - 1 - t];
+            for (int e = 0; e < 64; ++e) transfers[p * 64 + e] = mgWork[transfer + e];
         }
-        double s = right;
-        for (int c = 1; c <= kMgBand; ++c) s -= column[c] * recent[c - 1];
-        double z = divide(s, column[0]);
-        mgWork[lineEntry(l, direction, line, i, kMgZ)] = z;
-        shiftIn(recent, z);
-        column = previous;
-        right = previousRight;
+        if (p < kMgBand) enter[p] = 0.0lf;  // nothing enters the first chunk
+        sync();
+        for (int q = 0; q + 1 < chunks; ++q) {
+            if (p < kMgBand) {
+                double s = ends[q * kMgBand + p];
+                for (int u = 0; u < kMgBand; ++u)
+                    s += transfers[q * 64 + p * kMgBand + u] * enter[q * kMgBand + u];
+                enter[(q + 1) * kMgBand + p] = s;
+            }
+            sync();
+        }
+        if (mine) {
+            for (int c = 0; c < kMgBand; ++c) recent[c] = enter[p * kMgBand + kMgBand - 1 - c];
+            forwardChunk(l, direction, line, f, a, b, true, true, recent);
+        }
+        sync();  // every chunk has read `enter`
+        // Lᵀ z = y'.
+        for (int c = 0; c < kMgBand; ++c) recent[c] = 0.0lf;
+        if (mine) {
+            backwardChunk(l, direction, line, f, dofs, a, b, true, false, recent);
+            for (int t = 0; t < kMgBand; ++t) ends[p * kMgBand + t] = recent[t];
+            for (int e = 0; e < 64; ++e) transfers[p * 64 + e] = mgWork[transfer + 64 + e];
+        }
+        if (p < kMgBand) enter[(chunks - 1) * kMgBand + p] = 0.0lf;  // nothing enters the last
+        sync();
+        for (int q = chunks - 1; q > 0; --q) {
+            if (p < kMgBand) {
+                double s = ends[q * kMgBand + p];
+                for (int u = 0; u < kMgBand; ++u)
+                    s += transfers[q * 64 + p * kMgBand + u] * enter[q * kMgBand + u];
+                enter[(q - 1) * kMgBand + p] = s;
+            }
+            sync();
+        }
+        if (mine) {
+            for (int c = 0; c < kMgBand; ++c) recent[c] = enter[p * kMgBand + c];
+            backwardChunk(l, direction, line, f, dofs, a, b, true, true, recent);
+        }
     }
-    for (int a = 0; a < lineLength(l, direction); ++a) {
-        ivec2 ij = onLine(direction, line, a);
+    if (!mine) return;
+    for (int v = a / 3; v < b / 3; ++v) {
+        ivec2 ij = onLine(direction, line, v);
         if (pinnedAt(l, ij)) storeVector(l, ij.y * levelU(l) + ij.x, kMgZ, dvec3(0.0lf));
     }
 }

@@ -11,7 +11,8 @@
 //              symmetric: P has a rotation term, see prolongationBlocks);
 //   mgWork:    the line smoother's banded Cholesky factors (54 doubles per vertex: every row and
 //              every column of a grid as one band of half-width 8 unknowns, 9 entries a row),
-//              then r, z, t of each vertex (9 doubles), then the coarsest grid's dense factor.
+//              then r, z, t of each vertex (9 doubles), then the coarsest grid's dense factor,
+//              then the line solves' chunk transfers (transferAt).
 
 const ivec4 kMgLevels[MG_LEVEL_COUNT] = ivec4[](MG_LEVELS);
 
@@ -97,7 +98,30 @@ int bandAt(int line, int row, int col) { return line + row * (kMgBand + 1) + (kM
 // The vertex at position a along line `line` in `direction` of level l.
 ivec2 onLine(int direction, int line, int a) { return direction == 0 ? ivec2(a, line) : ivec2(line, a); }
 
+// Where row i (vertex i / 3, coordinate i % 3) of a line's vector `which` lies in mgWork.
+int lineEntry(int l, int direction, int line, int i, int which) {
+    ivec2 ij = onLine(direction, line, i / 3);
+    return vectorAt(l, ij.y * levelU(l) + ij.x, which) + i % 3;
+}
+
 int coarsestFirst() { return 63 * MG_TOTAL; }
+
+// The line solves run in chunks of consecutive vertices, one invocation a chunk (mg_relax.comp),
+// so that a substitution's chain of dependent rows is a chunk long, not a line. A chunk holds at
+// least 4 vertices, so that its last kMgBand rows are its own, and a line at most MG_CHUNKS
+// chunks (the invocations of a work group); the last may be shorter.
+int chunkVertices(int m) { return max(4, (m + MG_CHUNKS - 1) / MG_CHUNKS); }
+int chunkCount(int m) { return (m + chunkVertices(m) - 1) / chunkVertices(m); }
+// Per chunk of every line of every relaxed level (src/gpu/gpu_variant.cpp multigridBytes), after
+// the coarsest grid's factor, 128 doubles: the forward substitution's transfer (entry 8 t + u:
+// how row b − 8 + t of the chunk [a, b) moves with row a − 8 + u before it), then the back
+// substitution's (entry 64 + 8 t + u: how row a + t moves with row b + u after it).
+int transferAt(int l, int direction, int line, int chunk) {
+    int lines = direction == 0 ? line : levelV(l) + line;
+    for (int m = 0; m < l; ++m) lines += levelU(m) + levelV(m);
+    int coarsest = levelU(MG_LEVEL_COUNT - 1) * levelV(MG_LEVEL_COUNT - 1);
+    return coarsestFirst() + 9 * coarsest * coarsest + (lines * MG_CHUNKS + chunk) * 128;
+}
 
 // cross(v, y) = crossMatrix(v) y
 dmat3 crossMatrix(dvec3 v) { return dmat3(0.0lf, v.z, -v.y, -v.z, 0.0lf, v.x, v.y, -v.x, 0.0lf); }

@@ -79,6 +79,16 @@ GpuSetup gpuSetupFromEnvironment() {
                              std::string("expected 0 or 1, got '") + trace + "'");
         setup.traceMultigrid = std::string(trace) == "1";
     }
+    if (const char* chunks = environment("CLOTH_MULTIGRID_CHUNKS")) {
+        char* end = nullptr;
+        const long count = std::strtol(chunks, &end, 10);
+        if (end == chunks || *end != '\0' ||
+            !(count == 1 || (count >= 8 && count <= kMultigridChunks)))
+            throw InputError("", "CLOTH_MULTIGRID_CHUNKS",
+                             std::string("expected 1 or 8 to ") + std::to_string(kMultigridChunks) +
+                                 ", got '" + chunks + "'");
+        setup.multigridChunks = int(count);
+    }
     return setup;
 }
 

@@ -8,7 +8,7 @@ namespace {
 // multigrid.glsl's bindings and uniform locations.
 constexpr unsigned kStencilBinding = 4, kWorkBinding = 14;
 constexpr int kLevelLocation = 4, kLineLocation = 5;
-constexpr int kLineGroup = 64;  // mg_lines.comp, mg_relax.comp: a sequential line a group
+constexpr int kLineGroup = 64;  // mg_lines.comp: a line an invocation
 
 void allocate(unsigned buffer, long long bytes) {
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
@@ -24,8 +24,8 @@ void run(unsigned program, GLuint x, GLuint y) {
 
 }  // namespace
 
-GpuMultigrid::GpuMultigrid(int nu, int nv, WorkGroup wg)
-    : levels_(multigridLevels(nu, nv)), wg_(wg), bytes_(multigridBytes(nu, nv)) {
+GpuMultigrid::GpuMultigrid(int nu, int nv, WorkGroup wg, int chunks)
+    : levels_(multigridLevels(nu, nv)), wg_(wg), chunks_(chunks), bytes_(multigridBytes(nu, nv)) {
     glGenBuffers(1, &stencil_);
     glGenBuffers(1, &work_);
     allocate(stencil_, bytes_.stencil);
@@ -54,6 +54,12 @@ void GpuMultigrid::dispatchLines(unsigned program, int level, int count) const {
     run(program, GLuint((count + kLineGroup - 1) / kLineGroup), 1);
 }
 
+void GpuMultigrid::dispatchChunks(unsigned program, int level, int lines, int perGroup) const {
+    if (lines <= 0) return;
+    glProgramUniform1i(program, kLevelLocation, level);
+    run(program, GLuint((lines + perGroup - 1) / perGroup), 1);
+}
+
 void GpuMultigrid::linearise(const Programs& programs) const {
     const int last = levels() - 1;
     for (int l = 0; l < levels(); ++l) {
@@ -62,9 +68,11 @@ void GpuMultigrid::linearise(const Programs& programs) const {
         else
             dispatchLevel(programs[int(Kernel::MgGalerkin)], l);
         // The coarsest grid is solved by its dense factor, not relaxed.
-        if (l < last)
-            dispatchLines(programs[int(Kernel::MgLines)], l,
-                          levels_[std::size_t(l)].nu + levels_[std::size_t(l)].nv);
+        if (l < last) {
+            const int lines = levels_[std::size_t(l)].nu + levels_[std::size_t(l)].nv;
+            dispatchLines(programs[int(Kernel::MgLines)], l, lines);
+            if (chunks_ > 1) dispatchChunks(programs[int(Kernel::MgLineTransfers)], l, lines, 1);
+        }
     }
     run(programs[int(Kernel::MgCoarsestFactor)], 1, 1);
 }
@@ -90,8 +98,9 @@ void GpuMultigrid::sweep(const Programs& programs, int level, int direction, boo
             glProgramUniform2i(program, kLineLocation, direction, colour);
             glProgramUniform1i(program, kLevelLocation, level);
         }
-        run(rightHandSide, GLuint((length + wg_.x - 1) / wg_.x), GLuint((count + wg_.y - 1) / wg_.y));
-        dispatchLines(solve, level, count);
+        run(rightHandSide, GLuint((length + wg_.x - 1) / wg_.x),
+            GLuint((count + wg_.y - 1) / wg_.y));
+        dispatchChunks(solve, level, count, multigridRelaxGroup(chunks_) / chunks_);
     }
 }
 

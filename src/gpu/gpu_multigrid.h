@@ -4,10 +4,12 @@
 // says which kernels run in what order; GpuSolver owns the programs and the CG around it.
 //
 // Per step, after the right-hand side (linearise): the fine grid's stencil (mg_fine), each
-// coarser grid's Galerkin product (mg_galerkin), every grid's line factors (mg_lines) and the
-// coarsest grid's dense factor. Per application of M⁻¹ (apply): the conjugate gradient's r into
-// the fine grid (mg_begin), then on each grid 5 colours of rows and 5 of columns relaxed
-// (mg_relax_right_hand_side, mg_relax), t = r − A z (mg_residual), r_c = Pᵀ t (mg_restrict), the
+// coarser grid's Galerkin product (mg_galerkin), every grid's line factors (mg_lines) with their
+// chunks' transfers (mg_line_transfers) and the coarsest grid's dense factor. Per application of
+// M⁻¹ (apply): the conjugate gradient's r into the fine grid (mg_begin), then on each grid 5
+// colours of rows and 5 of columns relaxed (mg_relax_right_hand_side, then mg_relax: a line a
+// work group, its substitutions in chunks, an invocation each, rather than the CPU's one chain a
+// line), t = r − A z (mg_residual), r_c = Pᵀ t (mg_restrict), the
 // coarser grid's cycle, z += P z_c (mg_prolong) and the same sweeps in reverse order; the coarsest
 // grid is solved by its factor (mg_coarsest_solve). Nothing leaves the GPU; every kernel of apply
 // returns at once once the solve has converged.
@@ -27,7 +29,8 @@ public:
     using Programs = std::array<unsigned, kKernelCount>;
 
     // Allocates the buffers for the scene's grid (checkMultigridFits first).
-    GpuMultigrid(int nu, int nv, WorkGroup wg);
+    // `chunks`: the most chunks a line's solve is cut into (multigridChunks).
+    GpuMultigrid(int nu, int nv, WorkGroup wg, int chunks);
     ~GpuMultigrid();
     GpuMultigrid(const GpuMultigrid&) = delete;
     GpuMultigrid& operator=(const GpuMultigrid&) = delete;
@@ -44,11 +47,14 @@ public:
 private:
     void dispatchLevel(unsigned program, int level) const;             // 2-D over the level's grid
     void dispatchLines(unsigned program, int level, int count) const;  // 1-D, 64 a group
+    // mg_line_transfers (a group a line) or mg_relax (multigridRelaxGroup) over `lines` lines.
+    void dispatchChunks(unsigned program, int level, int lines, int perGroup) const;
     void sweep(const Programs& programs, int level, int direction, bool forward) const;
     void cycle(const Programs& programs, int level) const;
 
     std::vector<MultigridLevel> levels_;
     WorkGroup wg_;
+    int chunks_;
     MultigridBytes bytes_;
     unsigned stencil_ = 0, work_ = 0;
 };

@@ -57,6 +57,7 @@ std::string GpuMultigrid::describe() const {
         const long long n = l.count();
         Range diagonal, lines[2], r, z;
         long stencilBad = 0, vectorBad = 0;
+        double rz = 0;  // r·z: on the fine grid the first V-cycle's, whose sign the CG needs
         for (long long k = 0; k < n; ++k) {
             const std::size_t block = std::size_t((first + k) * 25) * 9;
             for (std::size_t e = 0; e < 225; ++e)
@@ -65,6 +66,7 @@ std::string GpuMultigrid::describe() const {
             const std::size_t at = std::size_t(54 * total + 9 * (first + k));
             for (std::size_t c = 0; c < 3; ++c) {
                 r.add(std::abs(work[at + c]));
+                rz += work[at + c] * work[at + 3 + c];
                 z.add(std::abs(work[at + 3 + c]));
                 if (!std::isfinite(work[at + 6 + c])) ++vectorBad;
             }
@@ -84,12 +86,12 @@ std::string GpuMultigrid::describe() const {
         char line[512];
         std::snprintf(line, sizeof line,
                       "  level %d, %dx%d: A_kk's diagonal %s; line factors' L_ii: rows %s, "
-                      "columns %s; |r| %s, |z| %s; not finite: %ld in the stencil, %ld in the "
-                      "line factors, %ld in r, z, t\n",
+                      "columns %s; |r| %s, |z| %s, r·z %.17g; not finite: %ld in the stencil, %ld "
+                      "in the line factors, %ld in r, z, t\n",
                       level, l.nu, l.nv, diagonal.text().c_str(),
                       level + 1 < levels() ? lines[0].text().c_str() : "(dense)",
                       level + 1 < levels() ? lines[1].text().c_str() : "(dense)", r.text().c_str(),
-                      z.text().c_str(), stencilBad, lines[0].bad + lines[1].bad, vectorBad);
+                      z.text().c_str(), rz, stencilBad, lines[0].bad + lines[1].bad, vectorBad);
         out += line;
         first += n;
     }

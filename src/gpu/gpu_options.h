@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "model/multigrid_levels.h"
+
 namespace cloth {
 
 // Where pass 1 reads the neighbours' positions: straight from the SSBO, or from a work group's
@@ -53,6 +55,9 @@ struct GpuSetup {
     // CLOTH_MULTIGRID_TRACE=1: after the first solve's first V-cycle, the multigrid hierarchy
     // summed up level by level on stderr (GpuMultigrid::describe).
     bool traceMultigrid = false;
+    // CLOTH_MULTIGRID_CHUNKS: the most chunks a line's solve is cut into (multigrid.glsl
+    // chunkVertices), 1 (one chain a line) or 8 … kMultigridChunks; 0 lets multigridChunks pick.
+    int multigridChunks = 0;
 };
 void configureGpu(const GpuSetup& setup);
 const GpuSetup& gpuSetup();

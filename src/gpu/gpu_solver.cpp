@@ -35,7 +35,7 @@ constexpr std::size_t kMinPinCapacity = 16;
 std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup wg,
                                                  ForcesKernel forces, int manyStepsGroup,
                                                  const std::vector<bool>& dragged,
-                                                 int storageBlockLimit) {
+                                                 int storageBlockLimit, int multigridChunks) {
     const ShaderDirectory dir = findShaderDirectory();
     namespace fs = std::filesystem;
     std::error_code ec;
@@ -55,6 +55,9 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
     if (scene.selfCollision)
         for (Kernel k : selfCollisionKernels()) kernels.push_back(k);
     if (Features::of(scene).stepControl) kernels.push_back(Kernel::StepCheck);
+    if (scene.integrator.method == Method::ImplicitEuler &&
+        scene.integrator.preconditioner == Preconditioner::Multigrid)
+        for (const auto& define : multigridChunkDefines(multigridChunks)) extra.push_back(define);
     try {
         for (Kernel k : kernels) {
             const ShaderSource source =
@@ -108,6 +111,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     if (!features_.selfCollision &&
         usesManySteps(options.dispatch, method_, vertices, info.software))
         manyStepsGroup_ = manyStepsGroupSize(vertices, info);
+    multigridChunks_ = multigridChunks(info.software);
     if (features_.selfCollision) checkSelfCollisionFits(scene);
     if (features_.stepControl) checkBindingFits(gpu::kStepStart, "step control");
     groupsX_ = (nu_ + workGroup_.x - 1) / workGroup_.x;  // DESIGN.md §3: ceil, never drop the rest
@@ -121,7 +125,8 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
         glGenBuffers(1, &buffers_[b]);
     glGenBuffers(1, &paramsBuffer_);
     generateIntegratorBuffers();
-    if (multigrid) multigrid_ = std::make_unique<GpuMultigrid>(nu_, nv_, workGroup_);
+    if (multigrid)
+        multigrid_ = std::make_unique<GpuMultigrid>(nu_, nv_, workGroup_, multigridChunks_);
     upload(scene);
     if (features_.selfCollision) allocateSelfCollision(scene);
     if (features_.stepControl) allocateStepCheck();
@@ -135,6 +140,10 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
             (manySteps() ? ", many steps per dispatch in " + std::to_string(manyStepsGroup_) +
                                " invocations"
                          : "") +
+            (!multigrid_ ? ""
+             : multigridChunks_ == 1
+                 ? ", multigrid lines as one chain"
+                 : ", multigrid lines in up to " + std::to_string(multigridChunks_) + " chunks") +
             ")";
     computeNormals();  // valid before the first step, for a renderer drawing frame 0
 }
@@ -142,7 +151,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
 void GpuSolver::compilePrograms() {
     const std::array<unsigned, kKernelCount> programs =
         buildPrograms(scene_, workGroup_, forces_, manyStepsGroup_, dragged_,
-                      context_.info().maxComputeStorageBlocks);
+                      context_.info().maxComputeStorageBlocks, multigridChunks_);
     for (unsigned p : programs_) glDeleteProgram(p);
     programs_ = programs;
     defines_ = gpuDefines(scene_, workGroup_, dragged_);

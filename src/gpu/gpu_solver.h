@@ -170,7 +170,8 @@ private:
     std::map<std::int64_t, int> following_;           // vertex k → the collider its pin follows
     WorkGroup workGroup_;
     ForcesKernel forces_;
-    int manyStepsGroup_ = 0;  // many_steps.comp's invocations; 0: two dispatches per step
+    int manyStepsGroup_ = 0;   // many_steps.comp's invocations; 0: two dispatches per step
+    int multigridChunks_ = 1;  // the most chunks of a multigrid line solve (multigridChunks)
     int nu_, nv_;
     int groupsX_, groupsY_;
     int vbdGroupsX_ = 0;  // vbd_sweep.comp's: a fifth of the columns

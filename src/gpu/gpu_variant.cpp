@@ -79,12 +79,29 @@ void appendMultigridDefines(Defines& d, int nu, int nv) {
 }  // namespace
 
 MultigridBytes multigridBytes(int nu, int nv) {
-    long long total = 0;
+    long long total = 0, lines = 0;
     const std::vector<MultigridLevel> levels = multigridLevels(nu, nv);
     for (const MultigridLevel& l : levels) total += l.count();
+    // Every relaxed level's rows and columns: 128 doubles of transfers a chunk (transferAt).
+    for (std::size_t l = 0; l + 1 < levels.size(); ++l) lines += levels[l].nu + levels[l].nv;
     const long long coarsestDofs = 3 * levels.back().count();
     constexpr long long kDouble = 8;
-    return {total * 25 * 9 * kDouble, (63 * total + coarsestDofs * coarsestDofs) * kDouble};
+    return {total * 25 * 9 * kDouble,
+            (63 * total + coarsestDofs * coarsestDofs + lines * kMultigridChunks * 128) * kDouble};
+}
+
+int multigridChunks(bool software) {
+    if (gpuSetup().multigridChunks > 0) return gpuSetup().multigridChunks;
+    return software ? 1 : kMultigridChunks;
+}
+
+int multigridRelaxGroup(int chunks) {
+    return chunks == 1 ? 64 : chunks;
+}
+
+Defines multigridChunkDefines(int chunks) {
+    return {{"MG_CHUNKS", std::to_string(chunks)},
+            {"MG_RELAX_GROUP", std::to_string(multigridRelaxGroup(chunks))}};
 }
 
 void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
@@ -228,6 +245,7 @@ const char* kernelFile(Kernel k) {
                                                          "compute/mg_fine.comp",
                                                          "compute/mg_galerkin.comp",
                                                          "compute/mg_lines.comp",
+                                                         "compute/mg_line_transfers.comp",
                                                          "compute/mg_coarsest_factor.comp",
                                                          "compute/mg_begin.comp",
                                                          "compute/mg_relax_right_hand_side.comp",

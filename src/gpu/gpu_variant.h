@@ -63,6 +63,7 @@ enum class Kernel {
     MgFine,                // the fine grid's stencil
     MgGalerkin,            // a coarse grid's stencil Pᵀ A P
     MgLines,               // a grid's line factors
+    MgLineTransfers,       // their chunks' transfers
     MgCoarsestFactor,      // the coarsest grid's dense factor
     MgBegin,               // the fine r, z = 0
     MgRelaxRightHandSide,  // their right-hand sides, a vertex an invocation
@@ -108,6 +109,14 @@ MultigridBytes multigridBytes(int nu, int nv);
 // Throws InputError (key integrator.preconditioner) when either buffer exceeds one SSBO binding
 // of `info`'s device.
 void checkMultigridFits(const Scene& scene, const GpuInfo& info);
+// The most chunks a line's solve is cut into (mg_relax.comp): as set (CLOTH_MULTIGRID_CHUNKS),
+// else one chain a line on a software rasteriser, whose few cores the lines of a colour already
+// fill (the chunks' second substitution only costs there), and kMultigridChunks on hardware.
+int multigridChunks(bool software);
+// Its defines: MG_CHUNKS, and MG_RELAX_GROUP, mg_relax.comp's work group (a line's chunks, or
+// 64 lines of one chain each).
+Defines multigridChunkDefines(int chunks);
+int multigridRelaxGroup(int chunks);
 
 // Throws InputError (naming the key) when a buffer of more than one vec4 a vertex exceeds one SSBO
 // binding of `info`'s device: block-Jacobi's inverses, the step control's kept state.

@@ -53,10 +53,20 @@ std::vector<ShaderVariant> computeShaderVariants(const std::string& dir, const S
                     for (Preconditioner p : {Preconditioner::Jacobi, Preconditioner::Multigrid}) {
                         Scene preconditioned = s;
                         preconditioned.integrator.preconditioner = p;
-                        for (Kernel k : kernelsOf(method, p, !s.colliders.empty()))
-                            add(prefix + "." + preconditionerName(p) + "." + stem(kernelFile(k)) +
-                                    ".comp",
-                                kernelFile(k), preconditioned, {}, extra, dragSets[d]);
+                        // The multigrid's line solves: one chain a line, or the most chunks.
+                        for (int chunks : {1, kMultigridChunks}) {
+                            if (p != Preconditioner::Multigrid && chunks > 1) continue;
+                            Defines defines = extra;
+                            std::string name = prefix + "." + preconditionerName(p);
+                            if (p == Preconditioner::Multigrid) {
+                                for (const auto& define : multigridChunkDefines(chunks))
+                                    defines.push_back(define);
+                                name += ".chunks" + std::to_string(chunks);
+                            }
+                            for (Kernel k : kernelsOf(method, p, !s.colliders.empty()))
+                                add(name + "." + stem(kernelFile(k)) + ".comp", kernelFile(k),
+                                    preconditioned, {}, defines, dragSets[d]);
+                        }
                     }
                 }
                 if (method == Method::ExplicitEuler || method == Method::SymplecticEuler) {

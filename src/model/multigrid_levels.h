@@ -11,6 +11,9 @@
 namespace cloth {
 
 inline constexpr int kMultigridCoarsest = 64;
+// The GPU's line solves: at most this many chunks a line, one invocation each
+// (shaders/compute/multigrid.glsl chunkVertices).
+inline constexpr int kMultigridChunks = 32;
 
 // Vertices along an axis of n after one coarsening: an axis of 1 or 2 stays.
 constexpr int coarsenedCount(int n) {

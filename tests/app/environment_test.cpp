@@ -32,7 +32,9 @@ TEST(Environment, BadValuesAreInvalidInputNamingTheVariable) {
          {std::pair{"CLOTH_CPU_ISA=avx-512", "CLOTH_CPU_ISA"},
           {"CLOTH_WORKGROUP=abc", "CLOTH_WORKGROUP"},
           {"CLOTH_EGL_DEVICE=first", "CLOTH_EGL_DEVICE"},
-          {"CLOTH_MULTIGRID_TRACE=yes", "CLOTH_MULTIGRID_TRACE"}}) {
+          {"CLOTH_MULTIGRID_TRACE=yes", "CLOTH_MULTIGRID_TRACE"},
+          {"CLOTH_MULTIGRID_CHUNKS=4", "CLOTH_MULTIGRID_CHUNKS"},
+          {"CLOTH_MULTIGRID_CHUNKS=33", "CLOTH_MULTIGRID_CHUNKS"}}) {
         const auto r = runWith(assignment, {"run", kSpring, "--steps", "10"});
         EXPECT_EQ(r.exitCode, 2) << assignment << ": " << test::describe(r);
         EXPECT_NE(r.err.find(name), std::string::npos) << assignment << ": " << r.err;
