@@ -21,6 +21,10 @@ constexpr std::int64_t kMinVerticesPerThread = 1024;
 // Self-collision costs some 50 times a step's work per vertex (docs/performance.md): its
 // scenes are threaded from a fiftieth of that count.
 constexpr std::int64_t kSelfCollisionWork = 50;
+// Implicit Euler's step is a solve, tens of passes over the grid: two threads take the cotton
+// drape at 38² with the multigrid in 1.13 s for 120 steps against one's 1.77 (docs/performance.md,
+// "The passes' barrier"). Its scenes are threaded from half the count.
+constexpr std::int64_t kImplicitWork = 2;
 
 int chooseThreads(int requested, std::int64_t vertices) {
     if (requested > 0) return requested;
@@ -71,8 +75,10 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     chunk_ = std::int64_t(chunkRows) * nu;
     const int chunks = (nv + chunkRows - 1) / chunkRows;
     for (auto& p : partials_) p.assign(2 * std::size_t(chunks), 0.0);
-    const int t = int(std::min<std::int64_t>(
-        chooseThreads(threads, scene.selfCollision ? n * kSelfCollisionWork : n), chunks));
+    const std::int64_t work =
+        n * (scene.selfCollision ? kSelfCollisionWork : 1) *
+        (scene.integrator.method == Method::ImplicitEuler ? kImplicitWork : 1);
+    const int t = int(std::min<std::int64_t>(chooseThreads(threads, work), chunks));
     bands_.resize(std::size_t(t));
     for (int b = 0; b < t; ++b) {
         Band& band = bands_[std::size_t(b)];

@@ -1,13 +1,14 @@
 // The barrier between the passes of one threaded step (cpu_solver.h Team, cpu_multigrid.h
 // CycleThreads). Its threads meet thousands of times a second, usually a few microseconds
-// apart: an arrival spins first (1000 pauses: about 50 µs on recent Intel cores, a few µs where
-// a pause is short), then sleeps on the generation (a futex), so that a thread whose partner
-// was descheduled does not hold its core. std::barrier sleeps almost at once: 9–14 µs a meeting
-// of two threads on this project's machines, against 0.2–0.3 µs spinning (docs/performance.md,
-// "The passes' barrier").
+// apart: an arrival spins first, for 50 µs by the clock (a pause lasts 10 ns on one Xeon and
+// 50 on another, so a count of pauses is no measure), then sleeps on the generation (a futex),
+// so that a thread whose partner was descheduled does not hold its core. std::barrier sleeps almost
+// at once: 9–14 µs a meeting of two threads on this project's machines, against 0.2–0.3 µs spinning
+// (docs/performance.md, "The passes' barrier").
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
@@ -42,16 +43,18 @@ public:
             generation_.notify_all();
             return;
         }
-        for (int spin = 0; spin < kSpins; ++spin) {
+        const auto until = std::chrono::steady_clock::now() + kSpin;
+        for (int spin = 1;; ++spin) {
             if (generation_.load(std::memory_order_acquire) != meeting) return;
             pause();
+            if (spin % 16 == 0 && std::chrono::steady_clock::now() >= until) break;
         }
         while (generation_.load(std::memory_order_acquire) == meeting)
             generation_.wait(meeting, std::memory_order_acquire);
     }
 
 private:
-    static constexpr int kSpins = 1000;
+    static constexpr std::chrono::microseconds kSpin{50};  // docs/performance.md, the barrier
     static void pause() {
 #if defined(__x86_64__) || defined(__i386__)
         _mm_pause();
