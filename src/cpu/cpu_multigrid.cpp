@@ -40,14 +40,27 @@ void CpuMultigrid<T>::relaxLine(Level& g, int direction, int line, const Vec3<S>
         }
         for (int c = 0; c < 3; ++c) y[3 * std::size_t(a) + std::size_t(c)] = double(sum[c]);
     }
-    for (std::size_t i = 0; i < dofs; ++i) {  // L y' = y
+    // The substitutions, oldest column first; rows a full band from the line's ends in loops of
+    // fixed length, which the compiler unrolls (the same sums in the same order).
+    for (std::size_t i = 0; i < dofs; ++i) {  // L y' = y: row i holds columns i − 8 … i
+        const double* row = f + i * width;
         double s = y[i];
-        for (std::size_t q = i >= kBand ? i - kBand : 0; q < i; ++q) s -= entry(i, q) * y[q];
-        y[i] = s * entry(i, i);
+        if (i >= kBand) {
+            const double* older = &y[i - kBand];
+            for (std::size_t c = 0; c < kBand; ++c) s -= row[c] * older[c];
+        } else {
+            for (std::size_t q = 0; q < i; ++q) s -= entry(i, q) * y[q];
+        }
+        y[i] = s * row[kBand];
     }
-    for (std::size_t i = dofs; i-- > 0;) {  // Lᵀ z = y'
+    for (std::size_t i = dofs; i-- > 0;) {  // Lᵀ z = y': column i, rows i + 1 … i + 8
         double s = y[i];
-        for (std::size_t q = i + 1; q < std::min(dofs, i + kBand + 1); ++q) s -= entry(q, i) * y[q];
+        if (i + kBand < dofs) {
+            const double* column = f + (i + 1) * width + kBand - 1;  // L(i + 1, i), then 8 apart
+            for (std::size_t c = 0; c < kBand; ++c) s -= column[c * kBand] * y[i + 1 + c];
+        } else {
+            for (std::size_t q = i + 1; q < dofs; ++q) s -= entry(q, i) * y[q];
+        }
         y[i] = s * entry(i, i);
     }
     for (int a = 0; a < m; ++a) {
