@@ -27,7 +27,10 @@ void CpuMultigrid<T>::relaxLine(Level& g, int direction, int line, const Vec3<S>
                 if (g.reaches(slot) && (direction == 0 ? slot / 5 != 2 : slot % 5 != 2))
                     g.prefetch(k + kAhead * along, slot);
         Vec3<S> sum(0);
-        if (!g.pinned[std::size_t(k)]) {
+        if (!g.pinned[std::size_t(k)] && g.isInterior(i, j)) {
+            sum = r[k];
+            g.subtract(sum, k, direction == 0 ? Level::kOffRow : Level::kOffColumn, z);
+        } else if (!g.pinned[std::size_t(k)]) {
             sum = r[k];
             const int dj0 = std::max(-2, -j), dj1 = std::min(2, nv - 1 - j);
             const int di0 = std::max(-2, -i), di1 = std::min(2, nu - 1 - i);
@@ -171,7 +174,9 @@ void CpuMultigrid<T>::cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThre
         for (std::int64_t k = begin; k < end; ++k) {
             const int i = int(k % nu), j = int(k / nu);
             Vec3<S> sum = r[k];
-            if (!g.pinned[std::size_t(k)]) {
+            if (!g.pinned[std::size_t(k)] && g.isInterior(i, j)) {
+                g.subtract(sum, k, Level::kAll, z);
+            } else if (!g.pinned[std::size_t(k)]) {
                 const int dj0 = std::max(-2, -j), dj1 = std::min(2, nv - 1 - j);
                 const int di0 = std::max(-2, -i), di1 = std::min(2, nu - 1 - i);
                 for (int dj = dj0; dj <= dj1; ++dj)

@@ -136,6 +136,27 @@ private:
         Vec3<S> times(std::int64_t k, int slot, const Vec3<S>& w) const {
             return symmetric.empty() ? a[at(k, slot)] * w : symmetric[at(k, slot)] * w;
         }
+        // The slots that reach, in slot order, with their place in a record and their
+        // neighbour's index offset: every one (kAll), those off the row (kOffRow: what a row's
+        // sweep gathers), those off the column (kOffColumn). For vertices two or more from every
+        // side, whose loops then need no bounds.
+        struct Reach {
+            int place;
+            std::int64_t offset;
+        };
+        static constexpr int kOffRow = 0, kOffColumn = 1, kAll = 2;
+        std::vector<Reach> interior[3];
+        bool isInterior(int i, int j) const { return i >= 2 && j >= 2 && i < nu - 2 && j < nv - 2; }
+        // sum −= Σ block × z over `which` of interior vertex k, in slot order.
+        void subtract(Vec3<S>& sum, std::int64_t k, int which, const Vec3<S>* z) const {
+            if (symmetric.empty()) {
+                const Block* record = &a[std::size_t(k * perVertex)];
+                for (const Reach& e : interior[which]) sum -= record[e.place] * z[k + e.offset];
+            } else {
+                const Sym3<S>* record = &symmetric[std::size_t(k * perVertex)];
+                for (const Reach& e : interior[which]) sum -= record[e.place] * z[k + e.offset];
+            }
+        }
         std::vector<Vec3<S>> x;  // the vertices' positions (a coarse one: its fine vertex's)
         // P from this grid to the one above (unused on the fine grid): 4 blocks per vertex of
         // the grid above, one per corner of the coarse cell it lies in (see prolongation).

@@ -60,6 +60,16 @@ void CpuMultigrid<T>::configure(int nu, int nv) {
             level.place = slotOrder();
             level.a.assign(n * kStencil, Block(0));
         }
+        for (int dj = -2; dj <= 2; ++dj)
+            for (int di = -2; di <= 2; ++di) {
+                const int slot = stencilSlot(di, dj);
+                if (!level.reaches(slot)) continue;
+                const typename Level::Reach e{level.place[std::size_t(slot)],
+                                              std::int64_t(dj) * level.nu + di};
+                level.interior[Level::kAll].push_back(e);
+                if (dj != 0) level.interior[Level::kOffRow].push_back(e);
+                if (di != 0) level.interior[Level::kOffColumn].push_back(e);
+            }
         level.x.assign(n, Vec3<S>(0));
         if (l > 0) level.p.assign(4 * std::size_t(levels_[l - 1].count()), Block(0));
         level.lines[0].assign(std::size_t(level.nv) * 3 * std::size_t(level.nu) * (kBand + 1), 0.0);
