@@ -147,14 +147,14 @@ private:
         static constexpr int kOffRow = 0, kOffColumn = 1, kAll = 2;
         std::vector<Reach> interior[3];
         bool isInterior(int i, int j) const { return i >= 2 && j >= 2 && i < nu - 2 && j < nv - 2; }
-        // sum −= Σ block × z over `which` of interior vertex k, in slot order.
-        void subtract(Vec3<S>& sum, std::int64_t k, int which, const Vec3<S>* z) const {
+        // sum −= Σ block × w over `which` of interior vertex k, in slot order.
+        void subtract(Vec3<S>& sum, std::int64_t k, int which, const Vec3<S>* w) const {
             if (symmetric.empty()) {
                 const Block* record = &a[std::size_t(k * perVertex)];
-                for (const Reach& e : interior[which]) sum -= record[e.place] * z[k + e.offset];
+                for (const Reach& e : interior[which]) sum -= record[e.place] * w[k + e.offset];
             } else {
                 const Sym3<S>* record = &symmetric[std::size_t(k * perVertex)];
-                for (const Reach& e : interior[which]) sum -= record[e.place] * z[k + e.offset];
+                for (const Reach& e : interior[which]) sum -= record[e.place] * w[k + e.offset];
             }
         }
         std::vector<Vec3<S>> x;  // the vertices' positions (a coarse one: its fine vertex's)
