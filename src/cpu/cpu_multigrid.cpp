@@ -4,20 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace cloth {
 
-// One line of level g relaxed: (A_line z_line) = r − (A z − A_line z_line) solved exactly.
+// Line `line` of level g's right-hand side: y = r − (A z − A_line z_line) on its unknowns.
 template <typename T>
-void CpuMultigrid<T>::relaxLine(Level& g, int direction, int line, const Vec3<S>* r, Vec3<S>* z) {
+void CpuMultigrid<T>::lineRightHandSide(const Level& g, int direction, int line, const Vec3<S>* r,
+                                        const Vec3<S>* z, double* y, int lane) {
     const int nu = g.nu, nv = g.nv, m = direction == 0 ? nu : nv;
-    const std::size_t dofs = 3 * std::size_t(m), width = kBand + 1;
-    thread_local std::vector<double> y;
-    if (y.size() < dofs) y.resize(dofs);
-    const double* f = &g.lines[direction][std::size_t(line) * dofs * width];
-    auto entry = [&](std::size_t row, std::size_t col) {
-        return f[row * width + (kBand - (row - col))];
-    };
     const std::int64_t along = direction == 0 ? 1 : nu;  // from one vertex of the line to the next
     for (int a = 0; a < m; ++a) {
         const int i = direction == 0 ? a : line, j = direction == 0 ? line : a;
@@ -41,38 +36,107 @@ void CpuMultigrid<T>::relaxLine(Level& g, int direction, int line, const Vec3<S>
                     sum -= g.times(k, slot, z[k + std::int64_t(dj) * nu + di]);
                 }
         }
-        for (int c = 0; c < 3; ++c) y[3 * std::size_t(a) + std::size_t(c)] = double(sum[c]);
+        for (int c = 0; c < 3; ++c) y[(3 * std::size_t(a) + std::size_t(c)) * 2 + lane] = sum[c];
     }
-    // The substitutions, oldest column first; rows a full band from the line's ends in loops of
-    // fixed length, which the compiler unrolls (the same sums in the same order).
+}
+
+namespace {
+
+// Two doubles, one per lane of a pair: GCC's vector extension, element-wise IEEE arithmetic.
+using Pair = double __attribute__((vector_size(16)));
+Pair load(const double* at) {
+    Pair v;
+    std::memcpy(&v, at, sizeof v);
+    return v;
+}
+void store(double* at, Pair v) {
+    std::memcpy(at, &v, sizeof v);
+}
+
+// L Lᵀ y = y for kPairs pairs of lines of one length (factors f, right-hand sides y, both
+// interleaved by lane). Each line's substitutions, oldest column first, are a chain of dependent
+// rows; a pair's two lines step together in one vector, and two pairs' chains interleave in the
+// core. Rows a full band from the line's ends run in loops of fixed length, which the compiler
+// unrolls. Each line's sums are those of the line alone, in its order: the same bits.
+template <int kPairs, std::size_t kBand>
+void substitutePairs(const double* const* f, double* const* y, std::size_t dofs) {
+    constexpr std::size_t width = kBand + 1;
+    auto entry = [&](int p, std::size_t row, std::size_t col) {
+        return load(f[p] + 2 * (row * width + (kBand - (row - col))));
+    };
     for (std::size_t i = 0; i < dofs; ++i) {  // L y' = y: row i holds columns i − 8 … i
-        const double* row = f + i * width;
-        double s = y[i];
-        if (i >= kBand) {
-            const double* older = &y[i - kBand];
-            for (std::size_t c = 0; c < kBand; ++c) s -= row[c] * older[c];
-        } else {
-            for (std::size_t q = 0; q < i; ++q) s -= entry(i, q) * y[q];
+        for (int p = 0; p < kPairs; ++p) {
+            const double* row = f[p] + 2 * i * width;
+            double* yp = y[p];
+            Pair s = load(yp + 2 * i);
+            if (i >= kBand) {
+                const double* older = yp + 2 * (i - kBand);
+                for (std::size_t c = 0; c < kBand; ++c)
+                    s -= load(row + 2 * c) * load(older + 2 * c);
+            } else {
+                for (std::size_t q = 0; q < i; ++q) s -= entry(p, i, q) * load(yp + 2 * q);
+            }
+            store(yp + 2 * i, s * load(row + 2 * kBand));
         }
-        y[i] = s * row[kBand];
     }
     for (std::size_t i = dofs; i-- > 0;) {  // Lᵀ z = y': column i, rows i + 1 … i + 8
-        double s = y[i];
-        if (i + kBand < dofs) {
-            const double* column = f + (i + 1) * width + kBand - 1;  // L(i + 1, i), then 8 apart
-            for (std::size_t c = 0; c < kBand; ++c) s -= column[c * kBand] * y[i + 1 + c];
-        } else {
-            for (std::size_t q = i + 1; q < dofs; ++q) s -= entry(q, i) * y[q];
+        for (int p = 0; p < kPairs; ++p) {
+            double* yp = y[p];
+            Pair s = load(yp + 2 * i);
+            if (i + kBand < dofs) {
+                // L(i + 1 + c, i) lies c kBand entries after L(i + 1, i).
+                const double* column = f[p] + 2 * ((i + 1) * width + kBand - 1);
+                const double* newer = yp + 2 * (i + 1);
+                for (std::size_t c = 0; c < kBand; ++c)
+                    s -= load(column + 2 * c * kBand) * load(newer + 2 * c);
+            } else {
+                for (std::size_t q = i + 1; q < dofs; ++q) s -= entry(p, q, i) * load(yp + 2 * q);
+            }
+            store(yp + 2 * i, s * entry(p, i, i));
         }
-        y[i] = s * entry(i, i);
     }
-    for (int a = 0; a < m; ++a) {
-        const int i = direction == 0 ? a : line, j = direction == 0 ? line : a;
-        const std::int64_t k = std::int64_t(j) * nu + i;
-        z[k] = g.pinned[std::size_t(k)]
-                   ? Vec3<S>(0)
-                   : Vec3<S>(S(y[3 * std::size_t(a)]), S(y[3 * std::size_t(a) + 1]),
-                             S(y[3 * std::size_t(a) + 2]));
+}
+
+}  // namespace
+
+template <typename T>
+void CpuMultigrid<T>::relaxPairs(Level& g, int direction, int first, int last, const Vec3<S>* r,
+                                 Vec3<S>* z) {
+    static_assert(kLanes == 2, "substitutePairs steps two lanes");
+    const Lines& lines = g.lines[direction];
+    const std::size_t dofs = lines.dofs();
+    thread_local std::vector<double> scratch;
+    if (scratch.size() < 2 * kLanes * dofs) scratch.resize(2 * kLanes * dofs);
+    for (int p = first; p < last; p += 2) {
+        const int pairs = std::min(2, last - p);
+        const double* f[2] = {lines.pair(p), pairs > 1 ? lines.pair(p + 1) : nullptr};
+        double* y[2] = {&scratch[0], &scratch[kLanes * dofs]};
+        for (int q = 0; q < pairs; ++q)
+            for (int lane = 0; lane < kLanes; ++lane) {
+                const int line = lines.line(p + q, lane);
+                if (line >= 0) {
+                    lineRightHandSide(g, direction, line, r, z, y[q], lane);
+                } else {  // the last pair's empty lane: its factor is 0, and so its values
+                    for (std::size_t e = 0; e < dofs; ++e) y[q][e * kLanes + std::size_t(lane)] = 0;
+                }
+            }
+        if (pairs == 2)
+            substitutePairs<2, kBand>(f, y, dofs);
+        else
+            substitutePairs<1, kBand>(f, y, dofs);
+        for (int q = 0; q < pairs; ++q)
+            for (int lane = 0; lane < kLanes; ++lane) {
+                const int line = lines.line(p + q, lane);
+                if (line < 0) continue;
+                for (int a = 0; a < lines.length; ++a) {
+                    const int i = direction == 0 ? a : line, j = direction == 0 ? line : a;
+                    const std::int64_t k = std::int64_t(j) * g.nu + i;
+                    const double* v = &y[q][3 * std::size_t(a) * kLanes + std::size_t(lane)];
+                    z[k] = g.pinned[std::size_t(k)]
+                               ? Vec3<S>(0)
+                               : Vec3<S>(S(v[0]), S(v[kLanes]), S(v[2 * kLanes]));
+                }
+            }
     }
 }
 
@@ -191,13 +255,10 @@ void CpuMultigrid<T>::cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThre
     // One sweep of line relaxation in one direction, its 5 colours of lines in turn (lines
     // of one colour are 5 apart, out of each other's stencil, so they relax independently).
     auto sweep = [&](int direction, bool forward) {
-        const int count = direction == 0 ? nv : nu;
-        const int first = int(std::int64_t(count) * threads.index / threads.count);
-        const int last = int(std::int64_t(count) * (threads.index + 1) / threads.count);
         for (int c = 0; c < 5; ++c) {
             const int colour = forward ? c : 4 - c;
-            for (int line = first + ((colour - first) % 5 + 5) % 5; line < last; line += 5)
-                relaxLine(g, direction, line, r, z);
+            const auto [first, last] = g.lines[direction].pairs(colour, threads);
+            relaxPairs(g, direction, first, last, r, z);
             threads.sync();
         }
     };

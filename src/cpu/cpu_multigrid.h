@@ -54,8 +54,9 @@ public:
     // A block of a stencil or of P: full 3×3 (P's rotation term makes coarse blocks asymmetric).
     using Block = glm::mat<3, 3, S, glm::defaultp>;
 
-    // The hierarchy under an nu × nv grid: coarse grids down to at most kCoarsest vertices.
-    void configure(int nu, int nv);
+    // The hierarchy under an nu × nv grid: coarse grids down to at most kCoarsest vertices, for
+    // a team of `threads` (any team gets the same result; this one gets the best balance).
+    void configure(int nu, int nv, int threads = 1);
     int levels() const { return int(levels_.size()); }  // the fine grid included
     bool configured() const { return configured_; }
 
@@ -88,6 +89,7 @@ public:
     static constexpr double kContactPenalty = 1e1;
 
 private:
+    static constexpr int kBand = 8;  // a line's half bandwidth in unknowns: 3 × 2 + 2
     // One axis of a coarsening: coarse index I sits on fine index at[I]; fine index i lies in
     // cell lower[i] (between coarse lower[i] and lower[i] + 1) and takes (1 − w) of the one and
     // w of the other; cell C holds fine indices [first[C], first[C + 1]). A fine index on a
@@ -103,6 +105,55 @@ private:
         for (int slot = 0; slot < kStencil; ++slot) order[std::size_t(slot)] = std::int8_t(slot);
         return order;
     }
+    // One direction's lines of a grid, in pairs: each thread's lines of colour c (line mod 5)
+    // two at a time in order, pair p's two factors interleaved value by value, so that one
+    // vector instruction steps both lines' substitutions (docs/performance.md, "The line solves
+    // in pairs"). Lines of one colour lie out of each other's stencils: relaxing them together
+    // gives what relaxing them one by one does. The threads split the lines as whole ranges, as
+    // they split the rows, so that each gets as many lines of a colour as the others.
+    static constexpr int kLanes = 2;
+    struct Lines {
+        int count = 0, length = 0, team = 1;  // lines, vertices a line, threads
+        // Colour c's pairs of thread t: [start[c team + t], start[c team + t + 1]).
+        std::vector<int> start;
+        std::vector<int> pairLines;  // pair p's lines: lanes 2p and 2p + 1 (−1: none)
+        std::vector<double>
+            factor;  // pair p, row i, entry e, lane: ((p dofs + i) width + e) 2 + lane
+        void configure(int lineCount, int lineLength, int teamSize) {
+            count = lineCount;
+            length = lineLength;
+            team = teamSize;
+            start.assign(1, 0);
+            pairLines.clear();
+            for (int c = 0; c < 5; ++c)
+                for (int t = 0; t < team; ++t) {
+                    const int first = int(std::int64_t(count) * t / team);
+                    const int last = int(std::int64_t(count) * (t + 1) / team);
+                    int lane = 0;
+                    for (int line = first + ((c - first) % 5 + 5) % 5; line < last; line += 5) {
+                        pairLines.push_back(line);
+                        lane = (lane + 1) % kLanes;
+                    }
+                    if (lane != 0) pairLines.push_back(-1);
+                    start.push_back(int(pairLines.size()) / kLanes);
+                }
+            factor.assign(pairLines.size() / kLanes * values(), 0.0);
+        }
+        std::size_t dofs() const { return 3 * std::size_t(length); }
+        std::size_t values() const { return dofs() * (kBand + 1) * kLanes; }  // a pair's
+        int line(int p, int lane) const { return pairLines[std::size_t(kLanes * p + lane)]; }
+        // The pairs of colour c that a thread relaxes: its own lines' with the team of
+        // configure, a share of them all with another.
+        std::pair<int, int> pairs(int c, const CycleThreads& threads) const {
+            const int* s = &start[std::size_t(c * team)];
+            if (threads.count == team) return {s[threads.index], s[threads.index + 1]};
+            const int n = s[team] - s[0];
+            return {s[0] + int(std::int64_t(n) * threads.index / threads.count),
+                    s[0] + int(std::int64_t(n) * (threads.index + 1) / threads.count)};
+        }
+        double* pair(int p) { return &factor[std::size_t(p) * values()]; }
+        const double* pair(int p) const { return &factor[std::size_t(p) * values()]; }
+    };
     struct Level {
         int nu = 0, nv = 0;
         Axis u, v;  // from the grid above (unused on the fine grid)
@@ -164,7 +215,7 @@ private:
         // The smoother's factors: every row (direction 0) and column (1) of the grid as one
         // banded system (3 unknowns a vertex, the stencil's blocks along it), A_line = L Lᵀ,
         // L's band stored row by row, kBand + 1 entries (the diagonal last, as its reciprocal).
-        std::vector<double> lines[2];
+        Lines lines[2];
         std::vector<std::uint8_t> pinned;
         std::vector<Vec3<S>> r, z, t;  // the fine grid's r, z: copies of the caller's
         std::int64_t count() const { return std::int64_t(nu) * nv; }
@@ -220,9 +271,12 @@ private:
     void prolongation(int l, const CycleThreads& threads);  // level l's P, from its positions
     Vec3<S> prolongAt(int l, std::int64_t k, const Vec3<S>* coarse) const;  // (P z_c)_k
     void smoother(int l, const CycleThreads& threads);
-    void relaxLine(Level& g, int direction, int line, const Vec3<S>* r, Vec3<S>* z);
+    // Line `line`'s right-hand side into lane `lane` of y (interleaved as a pair's factor).
+    static void lineRightHandSide(const Level& g, int direction, int line, const Vec3<S>* r,
+                                  const Vec3<S>* z, double* y, int lane);
+    // Pairs [first, last) of one colour relaxed, two pairs at a time.
+    void relaxPairs(Level& g, int direction, int first, int last, const Vec3<S>* r, Vec3<S>* z);
     static constexpr int kAhead = 4;  // vertices ahead along a line whose blocks are prefetched
-    static constexpr int kBand = 8;   // a line's half bandwidth in unknowns: 3 × 2 + 2
     void cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThreads& threads);
     void factorCoarsest();
     void solveCoarsest();

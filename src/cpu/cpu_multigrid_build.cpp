@@ -33,7 +33,7 @@ typename CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int n) {
 }
 
 template <typename T>
-void CpuMultigrid<T>::configure(int nu, int nv) {
+void CpuMultigrid<T>::configure(int nu, int nv, int threads) {
     levels_.clear();
     configured_ = true;
     for (const MultigridLevel& size : multigridLevels(nu, nv)) {
@@ -72,8 +72,8 @@ void CpuMultigrid<T>::configure(int nu, int nv) {
             }
         level.x.assign(n, Vec3<S>(0));
         if (l > 0) level.p.assign(4 * std::size_t(levels_[l - 1].count()), Block(0));
-        level.lines[0].assign(std::size_t(level.nv) * 3 * std::size_t(level.nu) * (kBand + 1), 0.0);
-        level.lines[1].assign(std::size_t(level.nu) * 3 * std::size_t(level.nv) * (kBand + 1), 0.0);
+        level.lines[0].configure(level.nv, level.nu, threads);
+        level.lines[1].configure(level.nu, level.nv, threads);
         level.pinned.assign(n, 0);
         level.t.assign(n, Vec3<S>(0));
         level.r.assign(n, Vec3<S>(0));
@@ -149,46 +149,54 @@ void CpuMultigrid<T>::assembleFine(const FineSystemS& fine, const CycleThreads& 
 template <typename T>
 void CpuMultigrid<T>::smoother(int l, const CycleThreads& threads) {
     Level& g = levels_[std::size_t(l)];
-    const int nu = g.nu, nv = g.nv;
+    const int nu = g.nu;
     for (int direction = 0; direction < 2; ++direction) {
-        const int count = direction == 0 ? nv : nu, m = direction == 0 ? nu : nv;
-        const int first = int(std::int64_t(count) * threads.index / threads.count);
-        const int last = int(std::int64_t(count) * (threads.index + 1) / threads.count);
-        const std::size_t dofs = 3 * std::size_t(m), width = kBand + 1;
-        for (int line = first; line < last; ++line) {
-            double* f = &g.lines[direction][std::size_t(line) * dofs * width];
-            auto entry = [&](std::size_t row, std::size_t col) -> double& {
-                return f[row * width + (kBand - (row - col))];
-            };
-            for (std::size_t e = 0; e < dofs * width; ++e) f[e] = 0;
-            for (int a = 0; a < m; ++a) {  // A's lower band: blocks (a, b), b = a − 2 … a
-                const std::int64_t k =
-                    direction == 0 ? std::int64_t(line) * nu + a : std::int64_t(a) * nu + line;
-                for (int b = std::max(0, a - 2); b <= a; ++b) {
-                    const int di = direction == 0 ? b - a : 0, dj = direction == 0 ? 0 : b - a;
-                    const Block block = g.block(k, stencilSlot(di, dj));
-                    for (int row = 0; row < 3; ++row)
-                        for (int col = 0; col < 3; ++col) {
-                            const std::size_t R = 3 * std::size_t(a) + std::size_t(row);
-                            const std::size_t C = 3 * std::size_t(b) + std::size_t(col);
-                            if (C <= R) entry(R, C) = block[col][row];
+        Lines& lines = g.lines[direction];
+        const int m = lines.length;
+        const std::size_t dofs = lines.dofs(), width = kBand + 1;
+        for (int colour = 0; colour < 5; ++colour) {
+            const auto [first, last] = lines.pairs(colour, threads);
+            for (int p = first; p < last; ++p)
+                for (int lane = 0; lane < kLanes; ++lane) {
+                    const int line = lines.line(p, lane);
+                    if (line < 0) continue;
+                    double* f = lines.pair(p) + lane;
+                    auto entry = [&](std::size_t row, std::size_t col) -> double& {
+                        return f[(row * width + (kBand - (row - col))) * kLanes];
+                    };
+                    for (std::size_t e = 0; e < dofs * width; ++e) f[e * kLanes] = 0;
+                    for (int a = 0; a < m; ++a) {  // A's lower band: blocks (a, b), b = a − 2 … a
+                        const std::int64_t k = direction == 0 ? std::int64_t(line) * nu + a
+                                                              : std::int64_t(a) * nu + line;
+                        for (int b = std::max(0, a - 2); b <= a; ++b) {
+                            const int di = direction == 0 ? b - a : 0,
+                                      dj = direction == 0 ? 0 : b - a;
+                            const Block block = g.block(k, stencilSlot(di, dj));
+                            for (int row = 0; row < 3; ++row)
+                                for (int col = 0; col < 3; ++col) {
+                                    const std::size_t R = 3 * std::size_t(a) + std::size_t(row);
+                                    const std::size_t C = 3 * std::size_t(b) + std::size_t(col);
+                                    if (C <= R) entry(R, C) = block[col][row];
+                                }
                         }
+                    }
+                    for (std::size_t i = 0; i < dofs; ++i) {  // banded Cholesky in place
+                        const std::size_t lo = i >= kBand ? i - kBand : 0;
+                        const double diagonal = entry(i, i);
+                        for (std::size_t j = lo; j <= i; ++j) {
+                            double s = entry(i, j);
+                            for (std::size_t q = lo; q < j; ++q)
+                                if (j - q <= kBand) s -= entry(i, q) * entry(j, q);
+                            // A pivot at or under float's rounding of the stiff blocks (float: the
+                            // mass is 1e-7 of h²K at 128², stretch 1e6) is held at 1e-6 of the
+                            // diagonal. The diagonal is kept as its reciprocal: the substitutions
+                            // multiply.
+                            entry(i, j) = i == j
+                                              ? 1 / std::sqrt(std::max(s, 1e-6 * diagonal + 1e-300))
+                                              : s * entry(j, j);
+                        }
+                    }
                 }
-            }
-            for (std::size_t i = 0; i < dofs; ++i) {  // banded Cholesky in place
-                const std::size_t lo = i >= kBand ? i - kBand : 0;
-                const double diagonal = entry(i, i);
-                for (std::size_t j = lo; j <= i; ++j) {
-                    double s = entry(i, j);
-                    for (std::size_t q = lo; q < j; ++q)
-                        if (j - q <= kBand) s -= entry(i, q) * entry(j, q);
-                    // A pivot at or under float's rounding of the stiff blocks (float: the mass
-                    // is 1e-7 of h²K at 128², stretch 1e6) is held at 1e-6 of the diagonal.
-                    // The diagonal is kept as its reciprocal: the substitutions multiply.
-                    entry(i, j) = i == j ? 1 / std::sqrt(std::max(s, 1e-6 * diagonal + 1e-300))
-                                         : s * entry(j, j);
-                }
-            }
         }
     }
 }
@@ -302,7 +310,7 @@ void CpuMultigrid<T>::factorCoarsest() {
 // cpu_multigrid.cpp.
 #define CLOTH_INSTANTIATE(T)                                                                    \
     template CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int);                               \
-    template void CpuMultigrid<T>::configure(int, int);                                         \
+    template void CpuMultigrid<T>::configure(int, int, int);                                    \
     template std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int, int,             \
                                                                           const CycleThreads&); \
     template void CpuMultigrid<T>::assembleFine(const FineSystemS&, const CycleThreads&);       \

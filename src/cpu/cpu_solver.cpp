@@ -92,6 +92,8 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
             if (fused()) band.force.assign(nu, Vec3<T>(0));
         }
     }
+    // The multigrid's lines are paired for the team that relaxes them.
+    if (multigrid_.configured()) multigrid_.configure(nu, nv, t);
     pool_ = std::make_unique<WorkerPool>(t);
 }
 
@@ -128,7 +130,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
             blockInverse_.assign(n, Sym3<T>{});
         }
         if (preconditioner_ == Preconditioner::Multigrid && !multigrid_.configured())
-            multigrid_.configure(grid_.nu, grid_.nv);
+            multigrid_.configure(grid_.nu, grid_.nv, std::max(1, int(bands_.size())));
     }
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;
