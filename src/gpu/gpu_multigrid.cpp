@@ -25,7 +25,10 @@ void run(unsigned program, GLuint x, GLuint y) {
 }  // namespace
 
 GpuMultigrid::GpuMultigrid(int nu, int nv, WorkGroup wg, int chunks)
-    : levels_(multigridLevels(nu, nv)), wg_(wg), chunks_(chunks), bytes_(multigridBytes(nu, nv)) {
+    : levels_(multigridLevels(nu, nv)),
+      wg_(wg),
+      chunks_(chunks),
+      bytes_(multigridBytes(nu, nv, chunks)) {
     glGenBuffers(1, &stencil_);
     glGenBuffers(1, &work_);
     allocate(stencil_, bytes_.stencil);

@@ -78,16 +78,18 @@ void appendMultigridDefines(Defines& d, int nu, int nv) {
 
 }  // namespace
 
-MultigridBytes multigridBytes(int nu, int nv) {
+MultigridBytes multigridBytes(int nu, int nv, int chunks) {
     long long total = 0, lines = 0;
     const std::vector<MultigridLevel> levels = multigridLevels(nu, nv);
     for (const MultigridLevel& l : levels) total += l.count();
-    // Every relaxed level's rows and columns: 128 doubles of transfers a chunk (transferAt).
-    for (std::size_t l = 0; l + 1 < levels.size(); ++l) lines += levels[l].nu + levels[l].nv;
+    // Every relaxed level's rows and columns: 128 doubles of transfers a chunk (transferAt),
+    // where a line is cut into chunks at all.
+    if (chunks > 1)
+        for (std::size_t l = 0; l + 1 < levels.size(); ++l) lines += levels[l].nu + levels[l].nv;
     const long long coarsestDofs = 3 * levels.back().count();
     constexpr long long kDouble = 8;
     return {total * 25 * 9 * kDouble,
-            (63 * total + coarsestDofs * coarsestDofs + lines * kMultigridChunks * 128) * kDouble};
+            (63 * total + coarsestDofs * coarsestDofs + lines * chunks * 128) * kDouble};
 }
 
 int multigridChunks(bool software) {
@@ -105,7 +107,8 @@ Defines multigridChunkDefines(int chunks) {
 }
 
 void checkMultigridFits(const Scene& scene, const GpuInfo& info) {
-    const MultigridBytes bytes = multigridBytes(scene.cloth.nu, scene.cloth.nv);
+    const MultigridBytes bytes =
+        multigridBytes(scene.cloth.nu, scene.cloth.nv, multigridChunks(info.software));
     const long long largest = std::max(bytes.stencil, bytes.work);
     if (largest <= info.maxStorageBlockSize) return;
     throw InputError(scene.source, "integrator.preconditioner",

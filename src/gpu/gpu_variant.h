@@ -101,11 +101,12 @@ std::vector<Kernel> kernelsOf(Method m, Preconditioner p = Preconditioner::Jacob
 
 // The bytes of the multigrid preconditioner's two buffers on an nu × nv grid
 // (shaders/compute/multigrid.glsl): every level's 25 blocks of six doubles per vertex, and the
-// line factors, vectors and coarsest factor.
+// line factors, vectors and coarsest factor, and with lines in `chunks` > 1 chunks (at most;
+// multigridChunks) the chunks' transfers.
 struct MultigridBytes {
     long long stencil = 0, work = 0;
 };
-MultigridBytes multigridBytes(int nu, int nv);
+MultigridBytes multigridBytes(int nu, int nv, int chunks);
 // Throws InputError (key integrator.preconditioner) when either buffer exceeds one SSBO binding
 // of `info`'s device.
 void checkMultigridFits(const Scene& scene, const GpuInfo& info);

@@ -117,7 +117,7 @@ TEST_F(GpuErrors, ImpossibleGridIsAnInputError) {
 TEST_F(GpuErrors, MultigridTooLargeForTheDeviceIsAnInputError) {
     const long long limit = GlContext::instance().info().maxStorageBlockSize;
     int side = 64;
-    while (multigridBytes(side, side).stencil <= limit && side < 65536) side *= 2;
+    while (multigridBytes(side, side, 1).stencil <= limit && side < 65536) side *= 2;
     Scene s = smallScene(side, side);
     s.integrator.method = Method::ImplicitEuler;
     s.integrator.preconditioner = Preconditioner::Multigrid;
