@@ -6,7 +6,7 @@
 // kMgBand unknowns ride along in registers (`recent`, the newest first) instead of being read
 // back from the store just made, and the next row's band is loaded while this row is computed:
 // a row then waits on its arithmetic, not on memory. The sums run in the CPU's order (oldest
-// column first, src/cpu/cpu_multigrid.cpp relaxLine).
+// column first, src/cpu/cpu_multigrid.cpp substitutePairs).
 
 void shiftIn(inout double recent[kMgBand], double newest) {
     for (int c = kMgBand - 1; c > 0; --c) recent[c] = recent[c - 1];

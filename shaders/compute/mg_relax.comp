@@ -1,5 +1,5 @@
 // implicit_euler's multigrid preconditioner, line Gauss–Seidel's second half on level uLevel
-// (multigrid.glsl; src/cpu/cpu_multigrid.cpp relaxLine): lines uLine.y, uLine.y + 5, … in
+// (multigrid.glsl; src/cpu/cpu_multigrid.cpp substitutePairs): lines uLine.y, uLine.y + 5, … in
 // direction uLine.x, one per work group, each solved exactly, A_line z_line = t, with its banded
 // factor (t the right-hand side mg_relax_right_hand_side.comp left). Lines of one colour lie 5
 // apart, outside each other's stencil, so they are solved independently. With MG_CHUNKS 1 a

@@ -36,7 +36,8 @@ void CpuMultigrid<T>::lineRightHandSide(const Level& g, int direction, int line,
                     sum -= g.times(k, slot, z[k + std::int64_t(dj) * nu + di]);
                 }
         }
-        for (int c = 0; c < 3; ++c) y[(3 * std::size_t(a) + std::size_t(c)) * 2 + lane] = sum[c];
+        for (int c = 0; c < 3; ++c)
+            y[(3 * std::size_t(a) + std::size_t(c)) * kLanes + lane] = sum[c];
     }
 }
 

@@ -117,8 +117,8 @@ private:
         // Colour c's pairs of thread t: [start[c team + t], start[c team + t + 1]).
         std::vector<int> start;
         std::vector<int> pairLines;  // pair p's lines: lanes 2p and 2p + 1 (−1: none)
-        std::vector<double>
-            factor;  // pair p, row i, entry e, lane: ((p dofs + i) width + e) 2 + lane
+        // Pair p's factors: lane l's entry e of row i at ((p dofs + i) width + e) kLanes + l.
+        std::vector<double> factor;
         void configure(int lineCount, int lineLength, int teamSize) {
             count = lineCount;
             length = lineLength;
