@@ -92,8 +92,9 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
             if (fused()) band.force.assign(nu, Vec3<T>(0));
         }
     }
-    // The multigrid's lines are paired for the team that relaxes them.
-    if (multigrid_.configured()) multigrid_.configure(nu, nv, t);
+    // The multigrid's lines are paired for the team that relaxes them, known only here.
+    if (method_ == Method::ImplicitEuler && preconditioner_ == Preconditioner::Multigrid)
+        multigrid_.configure(nu, nv, t);
     pool_ = std::make_unique<WorkerPool>(t);
 }
 
@@ -129,8 +130,10 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
             z_.assign(n, Vec3<T>(0));
             blockInverse_.assign(n, Sym3<T>{});
         }
-        if (preconditioner_ == Preconditioner::Multigrid && !multigrid_.configured())
-            multigrid_.configure(grid_.nu, grid_.nv, std::max(1, int(bands_.size())));
+        // (A constructor's team is not known yet: it configures the multigrid once it is.)
+        if (preconditioner_ == Preconditioner::Multigrid && !multigrid_.configured() &&
+            !bands_.empty())
+            multigrid_.configure(grid_.nu, grid_.nv, int(bands_.size()));
     }
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;
