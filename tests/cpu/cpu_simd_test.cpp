@@ -15,6 +15,7 @@
 #include "scene/scene_loader.h"
 #include "support/integrator_scenes.h"
 #include "support/same_bits.h"
+#include "support/sanitized.h"
 
 namespace cloth {
 namespace {
@@ -144,13 +145,14 @@ Scene withEveryColliderKind(Method m) {
 }
 
 TEST(RowColliders, EveryKindGivesTheScalarPathsBitsOnEveryIsaAndThreadCount) {
+    const long steps = test::sanitizedSteps(40, 10);
     for (Method m : kMethods) {
         const Scene scene = withEveryColliderKind(m);
-        const SimState f = run<float>(scene, CpuIsa::Scalar, 1, 40);
-        const SimState d = run<double>(scene, CpuIsa::Scalar, 1, 40);
+        const SimState f = run<float>(scene, CpuIsa::Scalar, 1, steps);
+        const SimState d = run<double>(scene, CpuIsa::Scalar, 1, steps);
         Scene free = scene;
         free.colliders.clear();
-        const SimState none = run<double>(free, CpuIsa::Scalar, 1, 40);
+        const SimState none = run<double>(free, CpuIsa::Scalar, 1, steps);
         int touched = 0;  // vertices the colliders moved: they act from the start
         for (std::size_t k = 0; k < d.positions.size(); ++k)
             touched += glm::length(d.positions[k] - none.positions[k]) > 1e-3;
@@ -160,8 +162,8 @@ TEST(RowColliders, EveryKindGivesTheScalarPathsBitsOnEveryIsaAndThreadCount) {
             for (int t : {1, 3}) {
                 const std::string what = std::string(methodName(m)) + " " + cpuIsaName(isa) + " " +
                                          std::to_string(t) + " threads";
-                expectSameBits(run<float>(scene, isa, t, 40), f, what + " float");
-                expectSameBits(run<double>(scene, isa, t, 40), d, what + " double");
+                expectSameBits(run<float>(scene, isa, t, steps), f, what + " float");
+                expectSameBits(run<double>(scene, isa, t, steps), d, what + " double");
             }
         }
     }

@@ -14,6 +14,7 @@
 #include "support/material_scene.h"
 #include "support/preconditioned_runs.h"
 #include "support/same_bits.h"
+#include "support/sanitized.h"
 
 namespace cloth {
 namespace {
@@ -246,11 +247,12 @@ TEST(MultigridSolver, RunsAreBitIdenticalOnAnyThreadCount) {
     scene.cloth.nu = 80;
     scene.cloth.nv = 90;
     scene.pins = {{0, 89}, {79, 89}};
+    const long steps = test::sanitizedSteps(10, 3);
     for (Precision precision : {Precision::Float, Precision::Double}) {
         const Solved serial =
-            test::runPreconditioned(scene, Preconditioner::Multigrid, precision, 1, 10);
+            test::runPreconditioned(scene, Preconditioner::Multigrid, precision, 1, steps);
         const Solved parallel =
-            test::runPreconditioned(scene, Preconditioner::Multigrid, precision, 3, 10);
+            test::runPreconditioned(scene, Preconditioner::Multigrid, precision, 3, steps);
         test::expectSameBits(serial.state, parallel.state, "3 threads");
         EXPECT_EQ(serial.stats.iterations, parallel.stats.iterations);
     }

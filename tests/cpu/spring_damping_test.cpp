@@ -21,6 +21,7 @@
 #include "support/material_scene.h"
 #include "support/reference_bridge.h"
 #include "support/same_bits.h"
+#include "support/sanitized.h"
 
 namespace cloth {
 namespace {
@@ -209,7 +210,7 @@ TEST(SpringDamping, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
                 scene.cloth.nv = 80;
                 scene.cloth.size = {47 * 0.08, 79 * 0.06};
             }
-            const long steps = large ? 20 : 60;
+            const long steps = large ? test::sanitizedSteps(20, 5) : test::sanitizedSteps(60, 15);
             const SimState scalarF = runCpu<float>(scene, CpuIsa::Scalar, 1, steps);
             const SimState scalarD = runCpu<double>(scene, CpuIsa::Scalar, 1, steps);
             for (CpuIsa isa : {CpuIsa::Scalar, CpuIsa::Generic, CpuIsa::Avx2, CpuIsa::Avx512}) {
