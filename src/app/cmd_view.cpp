@@ -14,6 +14,7 @@
 namespace cloth::app {
 namespace {
 
+#ifdef CLOTH_HAVE_VIEWER
 constexpr const char* kHelp = R"(usage: clothsim view [SCENE] [options]
 
 Opens SCENE (default scenes/drape.json) in a window: the simulation runs live, a panel edits
@@ -37,6 +38,7 @@ options:
 
 exit codes: 0 ok, 1 internal error, 2 invalid input, 4 no window with OpenGL 4.3
 )";
+#endif
 
 }  // namespace
 

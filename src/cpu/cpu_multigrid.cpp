@@ -233,7 +233,8 @@ void CpuMultigrid<T>::cycle(int l, const Vec3<S>* r, Vec3<S>* z, const CycleThre
         threads.sync();
         return;
     }
-    const auto [begin, end] = slice(g.nu, g.nv, threads);
+    const auto rows = slice(g.nu, g.nv, threads);  // not a structured binding: lambdas use it
+    const std::int64_t begin = rows.first, end = rows.second;
     const int nu = g.nu, nv = g.nv;
     auto residual = [&] {  // t = r − A z on this thread's rows
         for (std::int64_t k = begin; k < end; ++k) {

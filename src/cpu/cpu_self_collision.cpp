@@ -226,7 +226,7 @@ int CpuSelfCollision<T>::correct(int t, int threads, const std::function<void()>
     for (std::int64_t k = begin; k < end; ++k) {
         const std::size_t i = std::size_t(k);
         if (touches_[i] == 0) continue;
-        const Vec3<T> sum(T(sum_[3 * i]), T(sum_[3 * i + 1]), T(sum_[3 * i + 2]));
+        const Vec3<T> sum{T(sum_[3 * i]), T(sum_[3 * i + 1]), T(sum_[3 * i + 2])};
         y_[i] += sum / (fixedScale_ * T(touches_[i]));
         inContact_[i] = 1;
         (*collide_)(y_[i]);

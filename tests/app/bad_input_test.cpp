@@ -20,6 +20,7 @@
 #include "scene/scene_loader.h"
 #include "support/bad_scenes.h"
 #include "support/process.h"
+#include "support/sanitized.h"
 
 namespace cloth {
 namespace {
@@ -306,11 +307,10 @@ TEST(BadArguments, VbdRunsOnBothBackends) {
 // ---- huge resolutions are refused before anything is allocated ---------------------------
 
 TEST(HugeResolution, RefusedBeforeAllocation) {
-#if defined(__SANITIZE_ADDRESS__)
     // AddressSanitizer maps terabytes of shadow memory at start, so no process of such a build
     // starts under an address-space limit; the Release build runs this test.
-    GTEST_SKIP() << "an AddressSanitizer build cannot run under an address-space limit";
-#endif
+    if (test::kAddressSanitized)
+        GTEST_SKIP() << "an AddressSanitizer build cannot run under an address-space limit";
     // 1 GiB of address space: enough to start clothsim (the good scene proves it), far too
     // little for any of these grids, so an allocation attempt would end in exit 1 or a crash.
     test::ProcessOptions limited;

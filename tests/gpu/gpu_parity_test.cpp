@@ -146,7 +146,7 @@ class GpuCpuParity : public GpuTest {};
 // extent after 200 steps, as the *_then_* cases show against the reference. Hence one collider
 // at a time here.)
 TEST_F(GpuCpuParity, MatchesTheCpuFloatBackend) {
-    for (const Json& colliders : {Json::array(), Json{kPlane}, Json{kSphere}}) {
+    for (const Json& colliders : {Json::array(), Json::array({kPlane}), Json::array({kSphere})}) {
         Json j = baseScene();
         j["cloth"]["resolution"] = {37, 53};
         j["wind"] = kWind;

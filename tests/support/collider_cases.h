@@ -87,18 +87,18 @@ inline std::vector<ColliderCase> colliderCases() {
                              {"frequency", 2},
                              {"phase_degrees", 30}}}};
     return {
-        {"box", Json{box}},
-        {"capsule", Json{capsule}},
-        {"mesh", Json{mesh}},
-        {"plane_thickness_friction", Json{with(plane, contact)}},
-        {"sphere_thickness_friction", Json{with(sphere, contact)}},
-        {"box_friction_rising", Json{with(with(box, contact), rising)}},
-        {"capsule_turning", Json{with(with(capsule, contact), turning)}},
-        {"sphere_swinging", Json{with(sphere, swinging)}},
-        {"mesh_friction_turning", Json{with(with(mesh, contact), turning)}},
-        {"all_combined",
-         Json{with(box, contact), with(capsule, turning), with(mesh, Json{{"thickness", 0.005}}),
-              with(sphere, swinging), with(plane, rising)}},
+        {"box", Json::array({box})},
+        {"capsule", Json::array({capsule})},
+        {"mesh", Json::array({mesh})},
+        {"plane_thickness_friction", Json::array({with(plane, contact)})},
+        {"sphere_thickness_friction", Json::array({with(sphere, contact)})},
+        {"box_friction_rising", Json::array({with(with(box, contact), rising)})},
+        {"capsule_turning", Json::array({with(with(capsule, contact), turning)})},
+        {"sphere_swinging", Json::array({with(sphere, swinging)})},
+        {"mesh_friction_turning", Json::array({with(with(mesh, contact), turning)})},
+        {"all_combined", Json::array({with(box, contact), with(capsule, turning),
+                                      with(mesh, Json{{"thickness", 0.005}}),
+                                      with(sphere, swinging), with(plane, rising)})},
     };
 }
 
