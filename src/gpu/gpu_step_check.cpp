@@ -41,8 +41,18 @@ void GpuSolver::checkBindingFits(unsigned binding, const char* feature) const {
 void GpuSolver::allocateStepCheck() {
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
     const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
+    const std::size_t bytes = (2 * n + groups) * gpu::kVec4;
     glGenBuffers(1, &buffers_[gpu::kStepStart]);
-    gpu::bufferData(buffers_[gpu::kStepStart], nullptr, (2 * n + groups) * gpu::kVec4);
+    if (glBufferStorage != nullptr) {  // GL 4.4 or ARB_buffer_storage
+        // Immutable storage with no host access: only the GPU copies into it and reads it, so
+        // the driver has no reason to place it in host memory (the H200's check cost 2.3 ms a
+        // step more than its kernels at 1024² with glBufferData's storage; docs/performance.md).
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[gpu::kStepStart]);
+        glBufferStorage(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(bytes), nullptr, 0);
+        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
+    } else {
+        gpu::bufferData(buffers_[gpu::kStepStart], nullptr, bytes);
+    }
     glGenBuffers(1, &stepMaxima_);
     glBindBuffer(GL_COPY_WRITE_BUFFER, stepMaxima_);
     glBufferData(GL_COPY_WRITE_BUFFER, GLsizeiptr(groups * gpu::kVec4), nullptr, GL_STREAM_READ);

@@ -50,7 +50,10 @@ std::vector<glm::dvec3> kickVelocities(const Scene& scene, const std::vector<std
     std::uniform_real_distribution<double> uniform(-1, 1);
     std::vector<glm::dvec3> v(pinned.size(), glm::dvec3(0));
     for (std::size_t k = 0; k < v.size(); ++k) {
-        const glm::dvec3 noise(uniform(random), uniform(random), uniform(random));
+        // Drawn in a fixed order (z first, as GCC evaluated the arguments before), so that every
+        // compiler gives the same kick.
+        const double z = uniform(random), y = uniform(random), x = uniform(random);
+        const glm::dvec3 noise(x, y, z);
         if (pinned[k]) continue;
         if (largest > 0) v[k] = mode.shape[k] * (speed / largest);
         v[k] += 1e-4 * speed * noise;
