@@ -68,8 +68,8 @@ std::vector<Case> cases() {
         {"bend", [](Json& j) { springsOnly(j, "bend"); }},
         {"all_families", [](Json&) {}},
         {"wind", [](Json& j) { j["wind"] = kWind; }},
-        {"plane", [](Json& j) { j["colliders"] = {kPlane}; }},
-        {"sphere", [](Json& j) { j["colliders"] = {kSphere}; }},
+        {"plane", [](Json& j) { j["colliders"] = Json::array({kPlane}); }},
+        {"sphere", [](Json& j) { j["colliders"] = Json::array({kSphere}); }},
         {"plane_then_sphere",
          [](Json& j) {
              j["colliders"] = {kPlane, kSphere};
@@ -166,7 +166,7 @@ TEST_F(GpuCpuParity, MatchesTheCpuFloatBackend) {
 TEST_F(GpuCpuParity, DroppingAFeatureChangesTheResultAsOnTheCpu) {
     Json full = baseScene();
     full["wind"] = kWind;
-    full["colliders"] = {kSphere};
+    full["colliders"] = Json::array({kSphere});
     const std::vector<std::pair<std::string, std::function<void(Json&)>>> drops = {
         {"shear", [](Json& j) { j["springs"].erase("shear"); }},
         {"bend", [](Json& j) { j["springs"].erase("bend"); }},
