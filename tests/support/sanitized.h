@@ -3,21 +3,23 @@
 // every path the first one does, and make test runs them for their full length.
 #pragma once
 
+// GCC says so with __SANITIZE_ADDRESS__ / __SANITIZE_THREAD__; Clang 14 only with __has_feature.
+#if defined(__has_feature)
+#define CLOTH_TEST_HAS_FEATURE(x) __has_feature(x)
+#else
+#define CLOTH_TEST_HAS_FEATURE(x) 0
+#endif
+
 namespace cloth::test {
 
-// GCC says so with __SANITIZE_ADDRESS__ / __SANITIZE_THREAD__; Clang 14 only with __has_feature.
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(__SANITIZE_ADDRESS__) || CLOTH_TEST_HAS_FEATURE(address_sanitizer)
 inline constexpr bool kAddressSanitized = true;
-#elif defined(__has_feature)
-inline constexpr bool kAddressSanitized = __has_feature(address_sanitizer);
 #else
 inline constexpr bool kAddressSanitized = false;
 #endif
 
-#if defined(__SANITIZE_THREAD__)
+#if defined(__SANITIZE_THREAD__) || CLOTH_TEST_HAS_FEATURE(thread_sanitizer)
 inline constexpr bool kThreadSanitized = true;
-#elif defined(__has_feature)
-inline constexpr bool kThreadSanitized = __has_feature(thread_sanitizer);
 #else
 inline constexpr bool kThreadSanitized = false;
 #endif
