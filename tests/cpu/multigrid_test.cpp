@@ -11,6 +11,7 @@
 #include "backends/solver_factory.h"
 #include "cpu/cpu_multigrid.h"
 #include "scene/scene_loader.h"
+#include "support/draws.h"
 #include "support/material_scene.h"
 #include "support/preconditioned_runs.h"
 #include "support/same_bits.h"
@@ -51,9 +52,7 @@ struct Fixture {
                 const double s = double(i) / (grid.nu - 1), t = double(j) / (grid.nv - 1);
                 glm::dvec3 p = grid.restPosition(i, j) * 1.002;  // strained 0.2 %
                 p.y -= 0.1 * std::sin(3.14159 * s) * std::sin(3.14159 * t);
-                // z drawn first: the order the contractions quoted below were measured with
-                const double dz = jitter(random), dy = jitter(random), dx = jitter(random);
-                p += glm::dvec3(dx, dy, dz) * grid.du;
+                p += test::drawVec3(jitter, random) * grid.du;
                 x.set(grid.index(i, j), p);
                 inverseMass.push_back(1 / scene.vertexMass(i, j));
             }

@@ -13,6 +13,7 @@
 #include "gpu_test_support.h"
 #include "model/collider_contact.h"
 #include "support/box_regions.h"
+#include "support/draws.h"
 
 namespace cloth {
 namespace {
@@ -120,7 +121,7 @@ TEST_F(GpuColliders, GlslShapesAndResponseMatchTheCppHeader) {
     const int count = 4000;
     for (int k = 0; k < count; ++k)
         for (const float scale : {0.8f, 2.0f, 0.4f})
-            in.emplace_back(scale * u(rng), scale * u(rng), scale * u(rng), 0.0f);
+            in.emplace_back(scale * test::drawVec3(u, rng), 0.0f);
     const std::vector<glm::vec4> out = probe(s, in);
     int touched = 0;
     for (int k = 0; k < count; ++k) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "model/scene.h"
+#include "support/draws.h"
 
 namespace cloth {
 namespace {
@@ -52,7 +53,7 @@ TEST(Bending, TheForceIsMinusTheGradientOfTheEnergy) {
     std::vector<V> p;
     for (int j = 0; j < g.nv; ++j)
         for (int i = 0; i < g.nu; ++i)
-            p.push_back(g.restPosition(i, j) + V(noise(rng), noise(rng), noise(rng)));
+            p.push_back(g.restPosition(i, j) + V(test::drawVec3(noise, rng)));
     auto at = [&](int i, int j) { return p[std::size_t(j * g.nu + i)]; };
     const double h = 1e-4;
     double worst = 0, scale = 0;

@@ -11,6 +11,8 @@
 #include <numbers>
 #include <random>
 
+#include "support/draws.h"
+
 namespace cloth {
 namespace {
 
@@ -56,7 +58,7 @@ void expectSeedRuleBitForBit() {
     const ContactParamsT<T> none;
     int touched = 0;
     for (int k = 0; k < 20000; ++k) {
-        const Vec3<T> p0(D3(u(rng), u(rng), u(rng))), v0(D3(u(rng), u(rng), u(rng)));
+        const Vec3<T> p0(test::drawVec3(u, rng)), v0(test::drawVec3(u, rng));
         Vec3<T> pa = p0, va = v0, pb = p0, vb = v0;
         seedRule(plane, pa, va);
         touched += collide(plane, none, Vec3<T>(0), pb, vb);
@@ -86,8 +88,8 @@ TEST(ContactResponse, EndsAtTheThicknessWithNoRelativeNormalSpeedAndCoulombLoss)
     const ContactParamsT<double> params{0.01, 0.6};
     int statics = 0, kinetics = 0;
     for (int k = 0; k < 5000; ++k) {
-        D3 p(0.5 * u(rng), 0.5 * u(rng), 0.5 * u(rng)), v(u(rng), u(rng), u(rng));
-        const D3 vc(0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng));
+        D3 p = 0.5 * test::drawVec3(u, rng), v = test::drawVec3(u, rng);
+        const D3 vc = 0.3 * test::drawVec3(u, rng);
         const ContactT<double> before = contact(cap, p);
         const D3 w = v - vc;
         const double wn = glm::dot(w, before.normal);

@@ -12,6 +12,7 @@
 #include "model/mesh_sdf.h"
 #include "reference/reference_colliders.h"
 #include "support/box_regions.h"
+#include "support/draws.h"
 
 namespace cloth {
 namespace {
@@ -30,14 +31,8 @@ D3 fromRef(const ref::V3& v) {
 struct Sampler {
     std::mt19937 rng{17};
     std::uniform_real_distribution<double> u{-1, 1};
-    D3 any(double spread) { return spread * draw(); }
-    D3 near(const D3& target, double r) { return target + r * draw(); }
-    // z drawn first, as GCC evaluated D3(u(rng), u(rng), u(rng)): the samples the tolerances
-    // below were set on, whichever compiler builds the test.
-    D3 draw() {
-        const double z = u(rng), y = u(rng), x = u(rng);
-        return {x, y, z};
-    }
+    D3 any(double spread) { return spread * test::drawVec3(u, rng); }
+    D3 near(const D3& target, double r) { return target + r * test::drawVec3(u, rng); }
 };
 
 // The tolerance float must meet: a few ulps of the coordinates' size.

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 
+#include "support/draws.h"
+
 namespace cloth {
 namespace {
 
@@ -148,7 +150,7 @@ TEST(GridSdf, FloatAgreesWithDouble) {
     const SdfColliderT<double> cd{&g};
     const SdfColliderT<float> cf{&g};
     for (int n = 0; n < 200; ++n) {
-        const D3 p(0.3 * (u(rng) + 1) / 2, 0.4 * (u(rng) + 1) / 2, 0.5 * (u(rng) + 1) / 2);
+        const D3 p = D3(0.3, 0.4, 0.5) * (test::drawVec3(u, rng) + 1.0) / 2.0;
         EXPECT_NEAR(contact(cf, glm::vec3(p)).phi, contact(cd, p).phi, 1e-5);
     }
 }

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "model/collider_motion.h"
+#include "support/draws.h"
 
 namespace cloth {
 namespace {
@@ -44,14 +45,14 @@ std::vector<glm::dvec3> surfacePoints(const Collider& c, std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-1, 1);
     std::vector<glm::dvec3> out;
     for (int k = 0; k < 4000; ++k) {
-        const glm::dvec3 d = glm::normalize(glm::dvec3(n(rng), n(rng), n(rng)));
+        const glm::dvec3 d = glm::normalize(test::drawVec3(n, rng));
         if (const Sphere* s = c.as<Sphere>()) out.push_back(s->center + s->radius * d);
         if (const Capsule* cap = c.as<Capsule>()) {  // a third on each cap, a third between
             const double t = k % 3 == 0 ? 0.0 : k % 3 == 1 ? 1.0 : 0.5 + 0.5 * u(rng);
             out.push_back(cap->a + t * (cap->b - cap->a) + cap->radius * d);
         }
         if (const Box* b = c.as<Box>()) {
-            glm::dvec3 q(u(rng), u(rng), u(rng));
+            glm::dvec3 q = test::drawVec3(u, rng);
             const int axis = k % 3;
             q[axis] = q[axis] < 0 ? -1 : 1;
             if (k < 8) q = glm::dvec3(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1);

@@ -6,6 +6,7 @@
 
 #include <random>
 
+#include "support/draws.h"
 #include "support/material_scene.h"
 
 namespace cloth {
@@ -27,8 +28,7 @@ TEST(ImplicitSystem, DiagonalBlocksAreTheOperatorsOwn) {
     std::uniform_real_distribution<double> jitter(-0.3, 0.3);
     for (int j = 0; j < g.nv; ++j)
         for (int i = 0; i < g.nu; ++i) {
-            x.push_back(g.restPosition(i, j) +
-                        g.du * glm::dvec3(jitter(random), jitter(random), jitter(random)));
+            x.push_back(g.restPosition(i, j) + g.du * test::drawVec3(jitter, random));
             inverseMass.push_back(1 / scene.vertexMass(i, j));
         }
     std::vector<std::uint8_t> pinned(std::size_t(g.count()), 0);

@@ -16,6 +16,7 @@
 #include "model/collider_mesh.h"
 #include "model/errors.h"
 #include "reference/reference_colliders.h"
+#include "support/draws.h"
 #include "support/process.h"
 
 namespace cloth {
@@ -57,7 +58,7 @@ double analyticBox(const D3& p, const D3& c, const D3& h) {
 D3 randomIn(std::mt19937& rng, const SdfGrid& g) {
     std::uniform_real_distribution<double> u(0, 1);
     const D3 size = g.cell * D3(g.count - 1);
-    return g.origin + D3(u(rng), u(rng), u(rng)) * size;
+    return g.origin + test::drawVec3(u, rng) * size;
 }
 
 // Law: |φ_grid − φ_sphere| ≤ (√3/2)·cell + ε_mesh everywhere in the grid, with ε_mesh the largest
