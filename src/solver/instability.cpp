@@ -1,5 +1,6 @@
 #include "solver/instability.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "model/stability.h"
@@ -31,13 +32,87 @@ std::string describeInstability(const Scene& scene, const StepResult& r) {
     return where + r.reason;
 }
 
+namespace {
+
+// vbd's rule, measured (docs/performance.md "vbd: the step that holds the sheet at each N"): a
+// sheet of N vertices a side dropped onto a collider held where its sweeps a simulated second,
+// iterations / Δt, came to about 11 N (10 sweeps, N = 64 … 384) or 10 N (20 sweeps with
+// chebyshev_rho = 0.9). The advice asks for 13 N, what the largest that held (384² at 1/480 s)
+// took.
+constexpr double kVbdSweepsPerSecondPerVertex = 13;
+
+// What stiffens the cloth: the material's membrane or the springs.
+const char* stiffenKeys(const Scene& scene) {
+    return scene.material ? "material.stretch, material.shear" : "springs.*";
+}
+
+// The other cause of a strain past max_strain, for the large-step methods' advice.
+std::string tooSoft(const Scene& scene) {
+    return std::string(
+               "a cloth that stretches this far at rest is too soft for its load: stiffen "
+               "it (") +
+           stiffenKeys(scene) + ") or raise max_strain";
+}
+
+InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
+    const Grid g = scene.grid();
+    const int n = std::max(g.nu, g.nv);
+    const IntegratorSpec& in = scene.integrator;
+    const double rate = in.iterations / in.dt, needed = kVbdSweepsPerSecondPerVertex * n;
+    const double dt = in.iterations / needed;
+    char buf[800];
+    if (dt < in.dt) {
+        std::snprintf(buf, sizeof buf,
+                      "vbd's %d sweeps a step did not carry the tension across the sheet: %.0f "
+                      "sweeps a simulated second (iterations / dt) for %d vertices a side, where "
+                      "dropped sheets held with %.0f a second per vertex a side, %.0f here "
+                      "(docs/performance.md); lower integrator.dt to %.2g s or raise "
+                      "integrator.iterations (with integrator.chebyshev_rho = 0.9); %s",
+                      in.iterations, rate, n, kVbdSweepsPerSecondPerVertex, needed, dt,
+                      tooSoft(scene).c_str());
+        return {buf, dt};
+    }
+    std::snprintf(buf, sizeof buf,
+                  "vbd's %d sweeps a step did not carry the tension across the sheet, although "
+                  "%.0f sweeps a simulated second for %d vertices a side held a dropped cotton "
+                  "sheet (docs/performance.md): a stiffer or more loaded cloth needs more; raise "
+                  "integrator.iterations or lower integrator.dt; %s",
+                  in.iterations, rate, n, tooSoft(scene).c_str());
+    return {buf, std::nullopt};
+}
+
+InstabilityAdvice implicitStrainAdvice(const Scene& scene) {
+    const IntegratorSpec& in = scene.integrator;
+    char buf[800];
+    if (!(in.maxStepStrain > 0)) {
+        std::snprintf(buf, sizeof buf,
+                      "implicit_euler linearises the springs once a step, and a fast rotation (a "
+                      "landing on a collider) stretches them: set integrator.max_step_strain = "
+                      "0.1 to take such steps again in halves (docs/integrators.md) or lower "
+                      "integrator.dt; %s",
+                      tooSoft(scene).c_str());
+        return {buf, std::nullopt};
+    }
+    std::snprintf(buf, sizeof buf,
+                  "implicit_euler's steps stretched the springs although those that strained "
+                  "more than integrator.max_step_strain = %g were taken again in halves (down "
+                  "to dt/16): lower integrator.dt to %.2g s; %s",
+                  in.maxStepStrain, in.dt / 2, tooSoft(scene).c_str());
+    return {buf, in.dt / 2};
+}
+
+}  // namespace
+
 InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r) {
-    const bool softSprings = r.reason.rfind("strain", 0) == 0 && !dtWarning(scene);
-    if (softSprings)
-        return {
-            "dt is inside the predicted stability bound: the springs are too soft for the "
-            "load; stiffen them (springs.*) or raise max_strain",
-            std::nullopt};
+    const bool strain = r.reason.rfind("strain", 0) == 0;
+    if (strain && scene.integrator.method == Method::Vbd) return vbdStrainAdvice(scene);
+    if (strain && scene.integrator.method == Method::ImplicitEuler)
+        return implicitStrainAdvice(scene);
+    if (strain && !dtWarning(scene))
+        return {std::string("dt is inside the predicted stability bound: the cloth is too soft for "
+                            "the load; stiffen it (") +
+                    stiffenKeys(scene) + ") or raise max_strain",
+                std::nullopt};
     return {stabilityAdvice(scene), suggestedDt(scene)};
 }
 

@@ -43,8 +43,10 @@ std::string describeInstability(const Scene& scene, const StepResult& r);
 
 // What to change after the unstable step `r`: one line a user can act on, and the Δt it
 // suggests, if a smaller step is the cure (model/stability.h suggestedDt). A spring past
-// max_strain at a Δt inside the bound is a cloth too soft for its load, not a step too long:
-// then the line says so and no Δt is suggested.
+// max_strain has a cause per method: after an explicit method inside its bound the cloth is too
+// soft for its load (no Δt suggested); after vbd its sweeps did not carry the tension across the
+// sheet, and the Δt is the one at which sweeps as many a second held a dropped sheet of that size
+// (docs/performance.md); after implicit Euler the step control is named first, then half the step.
 struct InstabilityAdvice {
     std::string text;
     std::optional<double> dt;  // [s]

@@ -10,6 +10,7 @@
 #include "model/pin_follow.h"
 #include "model/stability.h"
 #include "solver/diagnostics.h"
+#include "solver/instability.h"
 
 namespace cloth::app {
 namespace {
@@ -108,7 +109,7 @@ long ViewerSession::advance(bool stepOnce) {
     simTime_ += double(r.stepsTaken) * params_.scene.integrator.dt;
     if (r.unstable) {
         instability_ = "unstable at step " + std::to_string(totalSteps_) + ": " + r.reason + ". " +
-                       stabilityAdvice(params_.effective());
+                       instabilityAdvice(params_.effective(), r).text;
         grab_.reset();
     }
     return r.stepsTaken;
@@ -284,8 +285,11 @@ void ViewerSession::sampleDiagnostics() {
     const Scene s = params_.effective();
     // DESIGN.md §2's strain check, on the state the plots sample anyway (every kSampleSeconds).
     if (const auto why = strainBreach(s, state)) {
+        StepResult breach;
+        breach.unstable = true;
+        breach.reason = *why;
         instability_ = "unstable by step " + std::to_string(totalSteps_) + ": " + *why + ". " +
-                       stabilityAdvice(s);
+                       instabilityAdvice(s, breach).text;
         grab_.reset();
         return;
     }

@@ -1,0 +1,105 @@
+// The advice after a spring strained past max_strain names the cure of the method that ran
+// (solver/instability.h): an explicit method inside its bound has a cloth too soft for its load;
+// vbd's sweeps did not carry the tension across the sheet (docs/performance.md "vbd: the step
+// that holds the sheet at each N"); implicit Euler's one linearisation a step stretched it.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+#include <vector>
+
+#include "scene/scene_loader.h"
+#include "solver/instability.h"
+#include "support/process.h"
+
+namespace cloth {
+namespace {
+
+using test::ProcessResult;
+using test::runProcess;
+
+const std::string kExe = CLOTH_EXE;
+const std::string kDrape = std::string(CLOTH_SOURCE_DIR) + "/scenes/drape.json";
+
+// A 1 m cotton sheet of n × n vertices stepped by `integrator`.
+Scene drape(int n, const nlohmann::json& integrator) {
+    nlohmann::json j = {{"cloth", {{"resolution", {n, n}}, {"size", {1.0, 1.0}}}},
+                        {"material", {{"preset", "cotton"}}},
+                        {"integrator", integrator}};
+    return parseScene(j.dump(), "advice (test)");
+}
+
+StepResult strainBreach() {
+    StepResult r;
+    r.unstable = true;
+    r.reason = "strain 1.5 > max_strain 1 on the spring (3, 4)-(4, 4)";
+    return r;
+}
+
+bool has(const std::string& text, const char* word) {
+    return text.find(word) != std::string::npos;
+}
+
+TEST(InstabilityAdvice, VbdAsksForTheSweepsASecondThatHeldADroppedSheet) {
+    const Scene s = drape(128, {{"method", "vbd"}, {"dt", 1.0 / 60}, {"iterations", 10}});
+    const InstabilityAdvice a = instabilityAdvice(s, strainBreach());
+    ASSERT_TRUE(a.dt.has_value()) << a.text;
+    EXPECT_DOUBLE_EQ(*a.dt, 10.0 / (13 * 128));  // 13 sweeps a second per vertex a side
+    for (const char* word :
+         {"600 sweeps a simulated second", "128 vertices a side", "1664",
+          "integrator.dt to 0.006 s", "integrator.iterations", "chebyshev_rho", "material.stretch"})
+        EXPECT_TRUE(has(a.text, word)) << word << ": " << a.text;
+
+    // Already at that rate, a smaller step is not what the advice can promise.
+    const Scene fine = drape(128, {{"method", "vbd"}, {"dt", 1e-3}, {"iterations", 10}});
+    const InstabilityAdvice b = instabilityAdvice(fine, strainBreach());
+    EXPECT_FALSE(b.dt.has_value()) << b.text;
+    EXPECT_TRUE(has(b.text, "raise integrator.iterations")) << b.text;
+}
+
+TEST(InstabilityAdvice, ImplicitEulerAsksForTheStepControlFirst) {
+    const Scene s = drape(64, {{"method", "implicit_euler"}, {"dt", 1.0 / 60}});
+    const InstabilityAdvice a = instabilityAdvice(s, strainBreach());
+    EXPECT_FALSE(a.dt.has_value()) << a.text;
+    EXPECT_TRUE(has(a.text, "integrator.max_step_strain = 0.1")) << a.text;
+
+    const Scene controlled =
+        drape(64, {{"method", "implicit_euler"}, {"dt", 1.0 / 60}, {"max_step_strain", 0.1}});
+    const InstabilityAdvice b = instabilityAdvice(controlled, strainBreach());
+    ASSERT_TRUE(b.dt.has_value()) << b.text;
+    EXPECT_DOUBLE_EQ(*b.dt, 1.0 / 120);
+}
+
+TEST(InstabilityAdvice, OtherReasonsKeepTheStabilityAdvice) {
+    const Scene s = drape(128, {{"method", "vbd"}, {"dt", 1.0 / 60}, {"iterations", 10}});
+    StepResult r = strainBreach();
+    r.reason = "speed 2e+04 m/s > max_speed 1e+04 at vertex (3, 7)";
+    const InstabilityAdvice a = instabilityAdvice(s, r);
+    EXPECT_FALSE(has(a.text, "sweeps")) << a.text;
+    EXPECT_TRUE(has(a.text, "stable at any dt")) << a.text;
+}
+
+// Law (the measured rule): the step the advice names holds the sheet that tore. The shipped drape
+// at 128² with 10 sweeps a step at 1/60 s tears as it lands (exit 3); at the advice's Δt
+// (10 / (13·128) s) the same second of simulation keeps every spring under max_strain.
+TEST(InstabilityAdvice, VbdAdvisedStepHoldsTheDrapeThatTore) {
+    const std::string vbd = R"(integrator={"method": "vbd", "dt": 0.016666666666666666,
+                                            "iterations": 10})";
+    const std::vector<std::string> args = {
+        kExe,    "run",       kDrape, "--quiet", "--precision",
+        "float", "--set",     vbd,    "--set",   "cloth.resolution=[128, 128]",
+        "--set", "duration=1"};
+    const ProcessResult torn = runProcess(args, 120);
+    ASSERT_EQ(torn.exitCode, 3) << test::describe(torn);
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(torn.err, m, std::regex("integrator\\.dt to ([0-9.e-]+) s")))
+        << torn.err;
+    std::vector<std::string> advised = args;
+    advised.insert(advised.end(), {"--set", "integrator.dt=" + m[1].str()});
+    const ProcessResult held = runProcess(advised, 120);
+    EXPECT_EQ(held.exitCode, 0) << m[1].str() << ": " << test::describe(held);
+}
+
+}  // namespace
+}  // namespace cloth
