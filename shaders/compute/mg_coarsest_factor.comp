@@ -1,7 +1,9 @@
 // implicit_euler's multigrid preconditioner: the coarsest grid's system as a dense matrix (pinned
 // rows and columns the identity's) factored A = L Lᵀ in double by one work group
 // (multigrid.glsl; src/cpu/cpu_multigrid.cpp factorCoarsest): column by column, each entry of
-// the column by its own invocation.
+// the column by its own invocation, which reads the entries others wrote: the work buffer is
+// coherent here.
+#define MG_WORK_COHERENT coherent
 #include "layout.glsl"
 #include "common.glsl"
 #include "multigrid.glsl"

@@ -37,7 +37,14 @@ const int kMgBand = 8;  // a line's half bandwidth in unknowns: 3 × 2 + 2
 layout(std430, binding = 4) buffer MgStencil {
     double mgStencil[];
 };
-layout(std430, binding = 14) buffer MgWork {
+// mg_coarsest_factor.comp defines MG_WORK_COHERENT as `coherent`: its invocations read what
+// others of its one work group wrote in the same dispatch (GLSL 4.6 §4.10: without it, a
+// memoryBarrierBuffer and barrier() need not make those writes visible). The other kernels read
+// only what earlier dispatches or they themselves wrote.
+#ifndef MG_WORK_COHERENT
+#define MG_WORK_COHERENT
+#endif
+layout(std430, binding = 14) MG_WORK_COHERENT buffer MgWork {
     double mgWork[];
 };
 
