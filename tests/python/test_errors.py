@@ -158,6 +158,19 @@ def test_instability_raises_with_the_step_and_a_stable_dt(root, exe):
     assert err.reason in cli.stderr and err.advice in cli.stderr
 
 
+def test_a_torn_vbd_sheet_suggests_the_step_its_sweeps_need(root):
+    """vbd tears where its sweeps do not carry the landing's tension across the sheet: the
+    suggested step gives it iterations / (13 N) s, the rate at which dropped sheets held."""
+    sim = clothsim.Simulation(root / "scenes/drape.json", precision="float", set={
+        "integrator": {"method": "vbd", "dt": 1 / 60, "iterations": 10},
+        "cloth.resolution": [128, 128]})
+    with pytest.raises(clothsim.UnstableError) as e:
+        sim.step(60)
+    assert "strain" in e.value.reason
+    assert e.value.suggested_dt == pytest.approx(10 / (13 * 128))
+    assert "sweeps" in e.value.advice and "integrator.iterations" in e.value.advice
+
+
 @pytest.mark.filterwarnings("ignore:.*beyond")
 def test_instability_on_the_gpu_names_a_step_range(gpu, root):
     sim = clothsim.Simulation(root / "scenes/hanging.json", backend="gpu", set=UNSTABLE)
