@@ -34,11 +34,9 @@ std::string describeInstability(const Scene& scene, const StepResult& r) {
 
 namespace {
 
-// vbd's rule, measured (docs/performance.md "vbd: the step that holds the sheet at each N"): a
-// sheet of N vertices a side dropped onto a collider held where its sweeps a simulated second,
-// iterations / Δt, came to about 11 N (10 sweeps, N = 64 … 384) or 10 N (20 sweeps with
-// chebyshev_rho = 0.9). The advice asks for 13 N, what the largest that held (384² at 1/480 s)
-// took.
+// vbdHoldingSweepsPerSecond's factor: iterations / Δt came to about 11 N (10 sweeps, N = 64 …
+// 384) or 10 N (20 sweeps with chebyshev_rho = 0.9) where the sheets held; 13 N is what the
+// largest that held (384² at 1/480 s) took.
 constexpr double kVbdSweepsPerSecondPerVertex = 13;
 
 // What stiffens the cloth: the material's membrane or the springs.
@@ -58,17 +56,17 @@ InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
     const Grid g = scene.grid();
     const int n = std::max(g.nu, g.nv);
     const IntegratorSpec& in = scene.integrator;
-    const double rate = in.iterations / in.dt, needed = kVbdSweepsPerSecondPerVertex * n;
+    const double rate = in.iterations / in.dt, needed = vbdHoldingSweepsPerSecond(scene);
     const double dt = in.iterations / needed;
     char buf[800];
     if (dt < in.dt) {
         std::snprintf(buf, sizeof buf,
-                      "vbd's %d sweeps a step did not carry the tension across the sheet: %.0f "
-                      "sweeps a simulated second (iterations / dt) for %d vertices a side, where "
-                      "dropped sheets held with %.0f a second per vertex a side, %.0f here "
-                      "(docs/performance.md); lower integrator.dt to %.2g s or raise "
-                      "integrator.iterations (with integrator.chebyshev_rho = 0.9); %s",
-                      in.iterations, rate, n, kVbdSweepsPerSecondPerVertex, needed, dt,
+                      "vbd's %d sweeps a step did not carry the tension across the sheet: it ran "
+                      "%.0f sweeps a simulated second (iterations / dt), and dropped sheets of %d "
+                      "vertices a side held with %.0f x %d = %.0f (docs/performance.md); lower "
+                      "integrator.dt to %.2g s or raise integrator.iterations (with "
+                      "integrator.chebyshev_rho = 0.9); %s",
+                      in.iterations, rate, n, kVbdSweepsPerSecondPerVertex, n, needed, dt,
                       tooSoft(scene).c_str());
         return {buf, dt};
     }
@@ -102,6 +100,11 @@ InstabilityAdvice implicitStrainAdvice(const Scene& scene) {
 }
 
 }  // namespace
+
+double vbdHoldingSweepsPerSecond(const Scene& scene) {
+    const Grid g = scene.grid();
+    return kVbdSweepsPerSecondPerVertex * std::max(g.nu, g.nv);
+}
 
 InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r) {
     const bool strain = r.reason.rfind("strain", 0) == 0;

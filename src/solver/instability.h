@@ -41,6 +41,11 @@ std::optional<StepResult> strainInstability(const Scene& scene, const Solver& so
 // steps 65 and 128 (t = 0.065..0.128 s): <reason>" where a backend checks every few steps.
 std::string describeInstability(const Scene& scene, const StepResult& r);
 
+// vbd's measured rule (docs/performance.md "vbd: the step that holds the sheet at each N"): the
+// sweeps a simulated second, iterations / Δt, at which a sheet of the scene's N vertices a side
+// dropped onto a collider held, 13 N.
+double vbdHoldingSweepsPerSecond(const Scene& scene);
+
 // What to change after the unstable step `r`: one line a user can act on, and the Δt it
 // suggests, if a smaller step is the cure (model/stability.h suggestedDt). A spring past
 // max_strain has a cause per method: after an explicit method inside its bound the cloth is too

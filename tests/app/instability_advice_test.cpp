@@ -45,7 +45,8 @@ TEST(InstabilityAdvice, VbdAsksForTheSweepsASecondThatHeldADroppedSheet) {
     const Scene s = drape(128, {{"method", "vbd"}, {"dt", 1.0 / 60}, {"iterations", 10}});
     const InstabilityAdvice a = instabilityAdvice(s, strainBreach());
     ASSERT_TRUE(a.dt.has_value()) << a.text;
-    EXPECT_DOUBLE_EQ(*a.dt, 10.0 / (13 * 128));  // 13 sweeps a second per vertex a side
+    EXPECT_DOUBLE_EQ(vbdHoldingSweepsPerSecond(s), 13 * 128);  // a second, per vertex a side
+    EXPECT_DOUBLE_EQ(*a.dt, 10.0 / (13 * 128));
     for (const char* word :
          {"600 sweeps a simulated second", "128 vertices a side", "1664",
           "integrator.dt to 0.006 s", "integrator.iterations", "chebyshev_rho", "material.stretch"})
