@@ -44,7 +44,7 @@ Attributes:
     advice: what to change, as ``clothsim run`` says it.
     suggested_dt: the time step the advice suggests [s] (half the predicted bound; for vbd's
         strain, the step at which its sweeps held a dropped sheet of that size; for
-        implicit_euler's under step control, half the step), or ``None`` where a smaller step
+        implicit_euler under the step control, half its step), or ``None`` where a smaller step
         is not the cure: springs too soft for the load, a method stable at any step, or explicit
         Euler without the damping to be stable at all.
     stable_dt: the integrator's predicted stability bound for the scene [s] (``inf``: any
