@@ -14,6 +14,7 @@
 #include "scene/collider_validate.h"
 #include "scene/params.h"
 #include "scene/scene_loader.h"
+#include "solver/instability.h"
 #include "solver/step_control.h"
 
 namespace cloth::app {
@@ -242,12 +243,23 @@ void printStability(const Scene& s) {
                     formatDt(b.safeDt(m)).c_str(), formatDt(b.tightDt(m)).c_str(),
                     stepsPerFrame(b.safeDt(m)).c_str(),
                     m == s.integrator.method ? "   <- the scene's" : "");
-    if (dt < bound)
+    if (std::isinf(bound))
+        std::printf("             dt = %g s: %s has no stability bound\n", dt,
+                    methodName(s.integrator.method));
+    else if (dt < bound)
         std::printf("             dt = %g s is inside the bound (%.0f%% of it)\n", dt,
                     100 * dt / bound);
     else
         std::printf("             WARNING: dt = %g s exceeds the predicted bound: %s\n", dt,
                     stabilityAdvice(s).c_str());
+    if (s.integrator.method == Method::Vbd) {  // its measured rule (solver/instability.h)
+        const double rate = s.integrator.iterations / dt, held = vbdHoldingSweepsPerSecond(s);
+        std::printf(
+            "             vbd runs %.0f sweeps a simulated second (iterations / dt); a "
+            "sheet this size dropped onto a collider held with %.0f "
+            "(docs/performance.md)%s\n",
+            rate, held, rate < held ? ": it may over-stretch where it lands on one" : "");
+    }
 }
 
 }  // namespace

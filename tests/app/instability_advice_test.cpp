@@ -21,6 +21,9 @@ using test::runProcess;
 
 const std::string kExe = CLOTH_EXE;
 const std::string kDrape = std::string(CLOTH_SOURCE_DIR) + "/scenes/drape.json";
+// vbd at 10 sweeps a step and 60 steps a second, as --set takes it.
+const std::string kVbdAt60 =
+    R"(integrator={"method": "vbd", "dt": 0.016666666666666666, "iterations": 10})";
 
 // A 1 m cotton sheet of n × n vertices stepped by `integrator`.
 Scene drape(int n, const nlohmann::json& integrator) {
@@ -81,15 +84,24 @@ TEST(InstabilityAdvice, OtherReasonsKeepTheStabilityAdvice) {
     EXPECT_TRUE(has(a.text, "stable at any dt")) << a.text;
 }
 
+// validate says the same before a run: the sweeps a second against those that held.
+TEST(InstabilityAdvice, ValidateGivesVbdsSweepsASecondAgainstTheRule) {
+    const ProcessResult r = runProcess(
+        {kExe, "validate", kDrape, "--set", kVbdAt60, "--set", "cloth.resolution=[128, 128]"}, 60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    for (const char* words :
+         {"vbd has no stability bound", "vbd runs 600 sweeps a simulated second", "held with 1664",
+          "may over-stretch"})
+        EXPECT_TRUE(has(r.out, words)) << words << "\n" << r.out;
+}
+
 // Law (the measured rule): the step the advice names holds the sheet that tore. The shipped drape
 // at 128² with 10 sweeps a step at 1/60 s tears as it lands (exit 3); at the advice's Δt
 // (10 / (13·128) s) the same second of simulation keeps every spring under max_strain.
 TEST(InstabilityAdvice, VbdAdvisedStepHoldsTheDrapeThatTore) {
-    const std::string vbd = R"(integrator={"method": "vbd", "dt": 0.016666666666666666,
-                                            "iterations": 10})";
     const std::vector<std::string> args = {
-        kExe,    "run",       kDrape, "--quiet", "--precision",
-        "float", "--set",     vbd,    "--set",   "cloth.resolution=[128, 128]",
+        kExe,    "run",       kDrape,   "--quiet", "--precision",
+        "float", "--set",     kVbdAt60, "--set",   "cloth.resolution=[128, 128]",
         "--set", "duration=1"};
     const ProcessResult torn = runProcess(args, 120);
     ASSERT_EQ(torn.exitCode, 3) << test::describe(torn);
