@@ -39,17 +39,17 @@ namespace {
 // largest that held (384² at 1/480 s) took.
 constexpr double kVbdSweepsPerSecondPerVertex = 13;
 
-// What stiffens the cloth: the material's membrane or the springs.
-const char* stiffenKeys(const Scene& scene) {
-    return scene.material ? "material.stretch, material.shear" : "springs.*";
+// What to do about a cloth too soft for its load: its material's membrane or its springs.
+std::string stiffenOrRaise(const Scene& scene) {
+    return std::string("stiffen it (") +
+           (scene.material ? "material.stretch, material.shear" : "springs.*") +
+           ") or raise max_strain";
 }
 
 // The other cause of a strain past max_strain, for the large-step methods' advice.
 std::string tooSoft(const Scene& scene) {
-    return std::string(
-               "a cloth that stretches this far at rest is too soft for its load: stiffen "
-               "it (") +
-           stiffenKeys(scene) + ") or raise max_strain";
+    return "a cloth that stretches this far at rest is too soft for its load: " +
+           stiffenOrRaise(scene);
 }
 
 InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
@@ -112,9 +112,8 @@ InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r) {
     if (strain && scene.integrator.method == Method::ImplicitEuler)
         return implicitStrainAdvice(scene);
     if (strain && !dtWarning(scene))
-        return {std::string("dt is inside the predicted stability bound: the cloth is too soft for "
-                            "the load; stiffen it (") +
-                    stiffenKeys(scene) + ") or raise max_strain",
+        return {"dt is inside the predicted stability bound: the cloth is too soft for the load; " +
+                    stiffenOrRaise(scene),
                 std::nullopt};
     return {stabilityAdvice(scene), suggestedDt(scene)};
 }
