@@ -253,7 +253,7 @@ void printStability(const Scene& s) {
         std::printf("             WARNING: dt = %g s exceeds the predicted bound: %s\n", dt,
                     stabilityAdvice(s).c_str());
     if (s.integrator.method == Method::Vbd) {  // its measured rule (solver/instability.h)
-        const double rate = s.integrator.iterations / dt, held = vbdHoldingSweepsPerSecond(s);
+        const double rate = vbdSweepsPerSecond(s), held = vbdHoldingSweepsPerSecond(s);
         std::printf(
             "             vbd runs %.0f sweeps a simulated second (iterations / dt); a "
             "sheet this size dropped onto a collider held with %.0f "

@@ -56,7 +56,7 @@ InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
     const Grid g = scene.grid();
     const int n = std::max(g.nu, g.nv);
     const IntegratorSpec& in = scene.integrator;
-    const double rate = in.iterations / in.dt, needed = vbdHoldingSweepsPerSecond(scene);
+    const double rate = vbdSweepsPerSecond(scene), needed = vbdHoldingSweepsPerSecond(scene);
     const double dt = in.iterations / needed;
     char buf[800];
     if (dt < in.dt) {
@@ -104,6 +104,10 @@ InstabilityAdvice implicitStrainAdvice(const Scene& scene) {
 double vbdHoldingSweepsPerSecond(const Scene& scene) {
     const Grid g = scene.grid();
     return kVbdSweepsPerSecondPerVertex * std::max(g.nu, g.nv);
+}
+
+double vbdSweepsPerSecond(const Scene& scene) {
+    return scene.integrator.iterations / scene.integrator.dt;
 }
 
 InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r) {

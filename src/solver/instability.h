@@ -45,6 +45,8 @@ std::string describeInstability(const Scene& scene, const StepResult& r);
 // sweeps a simulated second, iterations / Δt, at which a sheet of the scene's N vertices a side
 // dropped onto a collider held, 13 N.
 double vbdHoldingSweepsPerSecond(const Scene& scene);
+// The sweeps a simulated second the scene's vbd runs: iterations / Δt.
+double vbdSweepsPerSecond(const Scene& scene);
 
 // What to change after the unstable step `r`: one line a user can act on, and the Δt it
 // suggests, if a smaller step is the cure (model/stability.h suggestedDt). A spring past

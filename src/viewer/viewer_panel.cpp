@@ -85,8 +85,8 @@ bool timeSection(ViewerParams& p, std::vector<std::string>& drawn) {
     const double bound = stableDt(p.effective());
     if (in.method == Method::Vbd) {
         // The measured rule for a sheet dropped onto a collider (solver/instability.h).
-        const double rate = in.iterations / in.dt;
-        const double held = vbdHoldingSweepsPerSecond(p.effective());
+        const Scene scene = p.effective();
+        const double rate = vbdSweepsPerSecond(scene), held = vbdHoldingSweepsPerSecond(scene);
         ImGui::PushStyleColor(ImGuiCol_Text,
                               rate < held ? kWarn : ImGui::GetStyleColorVec4(ImGuiCol_Text));
         ImGui::TextWrapped(
