@@ -8,7 +8,7 @@ layout(local_size_x = 256) in;
 
 #include "reduction.glsl"
 
-// Which sum this is (gpu::CgReduction): b·b at the start, |b − A Δv₀|² of the warm start, r·z of
+// Which sum this is (gpu::CgReduction): b·b and s·s at the start, |b − A Δv₀|² of the warm start, r·z of
 // the start, p·A p (→ α), or the new r·r and r·z (→ β, two sums).
 layout(location = 0) uniform int uReduction;
 const int kStart = 0, kAlpha = 1, kBeta = 2, kWarm = 3, kStartDirection = 4, kContactStart = 5;
@@ -19,10 +19,11 @@ uint partialCount() {
     return uint((gridU() + WX - 1) / WX) * uint((gridV() + WY - 1) / WY);
 }
 
-// Stop when |r| ≤ tolerance·|b| (b = 0 included); a non-finite r·r stops the solve too.
+// Stop when |r| ≤ tolerance·|b| (b = 0 included) or |r| ≤ ε |s|, the rounding of b's terms
+// (src/cpu/cpu_implicit.cpp); a non-finite r·r stops the solve too.
 uint judge(float rr) {
     float tolerance = params.cgTolerance;
-    float goal = tolerance * tolerance * cg.bb;
+    float goal = max(tolerance * tolerance * cg.bb, cg.floor);
     if (rr <= goal) return kConverged;
     return rr > goal ? kRunning : kStopped;
 }
@@ -42,13 +43,15 @@ void main() {
     if (!starting && cg.done != kRunning) return;
     float sum = total(0u);
     float second = 0.0;
-    if (uReduction == kBeta) {
+    if (uReduction == kBeta || uReduction == kStart) {
         barrier();  // groupSums is reused
         second = total(1u);
     }
     if (gl_LocalInvocationIndex != 0u) return;
     if (uReduction == kStart) {
         cg.bb = sum;
+        const float roundoff = 5.9604645e-8;  // 2⁻²⁴, float's unit roundoff
+        cg.floor = roundoff * roundoff * second;
         cg.iterations = 0u;
         cg.done = kRunning;
     } else if (uReduction == kWarm) {

@@ -1,6 +1,7 @@
 // implicit_euler, after the forces pass (docs/integrators.md): the right-hand side
 // b = h (F(x_n) + m_k (g − c v_n) − h H v_n) of (m_k (1 + hc) I + h D + h² H) Δv = b into
-// cgResidual, the work groups' partial sums of b·b, the last solution Δv₀ held 0 on pinned rows
+// cgResidual, the work groups' partial sums of b·b and of s·s (s the sum of the magnitudes of
+// b's terms), the last solution Δv₀ held 0 on pinned rows
 // (the warm start's product reads it next), and with PRECONDITIONER_JACOBI the inverted diagonal
 // blocks of A. Pinned rows are 0. With contacts in the solve (solve_contact.glsl) also each
 // vertex's contact, predicted through the colliders at the end of step uStep, the friction's
@@ -58,7 +59,7 @@ void storeInverse(ivec2 ij, uint k, float inverseMass) {
 
 void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
-    float bb = 0.0;
+    float bb = 0.0, ss = 0.0;
     if (ij.x < gridU() && ij.y < gridV()) {  // no early return: every invocation sums below
         uint k = vertexIndex(ij);
         vec4 x = positions[k];
@@ -81,9 +82,17 @@ void main() {
         }
         cgResidual[k] = vec4(b, 0.0);
         bb = dot(b, b);
+        // The magnitudes of b's terms: the stopping test's floor (cg_reduce.comp).
+        if (x.w != 0.0) {
+            float s = h * (length(forces[k].xyz) +
+                           length(params.gravity - params.dampingRate * v) / x.w +
+                           h * length(hv)) +
+                      length(b);
+            ss = s * s;
+        }
 #ifdef PRECONDITIONER_JACOBI
         storeInverse(ij, k, x.w);
 #endif
     }
-    storeGroupSum(bb);
+    storeGroupSums(bb, ss);
 }

@@ -105,6 +105,7 @@ layout(std430, binding = 13) buffer CgState {
     uint done;        // 0 running, 1 converged, 2 stopped (p·A p not positive: a non-finite state)
     float rz;         // r·z, z = M⁻¹ r (= r·r unpreconditioned)
     uint fromZero;    // 1: the warm start was no better than Δv = 0, the solve starts from 0
+    float floor;      // ε² s·s: |r|² this small is the rounding of b's terms (cg_reduce.comp)
 } cg;
 // With colliders, binding 17 holds the contacts in the solve (solve_contact.glsl).
 #ifdef PRECONDITIONER_JACOBI

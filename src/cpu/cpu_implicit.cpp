@@ -4,6 +4,7 @@
 // result does not depend on the thread count.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "cpu/cpu_solver.h"
 #include "cpu/cpu_solver_vertex.h"
@@ -104,8 +105,23 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         r_[k] = b;
         if (jacobi) blockInverse_[k] = pinned_[k] ? Sym3<T>{} : a.diagonal(k).inverse();
     }
-    // |b| scales the stopping test (unfiltered: a sheet at rest on a floor has S b ≈ 0).
-    double bb = reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
+    // |b| scales the stopping test (unfiltered: a sheet at rest on a floor has S b ≈ 0). Beside
+    // it Σ s_k², s_k the sum of the magnitudes of b_k's terms: a residual within the precision's
+    // rounding of them (|r| ≤ ε |s|) is as small as T can tell b from 0, and the solve stops
+    // there. A cloth at rest in float otherwise reduced a b of 1e-20 until p·A p underflowed.
+    const std::array<double, 2> rhs = reduceN<2>(band, team, [&](std::int64_t k) {
+        const double s =
+            pinned_[k]
+                ? 0.0
+                : h * (length(f_.get(k)) +
+                       length(gravity_ - dampingRate_ * v_.get(k)) / inverseMass_[std::size_t(k)] +
+                       h * length(ap_[k])) +
+                      length(r_[k]);
+        return std::array<double, 2>{dot(r_[k], r_[k]), s * s};
+    });
+    double bb = rhs[0];
+    const double roundoff = std::numeric_limits<T>::epsilon() / 2;
+    const double floor = roundoff * roundoff * rhs[1];
     // The warm start: r = b − A Δv₀ with Δv₀ the last step's solution. Where it is no better a
     // guess than 0 (|r| ≥ |b|: a state just written, a jolt), the solve starts from 0.
     a.apply(dv_.data(), ap_.data(), band.begin, band.end);
@@ -137,7 +153,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     }
     // The multigrid hierarchy's stencils at this state (every thread; it ends with a sync).
     if (multigrid) multigrid_.linearise(a, cycleThreads(band, team));
-    const double goal = tolerance_ * tolerance_ * bb;
+    const double goal = std::max(tolerance_ * tolerance_ * bb, floor);
     // z = M⁻¹ r: the block-Jacobi step is local, so it fuses with the sums r·r and r·z; the
     // V-cycle needs the whole r (after the sum r·r, which tells whether it is needed at all).
     const std::vector<Vec3<T>>& z = preconditioned ? z_ : r_;

@@ -151,8 +151,9 @@ struct CgState {
     std::uint32_t done;        // kCgRunning, kCgConverged or kCgStopped
     float rz;                  // r·z, z = M⁻¹ r
     std::uint32_t fromZero;    // 1: the solve started from Δv = 0, not the warm start
+    float floor;  // ε² s·s, the rounding of b's terms: |r|² below it stops the solve
 };
-static_assert(sizeof(CgState) == 32);
+static_assert(sizeof(CgState) == 36);
 static_assert(offsetof(CgState, rr) == 0);
 static_assert(offsetof(CgState, bb) == 4);
 static_assert(offsetof(CgState, alpha) == 8);
@@ -161,6 +162,7 @@ static_assert(offsetof(CgState, iterations) == 16);
 static_assert(offsetof(CgState, done) == 20);
 static_assert(offsetof(CgState, rz) == 24);
 static_assert(offsetof(CgState, fromZero) == 28);
+static_assert(offsetof(CgState, floor) == 32);
 inline constexpr std::uint32_t kCgRunning = 0, kCgConverged = 1, kCgStopped = 2;
 
 // The records of the Colliders block (shaders/compute/scene_colliders.glsl, docs/colliders.md

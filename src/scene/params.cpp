@@ -88,7 +88,7 @@ constexpr ParamSpec kParams[] = {
     {"integrator.tolerance", "", 0, 1, true, false, 1e-5, false,
      "implicit_euler: CG stops at |residual| <= tolerance·|right-hand side|", kHidden,
      [](const Scene& s) -> std::optional<double> { return s.integrator.tolerance; },
-     [](Scene& s, double v) { s.integrator.tolerance = v; }},
+     [](Scene& s, double v) { s.integrator.tolerance = v; }, true},
     {"integrator.max_iterations", "", 1, 100000, false, true, 200, false,
      "implicit_euler: CG iteration cap per step (a miss is reported)", kHidden,
      [](const Scene& s) -> std::optional<double> { return s.integrator.maxIterations; },
@@ -160,7 +160,7 @@ std::string rangeText(const ParamSpec& p) {
     r += number(p.min);
     r += ", ";
     r += number(p.max);
-    r += std::isinf(p.max) ? ")" : "]";
+    r += p.maxExclusive || std::isinf(p.max) ? ")" : "]";
     if (p.integer) r += ", integer";
     return r;
 }
@@ -209,9 +209,9 @@ std::string checkRange(const ParamSpec& spec, double value) {
                       spec.minExclusive ? ">" : ">=", spec.min, unit[0] ? " " : "", unit, value);
         return buf;
     }
-    if (value > spec.max) {
-        std::snprintf(buf, sizeof buf, "must be <= %g%s%s, got %.17g", spec.max, unit[0] ? " " : "",
-                      unit, value);
+    if (spec.maxExclusive ? !(value < spec.max) : value > spec.max) {
+        std::snprintf(buf, sizeof buf, "must be %s %g%s%s, got %.17g",
+                      spec.maxExclusive ? "<" : "<=", spec.max, unit[0] ? " " : "", unit, value);
         return buf;
     }
     return "";

@@ -38,6 +38,7 @@ struct ParamSpec {
     // Both are null for list entries, which have no one value per scene.
     std::optional<double> (*get)(const Scene&) = nullptr;
     void (*set)(Scene&, double) = nullptr;
+    bool maxExclusive = false;  // value < max rather than value ≤ max
 };
 
 std::span<const ParamSpec> paramTable();

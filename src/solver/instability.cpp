@@ -84,10 +84,11 @@ InstabilityAdvice implicitStrainAdvice(const Scene& scene) {
     char buf[800];
     if (!(in.maxStepStrain > 0)) {
         std::snprintf(buf, sizeof buf,
-                      "implicit_euler linearises the springs once a step, and a fast rotation (a "
-                      "landing on a collider) stretches them: set integrator.max_step_strain = "
-                      "0.1 to take such steps again in halves (docs/integrators.md) or lower "
-                      "integrator.dt; %s",
+                      "implicit_euler linearises the springs once a step, and a fast rotation "
+                      "(%s) stretches them: set integrator.max_step_strain = 0.1 to take such "
+                      "steps again in halves (docs/integrators.md) or lower integrator.dt; %s",
+                      scene.colliders.empty() ? "a swing as far as this dt lets the cloth fall"
+                                              : "a landing on a collider",
                       tooSoft(scene).c_str());
         return {buf, std::nullopt};
     }
@@ -108,6 +109,13 @@ double vbdHoldingSweepsPerSecond(const Scene& scene) {
 
 double vbdSweepsPerSecond(const Scene& scene) {
     return scene.integrator.iterations / scene.integrator.dt;
+}
+
+std::string breakdownRemedy(const Scene& scene, bool onGpu) {
+    std::string remedy = scene.integrator.preconditioner == Preconditioner::Jacobi
+                             ? "a smaller integrator.dt or softer springs"
+                             : "integrator.preconditioner = \"jacobi\"";
+    return onGpu ? remedy + " or --backend cpu" : remedy;
 }
 
 InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r) {

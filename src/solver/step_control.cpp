@@ -35,12 +35,13 @@ StepResult StepControl::step(long n) {
         deepest_ = start;
         failed_ = false;
         const long rejectedBefore = stats_.rejected;
+        const SolveStats solvesBefore = backend_->solveStats();
         StepResult r;
         for (long piece = 0; piece < (1L << start) && !r.unstable; ++piece)
             r = advance(scene_.integrator.dt / double(1L << start), start);
         if (start > 0 || stats_.rejected > rejectedBefore) ++stats_.split;
         startDepth_ = failed_ ? deepest_ : std::max(0, start - 1);
-        solveStats_ = backend_->solveStats();
+        recordSolves(solvesBefore);
         if (r.unstable) {
             r.stepsTaken = s;
             r.firstBadStep = r.lastBadStep = steps_ + 1;
@@ -50,6 +51,18 @@ StepResult StepControl::step(long n) {
         ++result.stepsTaken;
     }
     return result;
+}
+
+// The backend counts its own steps, every piece and try among them: the first miss and breakdown
+// are renumbered to the scene's step they fell in.
+void StepControl::recordSolves(const SolveStats& before) {
+    const long firstMiss = solveStats_.firstMissStep,
+               firstBreakdown = solveStats_.firstBreakdownStep;
+    solveStats_ = backend_->solveStats();
+    solveStats_.firstMissStep =
+        before.misses == 0 && solveStats_.misses > 0 ? steps_ + 1 : firstMiss;
+    solveStats_.firstBreakdownStep =
+        before.breakdowns == 0 && solveStats_.breakdowns > 0 ? steps_ + 1 : firstBreakdown;
 }
 
 StepResult StepControl::advance(double dt, int depth) {

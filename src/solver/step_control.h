@@ -55,6 +55,9 @@ private:
     // step kept (unstable only where a step of the shortest length is).
     StepResult advance(double dt, int depth);
     void setBackendDt(double dt);
+    // solveStats_ from the backend's after a step, its first miss and breakdown numbered by the
+    // scene's steps; `before`: the backend's before that step.
+    void recordSolves(const SolveStats& before);
 
     std::unique_ptr<Solver> backend_;
     StepCheck& check_;      // the backend's

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "solver/instability.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
 #include "viewer/viewer_widgets.h"
@@ -90,10 +91,11 @@ void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui) {
             ImGui::TextWrapped("%ld of %ld solves stopped at max_iterations",
                                s.misses - s.breakdowns, s.solves);
         if (s.breakdowns > 0)
-            ImGui::TextWrapped(
-                "%ld of %ld solves broke down (p.Ap <= 0 or not finite): try the jacobi "
-                "preconditioner or the other backend",
-                s.breakdowns, s.solves);
+            ImGui::TextWrapped("%ld of %ld solves broke down (p.Ap <= 0 or not finite): try %s",
+                               s.breakdowns, s.solves,
+                               breakdownRemedy(session.params().scene,
+                                               solver.name().find("gpu") != std::string::npos)
+                                   .c_str());
         ImGui::PopStyleColor();
     }
 }

@@ -67,6 +67,17 @@ TEST(InstabilityAdvice, ImplicitEulerAsksForTheStepControlFirst) {
     const InstabilityAdvice a = instabilityAdvice(s, strainBreach());
     EXPECT_FALSE(a.dt.has_value()) << a.text;
     EXPECT_TRUE(has(a.text, "integrator.max_step_strain = 0.1")) << a.text;
+    // This sheet has no collider: the fast rotation is the swing the step lets it take.
+    EXPECT_FALSE(has(a.text, "collider")) << a.text;
+    nlohmann::json onSphere = {
+        {"cloth", {{"resolution", {64, 64}}, {"size", {1.0, 1.0}}}},
+        {"material", {{"preset", "cotton"}}},
+        {"colliders", {{{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 0.2}}}},
+        {"integrator", {{"method", "implicit_euler"}, {"dt", 1.0 / 60}}}};
+    const std::string landing =
+        instabilityAdvice(parseScene(onSphere.dump(), "advice (test)"), strainBreach()).text;
+    EXPECT_TRUE(has(landing, "a landing on a collider")) << landing;
+    EXPECT_TRUE(has(landing, "integrator.max_step_strain = 0.1")) << landing;
 
     const Scene controlled =
         drape(64, {{"method", "implicit_euler"}, {"dt", 1.0 / 60}, {"max_step_strain", 0.1}});

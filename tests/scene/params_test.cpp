@@ -126,7 +126,8 @@ TEST(ParamTable, AValueJustOutsideTheRangeIsRefusedNamingTheKey) {
     for (const ParamSpec& p : paramTable()) {
         SCOPED_TRACE(p.path);
         if (std::isfinite(p.min)) expectRefused(p, p.minExclusive ? p.min : p.min - 1e-9);
-        if (std::isfinite(p.max)) expectRefused(p, std::nextafter(p.max, kInf));
+        if (std::isfinite(p.max))
+            expectRefused(p, p.maxExclusive ? p.max : std::nextafter(p.max, kInf));
         if (p.integer) expectRefused(p, p.min + 0.5);
     }
 }
