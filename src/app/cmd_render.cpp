@@ -313,6 +313,7 @@ int renderCommand(Args& args) {
     gpuRenderer();  // makes the EGL context before either solver: the GPU one computes in it
     settleBackendAndSay(o.backend, scene, o.doubleAsked, false);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
+    noteUnusedSettings(scene);
     warnUnstableDt(scene);
     const long total = o.steps >= 0 ? o.steps : scene.defaultSteps();
     Painter painter(o, scene);

@@ -258,7 +258,10 @@ int runCommand(Args& args) {
     std::optional<Pc2Writer> pc2 = openPc2(o, scene, total);
     settleBackendAndSay(o.backend, scene, o.doubleAsked, o.quiet);
     std::unique_ptr<Solver> solver = makeSolver(scene, o.backend);
-    if (!o.quiet) warnUnstableDt(scene);
+    if (!o.quiet) {
+        noteUnusedSettings(scene);
+        warnUnstableDt(scene);
+    }
 
     using Clock = std::chrono::steady_clock;
     const auto start = Clock::now();

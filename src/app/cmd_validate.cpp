@@ -5,6 +5,7 @@
 
 #include "app/backend_flags.h"
 #include "app/cli.h"
+#include "app/reports.h"
 #include "backends/solver_factory.h"
 #include "model/bending.h"
 #include "model/collider_limits.h"
@@ -184,6 +185,9 @@ void printModel(const Scene& s) {
     std::printf("integrator   %s, dt = %g s, %d substeps per frame, duration %g s = %ld steps\n",
                 methodName(s.integrator.method), s.integrator.dt, s.integrator.substeps, s.duration,
                 s.defaultSteps());
+    if (s.integrator.method == Method::ImplicitEuler)
+        std::printf("             conjugate gradient, preconditioner %s\n",
+                    preconditionerName(s.integrator.preconditioner));
     if (s.integrator.maxStepStrain > 0)
         std::printf(
             "step control a step that stretches a structural spring by more than %g of its "
@@ -285,6 +289,7 @@ int validateCommand(Args& args) {
     }
     if (path.empty()) throw InputError("command line", "SCENE", "validate needs a scene file");
     const Scene scene = loadScene(path, sets);
+    noteUnusedSettings(scene);
     printModel(scene);
     printParameters(scene);
     std::printf("features     %s\n", Features::of(scene).describe().c_str());

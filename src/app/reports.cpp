@@ -36,6 +36,11 @@ void reportSolveMisses(const Scene& scene, const Solver& solver) {
             breakdownRemedy(scene, solver.name().find("gpu") != std::string::npos).c_str());
 }
 
+void noteUnusedSettings(const Scene& scene) {
+    for (const std::string& line : unusedIntegratorSettings(scene.integrator))
+        std::fprintf(stderr, "clothsim: %s: note: %s\n", scene.source.c_str(), line.c_str());
+}
+
 void warnUnstableDt(const Scene& scene) {
     if (const auto warning = dtWarning(scene))
         std::fprintf(stderr, "clothsim: %s: warning: %s\n", scene.source.c_str(), warning->c_str());

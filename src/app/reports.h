@@ -18,6 +18,9 @@ void reportUnstable(const Scene& scene, const Solver& solver, const StepResult& 
 // A warning on stderr, before any step, when the scene's Δt is beyond its integrator's predicted
 // stability bound (model/stability.h dtWarning).
 void warnUnstableDt(const Scene& scene);
+// One note a line on stderr for each integrator key the scene sets that its method does not use
+// (model/scene.h unusedIntegratorSettings): run, render, view and validate.
+void noteUnusedSettings(const Scene& scene);
 
 // A warning on stderr when implicit Euler's CG stopped at its cap in any step, and another when
 // it broke down (never silent).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 namespace cloth {
@@ -61,6 +62,38 @@ const char* preconditionerName(Preconditioner p) {
             return "multigrid";
     }
     return "?";
+}
+
+std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& in) {
+    const IntegratorSpec defaults;
+    const std::string method = methodName(in.method);
+    std::vector<std::string> lines;
+    auto unused = [&](const std::string& key, const std::string& value, const char* owner,
+                      const char* instead) {
+        lines.push_back("integrator." + key + " = " + value + " is " + owner + "'s; " + method +
+                        " does not use it" + instead);
+    };
+    char value[32];
+    if (in.method != Method::ImplicitEuler) {
+        const char* instead = in.method == Method::Vbd ? " (vbd's sweeps a step: iterations)" : "";
+        std::snprintf(value, sizeof value, "%g", in.tolerance);
+        if (in.tolerance != defaults.tolerance) unused("tolerance", value, "implicit_euler", "");
+        if (in.maxIterations != defaults.maxIterations)
+            unused("max_iterations", std::to_string(in.maxIterations), "implicit_euler", instead);
+        if (in.preconditioner != defaults.preconditioner)
+            unused("preconditioner",
+                   std::string("\"") + preconditionerName(in.preconditioner) + "\"",
+                   "implicit_euler", "");
+    }
+    if (in.method != Method::Vbd) {
+        const char* instead =
+            in.method == Method::ImplicitEuler ? " (the CG's cap: max_iterations)" : "";
+        if (in.iterations != defaults.iterations)
+            unused("iterations", std::to_string(in.iterations), "vbd", instead);
+        std::snprintf(value, sizeof value, "%g", in.chebyshevRho);
+        if (in.chebyshevRho != defaults.chebyshevRho) unused("chebyshev_rho", value, "vbd", "");
+    }
+    return lines;
 }
 
 std::optional<Preconditioner> preconditionerFromName(const std::string& name) {

@@ -90,6 +90,11 @@ struct IntegratorSpec {
     double maxStepStrain = 0;
 };
 
+// The integrator keys set away from their defaults that the scene's method does not use
+// (implicit_euler's tolerance, max_iterations and preconditioner; vbd's iterations and
+// chebyshev_rho), one line each naming the key, its value and whose it is; empty when none.
+std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& integrator);
+
 struct Plane {
     glm::dvec3 point{0}, normal{0, 1, 0};  // normal is unit length
 };

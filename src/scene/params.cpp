@@ -87,11 +87,17 @@ constexpr ParamSpec kParams[] = {
      [](Scene& s, double v) { s.integrator.substeps = int(std::lround(v)); }},
     {"integrator.tolerance", "", 0, 1, true, false, 1e-5, false,
      "implicit_euler: CG stops at |residual| <= tolerance·|right-hand side|", kHidden,
-     [](const Scene& s) -> std::optional<double> { return s.integrator.tolerance; },
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::ImplicitEuler
+                    ? std::optional<double>(s.integrator.tolerance) : std::nullopt;
+     },
      [](Scene& s, double v) { s.integrator.tolerance = v; }, true},
     {"integrator.max_iterations", "", 1, 100000, false, true, 200, false,
      "implicit_euler: CG iteration cap per step (a miss is reported)", kHidden,
-     [](const Scene& s) -> std::optional<double> { return s.integrator.maxIterations; },
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::ImplicitEuler
+                    ? std::optional<double>(s.integrator.maxIterations) : std::nullopt;
+     },
      [](Scene& s, double v) { s.integrator.maxIterations = int(std::lround(v)); }},
     {"integrator.iterations", "", 1, 100000, false, true, 10, false,
      "vbd: Gauss–Seidel sweeps over the 5 colours per step",
@@ -103,7 +109,10 @@ constexpr ParamSpec kParams[] = {
      [](Scene& s, double v) { s.integrator.iterations = int(std::lround(v)); }},
     {"integrator.chebyshev_rho", "", 0, 0.999, false, false, 0, false,
      "vbd: spectral radius estimate ρ of the Chebyshev acceleration; 0 = none", kHidden,
-     [](const Scene& s) -> std::optional<double> { return s.integrator.chebyshevRho; },
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::Vbd ? std::optional<double>(s.integrator.chebyshevRho)
+                                                   : std::nullopt;
+     },
      [](Scene& s, double v) { s.integrator.chebyshevRho = v; }},
     {"integrator.max_step_strain", "", 0, 10, false, false, 0, false,
      "a step that stretches a structural spring by more than this fraction of its rest length "

@@ -133,6 +133,47 @@ TEST(CliRun, StepControlIsReportedWhereTheSceneDeclaresIt) {
     }
 }
 
+// A key of another method's (vbd's sweeps under implicit_euler, the CG's under vbd) does nothing:
+// run and validate say so in a note, naming the key and whose it is, and validate lists only the
+// method's own knobs, with implicit_euler's preconditioner. The method's own keys get no note.
+TEST(CliRun, AKeyOfAnotherMethodIsNoted) {
+    const std::string implicit =
+        "integrator={\"method\":\"implicit_euler\",\"dt\":0.01,"
+        "\"preconditioner\":\"multigrid\",\"iterations\":500}";
+    const auto run =
+        runProcess({kExe, "run", kScenes + "hanging.json", "--steps", "2", "--set", implicit}, 60);
+    ASSERT_EQ(run.exitCode, 0) << test::describe(run);
+    EXPECT_NE(run.err.find("note: integrator.iterations = 500 is vbd's; implicit_euler does not "
+                           "use it (the CG's cap: max_iterations)"),
+              std::string::npos)
+        << run.err;
+    EXPECT_EQ(run.err.find("preconditioner"), std::string::npos) << run.err;
+
+    const std::string vbd =
+        "integrator={\"method\":\"vbd\",\"dt\":0.01,\"iterations\":5,"
+        "\"chebyshev_rho\":0.5,\"max_iterations\":50}";
+    const auto validate =
+        runProcess({kExe, "validate", kScenes + "hanging.json", "--set", vbd}, 60);
+    ASSERT_EQ(validate.exitCode, 0) << test::describe(validate);
+    EXPECT_NE(validate.err.find("note: integrator.max_iterations = 50 is implicit_euler's; vbd "
+                                "does not use it (vbd's sweeps a step: iterations)"),
+              std::string::npos)
+        << validate.err;
+    EXPECT_EQ(validate.err.find("chebyshev_rho"), std::string::npos) << validate.err;
+    for (const char* listed : {"integrator.iterations = 5", "integrator.chebyshev_rho = 0.5"})
+        EXPECT_NE(validate.out.find(listed), std::string::npos) << listed << "\n" << validate.out;
+    EXPECT_EQ(validate.out.find("integrator.tolerance"), std::string::npos) << validate.out;
+
+    const auto own = runProcess({kExe, "validate", kScenes + "hanging.json", "--set", implicit,
+                                 "--set", "integrator.iterations=10"},
+                                60);
+    ASSERT_EQ(own.exitCode, 0) << test::describe(own);
+    EXPECT_EQ(own.err.find("note"), std::string::npos) << own.err;
+    EXPECT_NE(own.out.find("conjugate gradient, preconditioner multigrid"), std::string::npos)
+        << own.out;
+    EXPECT_NE(own.out.find("integrator.tolerance = 1e-05"), std::string::npos) << own.out;
+}
+
 TEST(CliValidate, AbsentFamilyIsReportedAsNotModelled) {
     const auto r = runProcess({kExe, "validate", kScenes + "spring.json"}, 60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);

@@ -43,8 +43,15 @@ const nlohmann::json kFullMaterial = nlohmann::json::parse(R"({
   "integrator": {"dt": 0.002}
 })");
 
-const nlohmann::json& fullFor(const ParamSpec& p) {
-    return std::string(p.path).rfind("material.", 0) == 0 ? kFullMaterial : kFull;
+// kFull's method is vbd; implicit_euler's rows are read under implicit_euler (a row's get() is
+// empty where the scene's method does not use its key).
+nlohmann::json fullFor(const ParamSpec& p) {
+    const std::string path = p.path;
+    if (path.rfind("material.", 0) == 0) return kFullMaterial;
+    nlohmann::json doc = kFull;
+    if (path == "integrator.tolerance" || path == "integrator.max_iterations")
+        doc["integrator"]["method"] = "implicit_euler";
+    return doc;
 }
 
 // "colliders[].radius" names the first entry: "colliders[0].radius".
