@@ -319,6 +319,7 @@ int renderCommand(Args& args) {
     Painter painter(o, scene);
     if (!o.framesDir.empty() && !writeFrames(o, scene, *solver, painter, total)) return kUnstable;
     if (!simulate(scene, *solver, total)) return kUnstable;
+    reportSolveMisses(scene, *solver);  // as run does: implicit Euler's misses are never silent
     if (!o.png.empty()) {
         painter.paint(*solver, o.png, painter.framed(*solver));
         std::printf("wrote %s (%dx%d, %ld steps, t = %.4g s, %s)\n", o.png.c_str(), o.width,

@@ -77,6 +77,20 @@ TEST(SolveReport, ACappedSolveNamesTheCap) {
     EXPECT_TRUE(says(r.err, "3 of 3 implicit solves stopped at integrator.max_iterations = 1"))
         << r.err;
     EXPECT_FALSE(says(r.err, "broke down")) << r.err;
+
+    // render steps the same solver and says the same (it said nothing before).
+    std::vector<std::string> argv = implicitDrape("jacobi", 1);
+    argv[1] = "render";
+    const fs::path png =
+        fs::temp_directory_path() / ("solve_report_" + std::to_string(getpid()) + ".png");
+    argv.insert(argv.end(), {"--png", png.string()});
+    const auto rendered = runProcess(argv, 60);
+    fs::remove(png);
+    CLOTH_SKIP_IF_NO_GL(rendered);
+    ASSERT_EQ(rendered.exitCode, 0) << test::describe(rendered);
+    EXPECT_TRUE(
+        says(rendered.err, "3 of 3 implicit solves stopped at integrator.max_iterations = 1"))
+        << rendered.err;
 }
 
 // The GPU's V-cycle made to return NaN (a copy of shaders/ with cg_preconditioned.comp's z
