@@ -195,16 +195,17 @@ int runViewer(const ViewerOptions& o) {
         ui.frameSeconds = ImGui::GetIO().DeltaTime;
         ui.fps = ImGui::GetIO().Framerate;
 
-        drawPanel(*session, ui);
-        drawInstabilityNotice(*session);
-        handleInput(window, *session, ui);
-        loadRequestedScene(ui, session, *renderer);
-
+        // The frame's steps first, so that the panel, the picture and --out-csv show one state;
+        // what the panel and the mouse change now acts from the next frame's steps on.
         session->advance(std::exchange(ui.stepOnce, false));
         if ((sampleClock += ui.frameSeconds) >= ViewerHistory::kSampleSeconds) {
             sampleClock = 0;
             session->sampleDiagnostics();
         }
+        drawPanel(*session, ui);
+        drawInstabilityNotice(*session);
+        handleInput(window, *session, ui);
+        loadRequestedScene(ui, session, *renderer);
 
         if (ui.width > 0 && ui.height > 0) drawScene(*session, *renderer, ui);
         if (std::exchange(ui.frameRequested, false) && !session->unstable()) {
@@ -219,7 +220,14 @@ int runViewer(const ViewerOptions& o) {
         glfwSwapBuffers(window);
         if (last) break;
     }
-    if (!o.outCsv.empty()) writeCsv(o.outCsv, session->solver().read(), effectivePrecision(session->backend()));
+    // A run that ends unstable writes no state and exits 3, as `run` does (DESIGN.md §5).
+    const bool unstable = session->unstable();
+    if (unstable)
+        std::fprintf(stderr, "clothsim: %s: %s%s\n", o.scenePath.c_str(),
+                     session->instability().c_str(),
+                     o.outCsv.empty() ? "" : "; nothing was written for the unstable state");
+    else if (!o.outCsv.empty())
+        writeCsv(o.outCsv, session->solver().read(), effectivePrecision(session->backend()));
 
     // Shutdown: GL objects before the context goes.
     renderer.reset();
@@ -227,7 +235,7 @@ int runViewer(const ViewerOptions& o) {
     shutdownImGui();
     glfwDestroyWindow(window);
     glfwTerminate();
-    return 0;
+    return unstable ? kUnstable : kOk;
 }
 
 }  // namespace cloth::app

@@ -95,7 +95,7 @@ bool timeSection(ViewerParams& p, std::vector<std::string>& drawn) {
             rate, held);
         ImGui::PopStyleColor();
     } else if (std::isinf(bound)) {
-        ImGui::Text("stable at any dt (linearised); CG tolerance %.0e", in.tolerance);
+        ImGui::TextWrapped("stable at any dt (linearised); CG tolerance %.0e", in.tolerance);
     } else if (bound <= 0) {
         ImGui::TextColored(kWarn, "no stable dt: explicit Euler needs damping > 0");
     } else if (in.dt >= bound) {

@@ -62,7 +62,7 @@ void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui) {
     const double vertices =
         double(session.params().scene.cloth.nu) * session.params().scene.cloth.nv;
     const double simPerFrame = steps * session.params().scene.integrator.dt;
-    ImGui::Text("%s", solver.name().c_str());
+    ImGui::TextWrapped("%s", solver.name().c_str());
     ImGui::TextDisabled("%s", ui.device.c_str());
     ImGui::Text("%.1f FPS   sim %.2f ms/frame", ui.fps, 1e3 * stepSeconds);
     if (steps > 0) {

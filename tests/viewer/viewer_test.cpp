@@ -251,26 +251,56 @@ std::string xvfbRun() {
 // Runs the viewer under its own Xvfb. xvfb-run -a picks a free display number from -n on; two
 // runs starting together may still pick the same one, so a failed server start is retried.
 // The run's result goes to `result` when given.
-void viewScreenshot(const std::string& backend, const fs::path& png,
-                    test::ProcessResult* result = nullptr) {
+// `clothsim view` with `args` on an Xvfb server of its own (display numbers apart by `offset`
+// for tests that run side by side); fails or skips the test where xvfb-run is missing.
+void viewUnderXvfb(const std::vector<std::string>& args, int offset, test::ProcessResult& r) {
     const std::string xvfb = xvfbRun();
     if (xvfb.empty()) {
         if (test::gpuRequiredByEnvironment()) FAIL() << "CLOTH_REQUIRE_GPU=1 but no xvfb-run";
         GTEST_SKIP() << "xvfb-run not installed";
     }
-    test::ProcessResult r;
     for (int attempt = 0; attempt < 3; ++attempt) {
-        const int offset = backend == "cpu" ? 0 : backend == "gpu" ? 1000 : 2000;
         const int display = 100 + int(getpid() % 300) * 3 + attempt + offset;
-        r = test::runProcess({xvfb, "-a", "-n", std::to_string(display), "-s",
-                              "-screen 0 1280x800x24", CLOTH_EXE, "view", kScenes + "drape.json",
-                              "--backend", backend, "--frames", "12", "--screenshot", png.string()},
-                             120);
+        std::vector<std::string> argv = {
+            xvfb,      "-a",  "-n", std::to_string(display), "-s", "-screen 0 1280x800x24",
+            CLOTH_EXE, "view"};
+        argv.insert(argv.end(), args.begin(), args.end());
+        r = test::runProcess(argv, 120);
         if (r.exitCode == 0 || r.err.find("Xvfb failed to start") == std::string::npos) break;
     }
+}
+
+void viewScreenshot(const std::string& backend, const fs::path& png,
+                    test::ProcessResult* result = nullptr) {
+    test::ProcessResult r;
+    viewUnderXvfb({kScenes + "drape.json", "--backend", backend, "--frames", "12", "--screenshot",
+                   png.string()},
+                  backend == "cpu"   ? 0
+                  : backend == "gpu" ? 1000
+                                     : 2000,
+                  r);
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
     if (result != nullptr) *result = r;
     CLOTH_SKIP_IF_NO_GL(r);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+}
+
+// A scripted view that ends unstable (explicit Euler at 30 times its bound) writes no state and
+// exits 3 naming the step, as run does (DESIGN.md §5). Before, it wrote the state and exited 0.
+TEST(ViewerCommand, AnUnstableRunWritesNoStateAndExitsThree) {
+    const fs::path d = test::testTempDir();
+    const fs::path csv = d / "unstable.csv";
+    test::ProcessResult r;
+    viewUnderXvfb({kScenes + "chain.json", "--backend", "cpu", "--set", "integrator.dt=0.05",
+                   "--frames", "5", "--out-csv", csv.string()},
+                  3000, r);
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
+    CLOTH_SKIP_IF_NO_GL(r);
+    EXPECT_EQ(r.exitCode, 3) << test::describe(r);
+    EXPECT_NE(r.err.find("unstable at step"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("nothing was written for the unstable state"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(csv));
+    fs::remove_all(d);
 }
 
 TEST(ViewerCommand, HelpAndBadInputNeedNoDisplay) {
