@@ -276,6 +276,9 @@ int runCommand(Args& args) {
     while (solver->stepsDone() < total) {
         long n = std::min(chunk, total - solver->stepsDone());
         if (o.every > 0) n = std::min(n, o.every - solver->stepsDone() % o.every);
+        // The strain is checked every checkEvery steps exactly, as the Python module and the
+        // renderer check it: the same run is unstable or not whatever the progress' chunks.
+        n = std::min(n, checked + checkEvery - solver->stepsDone());
         if (solveLog.wanted()) n = 1;  // a row per step
         const auto t0 = Clock::now();
         StepResult r = solver->step(n);

@@ -96,12 +96,9 @@ TEST(IntegratorEquilibrium, ImplicitEulerReachesTheHangingEquilibriumOfSymplecti
 // underflowed: block-Jacobi counted 19 of these 300 solves as breakdowns, and without a
 // preconditioner the run ended unstable.
 TEST(IntegratorEquilibrium, ImplicitEulerInFloatRestsWithoutMissesAtTheRoundingOfItsRightHandSide) {
-    Scene scene = parseScene(R"({
-      "cloth": { "resolution": [1, 3], "size": [1.0, 1.0], "origin": [0, 2, 0],
-                 "u_axis": [1, 0, 0], "v_axis": [0.6, -0.8, 0], "mass": 1.0 },
-      "springs": { "structural": 100.0 }, "damping": 0.5, "pins": [[0, 0]],
-      "integrator": { "method": "implicit_euler", "dt": 0.2 } })",
-                             "chain (test)");
+    // The shipped chain (scenes/chain.json) under implicit Euler.
+    Scene scene = loadScene(CLOTH_SOURCE_DIR "/scenes/chain.json",
+                            {"integrator.method=\"implicit_euler\"", "integrator.dt=0.2"});
     for (Preconditioner p :
          {Preconditioner::None, Preconditioner::Jacobi, Preconditioner::Multigrid}) {
         scene.integrator.preconditioner = p;

@@ -199,12 +199,9 @@ TEST_F(GpuImplicitSolve, SetParametersChangesTheCapAndTheTolerance) {
 // V-cycle's solves reduced such a b until p·A p underflowed: 18 and 3 of these 300 were counted
 // as breakdowns.
 TEST_F(GpuImplicitSolve, AChainAtRestEndsItsSolvesWithoutMisses) {
-    Scene scene = parseScene(R"({
-      "cloth": { "resolution": [1, 3], "size": [1.0, 1.0], "origin": [0, 2, 0],
-                 "u_axis": [1, 0, 0], "v_axis": [0.6, -0.8, 0], "mass": 1.0 },
-      "springs": { "structural": 100.0 }, "damping": 0.5, "pins": [[0, 0]],
-      "integrator": { "method": "implicit_euler", "dt": 0.2 } })",
-                             "chain (test)");
+    // The shipped chain (scenes/chain.json) under implicit Euler.
+    Scene scene = loadScene(CLOTH_SOURCE_DIR "/scenes/chain.json",
+                            {"integrator.method=\"implicit_euler\"", "integrator.dt=0.2"});
     for (Preconditioner p : kPreconditioners) {
         scene.integrator.preconditioner = p;
         std::unique_ptr<Solver> solver = makeGpuSolver(scene);

@@ -189,3 +189,29 @@ def test_writing_a_state_goes_on_after_instability(root):
     sim.set_positions(start)
     sim.set_velocities(0 * start)
     sim.step(1)
+
+
+def test_a_signal_stops_a_long_step_between_its_runs_of_steps(root):
+    """step() holds the interpreter's lock, but checks for signals between runs of at most
+    0.1 s simulated: a SIGALRM whose handler raises (as Ctrl+C's does) ends step(10**9) with the
+    steps done so far kept."""
+    import signal
+    import time
+
+    def interrupt(signum, frame):
+        raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGALRM, interrupt)
+    s = clothsim.Simulation(root / "scenes" / "hanging.json")
+    start = time.monotonic()
+    signal.setitimer(signal.ITIMER_REAL, 0.3)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            s.step(10**9)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
+    assert time.monotonic() - start < 10
+    assert 0 < s.steps < 10**9
+    run = min(1000, math.floor(0.1 / s.dt * (1 + 1e-9)))  # solver/instability.h strainCheckSteps
+    assert s.steps % run == 0

@@ -93,3 +93,19 @@ def test_dict_scene_equals_file(root):
     b.step(50)
     np.testing.assert_array_equal(a.positions, b.positions)
     assert a.name == b.name == "hanging"
+
+
+def test_cli_and_module_find_the_same_instability(exe, root):
+    """Both check the strain every 0.1 s of simulated time (333 steps of hanging.json): the same
+    run is unstable in both, between the same steps. run used to check at its progress chunks'
+    ends (every 360 steps here) and found this sheet, whose strain passes 0.25 for a while near
+    step 1400, stable."""
+    args = [str(exe), "run", str(root / "scenes" / "hanging.json"), "--steps", "3000",
+            "--set", "max_strain=0.25"]
+    done = subprocess.run(args, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 3, done.stderr
+    s = clothsim.Simulation(root / "scenes" / "hanging.json", set={"max_strain": 0.25})
+    with pytest.raises(clothsim.UnstableError) as e:
+        s.step(3000)
+    assert "unstable between steps 1333 and 1665" in str(e.value)
+    assert "unstable between steps 1333 and 1665" in done.stderr

@@ -77,6 +77,12 @@ TEST(ParseScene, ThrowsInputErrorWithKeyPath) {
         {with("/pins/1", {-5, 0}), "pins[1]"},
         {with("/wind/direction", {0, 0, 0}), "wind.direction"},
         {with("/colour", "red"), "colour"},
+        // The name starts the --frames files' names: no path out of the folder, no new lines
+        // in the OBJ's object line.
+        {with("/name", "../escaped"), "name"},
+        {with("/name", "a\\b"), "name"},
+        {with("/name", "two\nlines"), "name"},
+        {with("/name", ""), "name"},
     };
     for (const auto& [text, key] : cases) {
         SCOPED_TRACE(key);
