@@ -203,6 +203,9 @@ std::set<int> gpuSizesBeyondDevice(const Options& o) {
         for (const GpuOptions& g : o.gpuSweep.variants()) {
             const auto why = gpuRefusal(sized, g);
             if (!why) continue;
+            // A work group past the device's limits fails at any size: that flag is named.
+            if (why->find("work-group") != std::string::npos)
+                throw InputError("command line", "--workgroups", *why);
             const std::string message =
                 "the GPU cannot hold size " + std::to_string(side) + ": " + *why;
             if (o.sizesGiven) throw InputError("command line", "--sizes", message);

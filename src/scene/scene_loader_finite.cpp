@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <string>
+#include <variant>
 
 #include "model/stability.h"
 #include "scene/scene_reader.h"
@@ -144,6 +146,38 @@ void SceneReader::checkDerivedFinite(const Scene& s) const {
         const double strength = std::abs(s.wind->strength);
         expect(strength * inverseMass, {{"wind.strength", strength}, {massKey, inverseMass}},
                "the wind's acceleration |strength|/m");
+    }
+
+    // Colliders: the contact tests square a distance as far as the shape reaches, where it sits
+    // plus its size plus its thickness.
+    for (std::size_t n = 0; n < s.colliders.size(); ++n) {
+        const Collider& collider = s.colliders[n];
+        const std::string at = "colliders[" + std::to_string(n) + "].";
+        std::string whereKey = at, sizeKey = at;
+        double where = 0, size = 0;
+        if (const auto* p = std::get_if<Plane>(&collider.shape)) {
+            whereKey += "point", where = glm::length(p->point);
+        } else if (const auto* sp = std::get_if<Sphere>(&collider.shape)) {
+            whereKey += "center", where = glm::length(sp->center);
+            sizeKey += "radius", size = sp->radius;
+        } else if (const auto* b = std::get_if<Box>(&collider.shape)) {
+            whereKey += "center", where = glm::length(b->center);
+            sizeKey += "half_extents", size = glm::length(b->halfExtents);
+        } else if (const auto* cap = std::get_if<Capsule>(&collider.shape)) {
+            whereKey += "a", where = std::max(glm::length(cap->a), glm::length(cap->b));
+            sizeKey += "radius", size = cap->radius;
+        } else if (const auto* mesh = std::get_if<MeshCollider>(&collider.shape)) {
+            whereKey += "translation", where = glm::length(mesh->translation);
+            sizeKey += "band", size = mesh->band;
+        }
+        const std::string thicknessKey = at + "thickness";
+        const double span = where + size + collider.thickness;
+        expect(
+            span * span,
+            {{whereKey.c_str(), where},
+             {sizeKey.c_str(), size},
+             {thicknessKey.c_str(), collider.thickness}},
+            "the collider's reach² (|position| + size + thickness, squared by the contact test)");
     }
 
     // The instability test compares speed² with max_speed², and a step moves max_speed·dt.

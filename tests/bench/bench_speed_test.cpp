@@ -132,6 +132,7 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         {{"--peer-dt", "-1"}, "--peer-dt"},
         {{"--workgroups", "16by16"}, "--workgroups"},
         {{"--workgroups", "0x8"}, "--workgroups"},
+        {{"--sizes", "16", "--workgroups", "2000x2000"}, "--workgroups: 2000x2000 exceeds"},
         {{"--gpu-forces", "shared"}, "--gpu-forces"},
         {{"--gpu-dispatch", "fused"}, "--gpu-dispatch"},
         {{"--check-every", "0"}, "--check-every"},

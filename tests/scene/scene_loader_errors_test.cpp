@@ -73,6 +73,9 @@ TEST(ParseScene, ThrowsInputErrorWithKeyPath) {
         {with("/springs/bnd", 3), "springs.bnd"},
         {with("/colliders/1/radius", 0), "colliders[1].radius"},
         {with("/colliders/1/type", "cylinder"), "colliders[1].type"},
+        // In range, but the contact test squares them.
+        {with("/colliders/1/radius", 1e308), "colliders[1].radius"},
+        {with("/colliders/1/thickness", 1e300), "colliders[1].thickness"},
         {with("/pins/1", {4, 0}), "pins[1]"},
         {with("/pins/1", {-5, 0}), "pins[1]"},
         {with("/wind/direction", {0, 0, 0}), "wind.direction"},
