@@ -77,6 +77,9 @@ Scene loadBenchScene(BenchCommonOptions& o);
 
 // Creates `dir` (InputError naming --out when it cannot) and returns dir/name.
 std::string outputPath(const std::string& dir, const std::string& name);
+// Before a bench runs: --out is a folder it can write into and --label names files in it (not
+// empty, no '/', '\' or control characters); InputError naming the flag otherwise.
+void checkOutputs(const std::string& dir, const std::string& label);
 
 // A CSV cell: %.6g, or empty for a value that is not finite (nothing non-finite is written).
 std::string cell(double value);

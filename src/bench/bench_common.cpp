@@ -127,7 +127,20 @@ std::vector<BenchTarget> availableTargets(std::vector<BenchTarget> targets, cons
 Scene loadBenchScene(BenchCommonOptions& o) {
     Scene scene = loadScene(o.scenePath, o.sets);
     if (o.label.empty()) o.label = scene.name;
+    checkOutputs(o.out, o.label);
     return scene;
+}
+
+void checkOutputs(const std::string& dir, const std::string& label) {
+    const bool clean = !label.empty() && std::none_of(label.begin(), label.end(), [](char c) {
+        return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    });
+    if (!clean)
+        throw InputError("command line", "--label",
+                         "names files in --out: expected a non-empty name without '/', '\\' or "
+                         "control characters, got '" +
+                             label + "'");
+    outputPath(dir, "");
 }
 
 std::string outputPath(const std::string& dir, const std::string& name) {

@@ -238,6 +238,7 @@ int runBenchSpeed(const SpeedOptions& options) {
     }
     o.sizes = fitting;
     const Scene scene = loadScene(o.scenePath, o.sets);
+    checkOutputs(o.out, o.label.empty() ? scene.name : o.label);  // before anything runs
     if (!o.peer.empty() && scene.material)
         throw InputError("command line", "--peer",
                          "the " + o.peer +

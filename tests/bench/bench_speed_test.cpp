@@ -133,6 +133,10 @@ TEST(BenchSpeed, BadFlagsExitTwoNamingTheFlag) {
         {{"--workgroups", "16by16"}, "--workgroups"},
         {{"--workgroups", "0x8"}, "--workgroups"},
         {{"--sizes", "16", "--workgroups", "2000x2000"}, "--workgroups: 2000x2000 exceeds"},
+        // Refused before the sizes are timed (before, after them, with exit 1 for the label).
+        {{"--quick", "--sizes", "16", "--backend", "cpu", "--label", "../x"}, "--label"},
+        {{"--quick", "--sizes", "16", "--backend", "cpu", "--out", CLOTH_SOURCE_DIR "/README.md"},
+         "--out: cannot write into directory"},
         {{"--gpu-forces", "shared"}, "--gpu-forces"},
         {{"--gpu-dispatch", "fused"}, "--gpu-dispatch"},
         {{"--check-every", "0"}, "--check-every"},
