@@ -5,9 +5,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <numbers>
+#include <optional>
+#include <sstream>
 #include <thread>
 #include <unordered_map>
 
@@ -26,11 +30,38 @@ std::string edgeName(std::uint32_t a, std::uint32_t b) {
     return "edge (" + std::to_string(a + 1) + ", " + std::to_string(b + 1) + ")";
 }
 
+// The first `v` line whose x, y and z are not three finite numbers ("line 12: 'v 0 0 abc'"):
+// tinyobjloader reads a word or a missing coordinate as 0 and would give the mesh another shape.
+std::optional<std::string> badVertexLine(const std::string& objPath) {
+    std::ifstream in(objPath);
+    std::string line;
+    for (long number = 1; std::getline(in, line); ++number) {
+        std::istringstream words(line);
+        std::string word;
+        if (!(words >> word) || word != "v") continue;
+        int numbers = 0;
+        for (; numbers < 3 && words >> word; ++numbers) {
+            char* end = nullptr;
+            const double x = std::strtod(word.c_str(), &end);
+            if (end != word.c_str() + word.size() || !std::isfinite(x)) break;
+        }
+        if (numbers < 3) {
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            return "line " + std::to_string(number) + ": '" + line.substr(0, 80) +
+                   "': a vertex needs three finite numbers";
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 TriMesh loadObjMesh(const std::string& objPath, const MeshSource& source) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(objPath, ec)) fail(source, objPath, "no such file");
+    if (!std::filesystem::exists(objPath, ec)) fail(source, objPath, "no such file");
+    if (!std::filesystem::is_regular_file(objPath, ec))
+        fail(source, objPath, "not a regular file (an OBJ file is needed)");
+    if (const auto bad = badVertexLine(objPath)) fail(source, objPath, *bad);
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
     config.vertex_color = false;

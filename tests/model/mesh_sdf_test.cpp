@@ -251,6 +251,28 @@ TEST(MeshSdf, BadMeshesAreReportedWithTheFileAndTheFirstBadEdge) {
     fin.triangles.push_back({4, 0, 8});
     const std::string finReason = loadError(writeObjText("fin.obj", fin)).reason();
     EXPECT_NE(finReason.find("edge ("), std::string::npos) << finReason;
+
+    // A vertex line tinyobjloader would read as 0 where a number is not: the box with one
+    // coordinate a word, or missing, is refused naming the line (it loaded as another shape).
+    const std::string boxText = [] {
+        std::string text;
+        for (const auto& v : unitBox().vertices)
+            text += "v " + std::to_string(v.x) + " " + std::to_string(v.y) + " " +
+                    std::to_string(v.z) + "\n";
+        for (const auto& t : unitBox().triangles)
+            text += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " +
+                    std::to_string(t[2] + 1) + "\n";
+        return text;
+    }();
+    EXPECT_NO_THROW(loadObjMesh(writeText("box.obj", boxText)));
+    for (const std::string bad : {"v 0 0 abc", "v 0 0", "v 0 nan 0"}) {
+        const std::string reason = loadError(writeText("badv.obj", bad + "\n" + boxText)).reason();
+        EXPECT_NE(reason.find("line 1: '" + bad + "': a vertex needs three finite numbers"),
+                  std::string::npos)
+            << reason;
+    }
+    EXPECT_NE(loadError(::testing::TempDir()).reason().find("not a regular file"),
+              std::string::npos);
 }
 
 // Law: a grid of more than kMaxSdfSamples, a cell ≤ 0 or a negative band is an InputError
