@@ -141,7 +141,11 @@ std::string jsonText(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
 void printTable(const SpeedMeta& m, const std::vector<SpeedRow>& rows) {
     std::printf("build %s | cpu %s | gpu %s\n", m.buildType.c_str(), m.cpuModel.c_str(),
                 m.gpuRenderer.empty() ? "none" : m.gpuRenderer.c_str());
-    std::printf("bandwidth: cpu triad %.3g GB/s, gpu copy %.3g GB/s\n", m.triadGBps, m.copyGBps);
+    if (std::isfinite(m.copyGBps))
+        std::printf("bandwidth: cpu triad %.3g GB/s, gpu copy %.3g GB/s\n", m.triadGBps,
+                    m.copyGBps);
+    else  // no GPU target in this run
+        std::printf("bandwidth: cpu triad %.3g GB/s\n", m.triadGBps);
     if (!m.peer.empty()) std::printf("peer: %s\n", m.peer.c_str());
     std::printf("%6s %-11s %-16s %-8s %10s %10s %12s %8s %6s %8s %7s %7s %s\n", "size", "target",
                 "method", "features", "ms/step", "dev ms", "vtx-steps/s", "GB/s", "of bw",
