@@ -14,6 +14,7 @@
 
 #include "bench/bench.h"
 #include "model/errors.h"
+#include "model/output_file.h"
 #include "scene/scene_loader.h"
 
 extern char** environ;
@@ -132,10 +133,7 @@ Scene loadBenchScene(BenchCommonOptions& o) {
 }
 
 void checkOutputs(const std::string& dir, const std::string& label) {
-    const bool clean = !label.empty() && std::none_of(label.begin(), label.end(), [](char c) {
-        return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-    });
-    if (!clean)
+    if (!isFileNamePart(label))
         throw InputError("command line", "--label",
                          "names files in --out: expected a non-empty name without '/', '\\' or "
                          "control characters, got '" +

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdarg>
 #include <cstring>
@@ -40,6 +41,12 @@ OutputTarget replaceable(const std::string& file) {
 }
 
 }  // namespace
+
+bool isFileNamePart(const std::string& part) {
+    return !part.empty() && std::none_of(part.begin(), part.end(), [](char c) {
+        return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    });
+}
 
 OutputTarget resolveOutput(const std::string& path) {
     if (path.empty()) return unusable("the path is empty");

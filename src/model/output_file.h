@@ -39,6 +39,11 @@ struct OutputTarget {
 };
 OutputTarget resolveOutput(const std::string& path);
 
+// Whether `part` may start a file name inside a folder the user gave (a scene's name in --frames,
+// a bench's --label): not empty, no '/' or '\' that would leave the folder, no control
+// character that would break a line of the files that quote it (the OBJ's object line).
+bool isFileNamePart(const std::string& part);
+
 class OutputFile {
 public:
     // Opens the path as resolveOutput says; OutputError if it is unusable or cannot be opened.

@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +14,7 @@
 #include "model/collider_limits.h"
 #include "model/errors.h"
 #include "model/material_presets.h"
+#include "model/output_file.h"
 #include "model/pin_follow.h"
 #include "scene/key_path.h"
 #include "scene/params.h"
@@ -314,16 +314,9 @@ Scene SceneReader::read(const Json& doc) {
         if (!doc["name"].is_string())
             fail("name", "expected a string, got " + describe(doc["name"]));
         scene.name = doc["name"].get<std::string>();
-        // The name starts the --frames files' names and is the OBJ's object line.
-        const bool clean =
-            !scene.name.empty() && std::none_of(scene.name.begin(), scene.name.end(), [](char c) {
-                return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-            });
-        if (!clean)
-            fail("name",
-                 "names the --frames files and the OBJ's object: expected a non-empty name "
-                 "without '/', '\\' or control characters, got " +
-                     describe(doc["name"]));
+        if (!isFileNamePart(scene.name))  // it names the --frames files and the OBJ's object
+            fail("name", "names files: expected no '/', '\\' or control characters, got " +
+                             describe(doc["name"]));
     }
     readCloth(required(doc, "cloth", ""), scene.cloth);
     if (doc.contains("material")) {
