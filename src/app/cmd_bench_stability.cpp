@@ -22,10 +22,11 @@ and dt < 2m/mu). Runs on the CPU (double) and the GPU (float).
 
 A trial runs the scene linearised about its rest state (no gravity, wind or colliders) from a
 velocity kick along the stiffest mode, for --time of simulated time (at least 200 steps, or
---max-steps where that is fewer; at most --max-steps). It is unstable when the state runs away (not finite, or 1e4 times the kick's
-speed), or, for explicit Euler, when its discrete energy |v|^2 + c<x,v> + <x,Hx>/m grows (that
-integrator leaves its bound too slowly to run away in a short trial). Methods stable at --cap are
-reported as stable to the cap (implicit Euler has no predicted bound).
+--max-steps where that is fewer; at most --max-steps). It is unstable when the state runs away
+(not finite, or 1e4 times the kick's speed), or, for explicit Euler, when its discrete energy
+|v|^2 + c<x,v> + <x,Hx>/m grows (that integrator leaves its bound too slowly to run away in a
+short trial). Methods stable at --cap are reported as stable to the cap (implicit Euler has no
+predicted bound).
 
 options:
   --backend cpu|gpu|both    where to run (default both; without a GPU, both means cpu)

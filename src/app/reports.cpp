@@ -25,15 +25,14 @@ void reportSolveMisses(const Scene& scene, const Solver& solver) {
                      scene.source.c_str(), capped, s.solves, scene.integrator.maxIterations,
                      scene.integrator.tolerance, s.firstMissStep, s.worstResidual);
     if (s.breakdowns > 0)
-        std::fprintf(
-            stderr,
-            "clothsim: %s: warning: %ld of %ld implicit solves broke down before "
-            "|r| <= %g |b| (first at step %ld): p·A p was not positive or a sum was not "
-            "finite, so the preconditioner's output or the state was not finite; those "
-            "steps went on with the last iterate. [%s] Try %s\n",
-            scene.source.c_str(), s.breakdowns, s.solves, scene.integrator.tolerance,
-            s.firstBreakdownStep, solver.name().c_str(),
-            breakdownRemedy(scene, solver.name().find("gpu") != std::string::npos).c_str());
+        std::fprintf(stderr,
+                     "clothsim: %s: warning: %ld of %ld implicit solves broke down before "
+                     "|r| <= %g |b| (first at step %ld): p·A p was not positive or a sum was not "
+                     "finite, so the preconditioner's output or the state was not finite; those "
+                     "steps went on with the last iterate. [%s] Try %s\n",
+                     scene.source.c_str(), s.breakdowns, s.solves, scene.integrator.tolerance,
+                     s.firstBreakdownStep, solver.name().c_str(),
+                     breakdownRemedy(scene, solver).c_str());
 }
 
 void noteUnusedSettings(const Scene& scene) {

@@ -111,10 +111,11 @@ double vbdSweepsPerSecond(const Scene& scene) {
     return scene.integrator.iterations / scene.integrator.dt;
 }
 
-std::string breakdownRemedy(const Scene& scene, bool onGpu) {
+std::string breakdownRemedy(const Scene& scene, const Solver& solver) {
     std::string remedy = scene.integrator.preconditioner == Preconditioner::Jacobi
                              ? "a smaller integrator.dt or softer springs"
                              : "integrator.preconditioner = \"jacobi\"";
+    const bool onGpu = solver.name().find("gpu") != std::string::npos;
     return onGpu ? remedy + " or --backend cpu" : remedy;
 }
 

@@ -62,8 +62,8 @@ InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r);
 
 // What to try where implicit solves broke down (SolveStats::breakdowns: a state or preconditioner
 // output not finite): the block-Jacobi preconditioner, or with it a smaller step or softer
-// springs (a 3×3 block of stiffness 1e20 N/m inverts to inf in float); the CPU where the GPU ran.
-// `integrator.preconditioner = "jacobi" or --backend cpu`.
-std::string breakdownRemedy(const Scene& scene, bool onGpu);
+// springs (a 3×3 block of stiffness 1e20 N/m inverts to inf in float); the CPU where `solver`
+// is the GPU's. `integrator.preconditioner = "jacobi" or --backend cpu`.
+std::string breakdownRemedy(const Scene& scene, const Solver& solver);
 
 }  // namespace cloth

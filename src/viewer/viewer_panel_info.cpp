@@ -93,9 +93,7 @@ void drawDiagnosticsSection(const ViewerSession& session, const ViewerUi& ui) {
         if (s.breakdowns > 0)
             ImGui::TextWrapped("%ld of %ld solves broke down (p.Ap <= 0 or not finite): try %s",
                                s.breakdowns, s.solves,
-                               breakdownRemedy(session.params().scene,
-                                               solver.name().find("gpu") != std::string::npos)
-                                   .c_str());
+                               breakdownRemedy(session.params().scene, solver).c_str());
         ImGui::PopStyleColor();
     }
 }
