@@ -103,6 +103,9 @@ std::vector<std::string> overrides(const std::optional<std::string>& integrator,
             if (!py::isinstance<py::str>(kv[0]))
                 throw py::type_error("set: keys are key paths such as \"material.stretch\", got " +
                                      std::string(py::repr(kv[0])));
+            if (py::len(kv[0]) == 0)
+                throw InputError(source, "set",
+                                 "an empty key: keys are key paths such as \"material.stretch\"");
             items.emplace_back(kv[0].cast<std::string>(),
                                py::reinterpret_borrow<py::object>(kv[1]));
         }

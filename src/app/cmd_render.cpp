@@ -258,7 +258,7 @@ public:
     render::Camera framed(const Solver& solver) {
         renderer_.updateCloth(solver);
         const SimState state = solver.read();
-        return render::framedCamera(renderer_, &state);
+        return render::framedCamera(renderer_, float(o_.width) / float(o_.height), &state);
     }
     void paint(Solver& solver, const std::string& png, const render::Camera& camera) {
         if (!renderer_.updateCloth(solver))

@@ -282,8 +282,15 @@ void GlContext::queryInfo() {
 
 void GlContext::makeCurrent() const {
     if (adopted_ || eglGetCurrentContext() == context_) return;
-    if (!eglMakeCurrent(display_, surface_, surface_, context_))
-        throw GpuUnavailable("eglMakeCurrent failed: " + eglErrorName(eglGetError()));
+    if (eglMakeCurrent(display_, surface_, surface_, context_)) return;
+    const EGLint error = eglGetError();
+    // EGL binds a context to one thread at a time: a GPU solver stays on the thread that made it.
+    if (error == EGL_BAD_ACCESS)
+        throw std::runtime_error(
+            "the GPU solver was called from a thread other than the one that made it (its EGL "
+            "context is current there, and EGL binds a context to one thread): call it from that "
+            "thread");
+    throw GpuUnavailable("eglMakeCurrent failed: " + eglErrorName(error));
 }
 
 std::string GpuInfo::describe() const {

@@ -234,6 +234,17 @@ SdfGrid bakeSdf(const TriMesh& mesh, double cell, double band, const MeshSource&
         lo = glm::min(lo, v);
         hi = glm::max(hi, v);
     }
+    // A cell past half the mesh's largest extent leaves the grid fewer than two cells across the
+    // mesh: the trilinear field (error up to (√3/2)·cell) is then a blur, not the mesh's shape.
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    if (cell > extent / 2) {
+        std::ostringstream why;
+        why.precision(3);
+        why << "the grid cell " << cell << " m leaves fewer than 2 cells across the mesh (its "
+            << "largest extent is " << extent << " m): a cell of at most " << extent / 10
+            << " m resolves its shape";
+        throw InputError(source.file, source.key, why.str());
+    }
     lo -= band;
     hi += band;
     SdfGrid g;

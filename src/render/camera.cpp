@@ -59,11 +59,13 @@ void Camera::zoom(float wheelSteps) {
     distance = std::clamp(distance * std::pow(kZoomPerStep, wheelSteps), 1e-3f, 1e5f);
 }
 
-void Camera::frame(const Bounds& b) {
+void Camera::frame(const Bounds& b, float aspect) {
     if (b.empty()) return;
     target = b.centre();
     const float r = std::max(b.radius(), 1e-2f);
-    distance = 1.0f * r / std::sin(fovY / 2);  // the bounding sphere just fits vertically
+    // A view narrower than tall sees less sideways: tan(fovX / 2) = aspect · tan(fovY / 2).
+    const float halfX = std::atan(std::max(aspect, 1e-3f) * std::tan(fovY / 2));
+    distance = r / std::sin(std::min(fovY / 2, halfX));
 }
 
 Ray Camera::ray(const glm::vec2& ndc, float aspect) const {

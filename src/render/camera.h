@@ -39,8 +39,9 @@ public:
     void orbit(float dxPixels, float dyPixels);
     void pan(float dxPixels, float dyPixels, float height);
     void zoom(float wheelSteps);  // positive: closer
-    // Looks at `b` from the current direction so that it fills the view.
-    void frame(const Bounds& b);
+    // Looks at `b` from the current direction so that it fills a view `aspect` = width / height:
+    // its bounding sphere just fits the narrower of the two fields of view.
+    void frame(const Bounds& b, float aspect);
 
     // The ray through normalised device coordinates (x, y in [−1, 1], y up).
     Ray ray(const glm::vec2& ndc, float aspect) const;

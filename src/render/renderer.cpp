@@ -55,7 +55,8 @@ struct Renderer::Impl {
     GlProgram springs{"render/springs.vert", "render/lines.frag"};
     GlProgram points{"render/points.vert", "render/points.frag"};
 
-    GLuint clothVao = 0, clothIndices = 0, pinIndices = 0, contactIndices = 0, ownPositions = 0, ownNormals = 0;
+    GLuint clothVao = 0, clothIndices = 0, pinIndices = 0, contactIndices = 0, ownPositions = 0,
+           ownNormals = 0;
     GLuint linesVao = 0, linesBuffer = 0;
     GLsizei clothIndexCount = 0, pinCount = 0, contactCount = 0;
     bool clothLines = false;
@@ -106,7 +107,8 @@ Renderer::Impl::Impl() {
 Renderer::Impl::~Impl() {
     const GLuint arrays[] = {clothVao, linesVao};
     glDeleteVertexArrays(2, arrays);
-    const GLuint buffers[] = {clothIndices, pinIndices, contactIndices, ownPositions, ownNormals, linesBuffer};
+    const GLuint buffers[] = {clothIndices, pinIndices, contactIndices,
+                              ownPositions, ownNormals, linesBuffer};
     glDeleteBuffers(5, buffers);
 }
 
@@ -343,11 +345,11 @@ Bounds stateBounds(const SimState& state) {
     return b;
 }
 
-Camera framedCamera(const Renderer& renderer, const SimState* state) {
+Camera framedCamera(const Renderer& renderer, float aspect, const SimState* state) {
     Bounds b = renderer.sceneBounds();
     if (state != nullptr) b.add(stateBounds(*state));
     Camera c;
-    c.frame(b);
+    c.frame(b, aspect);
     return c;
 }
 

@@ -12,8 +12,8 @@
 
 #include "model/collider_pose.h"
 #include "model/scene.h"
-#include "solver/solver.h"
 #include "render/camera.h"
+#include "solver/solver.h"
 
 namespace cloth::render {
 
@@ -75,7 +75,7 @@ private:
 Bounds stateBounds(const SimState& state);
 
 // A camera that frames `renderer`'s scene (and `state`'s cloth, if given) from the default
-// direction.
-Camera framedCamera(const Renderer& renderer, const SimState* state = nullptr);
+// direction, in a view `aspect` = width / height.
+Camera framedCamera(const Renderer& renderer, float aspect, const SimState* state = nullptr);
 
 }  // namespace cloth::render

@@ -76,7 +76,7 @@ std::unique_ptr<ViewerSession> openScene(const Scene& file, const std::optional<
 void showScene(ViewerSession& session, render::Renderer& renderer, ViewerUi& ui) {
     renderer.setScene(session.params().effective());
     renderer.setPins(session.pinnedVertices());
-    ui.homeCamera = render::framedCamera(renderer);
+    ui.homeCamera = render::framedCamera(renderer, float(ui.width) / float(std::max(ui.height, 1)));
     ui.camera = ui.homeCamera;
     ui.resolution[0] = ui.resolution[1] = 0;  // the panel takes the new scene's
 }
@@ -181,6 +181,7 @@ int runViewer(const ViewerOptions& o) {
     ui.sceneFiles = listScenes(ui.sceneDirectory);
     std::unique_ptr<ViewerSession> session = openScene(file, edited, backend);
     auto renderer = std::make_unique<render::Renderer>();
+    layoutView(window, ui);  // the first camera frames the scene for the view's shape
     showScene(*session, *renderer, ui);
     double sampleClock = 0;
 
@@ -210,7 +211,8 @@ int runViewer(const ViewerOptions& o) {
         if (ui.width > 0 && ui.height > 0) drawScene(*session, *renderer, ui);
         if (std::exchange(ui.frameRequested, false) && !session->unstable()) {
             const SimState state = session->solver().read();
-            ui.camera.frame(render::stateBounds(state));
+            ui.camera.frame(render::stateBounds(state),
+                            float(ui.width) / float(std::max(ui.height, 1)));
         }
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -290,5 +290,27 @@ TEST(MeshSdf, ACellTooFineForMemoryOrNotPositiveIsAnInputError) {
     }
 }
 
+// Law: the trilinear field is within (√3/2)·cell of the mesh's distance, so a cell past half the
+// mesh's largest extent (fewer than two cells across it) cannot give its shape: an InputError
+// naming the key, with the cell that would; half the extent itself is still taken.
+TEST(MeshSdf, ACellCoarserThanHalfTheMeshIsAnInputError) {
+    const TriMesh m = unitBox();
+    glm::dvec3 lo(INFINITY), hi(-INFINITY);
+    for (const glm::dvec3& v : m.vertices) {
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+    }
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    EXPECT_NO_THROW(bakeSdf(m, extent / 2, 0.1));
+    try {
+        bakeSdf(m, 10, 0.1, {"s.json", "colliders[0].cell"});
+        ADD_FAILURE() << "a 10 m cell on a mesh of " << extent << " m was taken";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "colliders[0].cell");
+        EXPECT_NE(e.reason().find("fewer than 2 cells across the mesh"), std::string::npos)
+            << e.reason();
+    }
+}
+
 }  // namespace
 }  // namespace cloth

@@ -72,6 +72,9 @@ def test_override_is_validated_like_the_file(root):
     with pytest.raises(clothsim.SceneError) as e:
         clothsim.Simulation(root / "scenes/hanging.json", set={"springs.bend": math.nan})
     assert e.value.key == "springs.bend" and "JSON" in e.value.reason
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(root / "scenes/hanging.json", set={"": 1})
+    assert e.value.key == "set" and "empty key" in e.value.reason
 
 
 def test_overrides_apply(root):
@@ -215,3 +218,28 @@ def test_a_signal_stops_a_long_step_between_its_runs_of_steps(root):
     assert 0 < s.steps < 10**9
     run = min(1000, math.floor(0.1 / s.dt * (1 + 1e-9)))  # solver/instability.h strainCheckSteps
     assert s.steps % run == 0
+
+
+def test_a_gpu_simulation_called_from_another_thread_says_which_thread(gpu, root):
+    """EGL binds a context to one thread: a GPU Simulation called from another thread raises a
+    RuntimeError that says so (not GpuUnavailableError: the GPU is there), and goes on working on
+    the thread that made it."""
+    import threading
+
+    sim = clothsim.Simulation(root / "scenes/spring.json", backend="gpu")
+    sim.step(1)
+    raised = []
+
+    def other():
+        try:
+            sim.step(1)
+        except Exception as e:  # the assertion runs on the main thread
+            raised.append(e)
+
+    t = threading.Thread(target=other)
+    t.start()
+    t.join()
+    assert len(raised) == 1 and type(raised[0]) is RuntimeError, raised
+    assert "thread" in str(raised[0])
+    sim.step(1)
+    assert sim.steps == 2

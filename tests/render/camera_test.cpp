@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace cloth::render {
 namespace {
 
@@ -21,7 +24,7 @@ TEST(Camera, FrameFitsTheBoundsAndOrbitKeepsThePitchBelowVertical) {
     Bounds b;
     b.add({-1, 0, -1});
     b.add({1, 2, 1});
-    c.frame(b);
+    c.frame(b, 1.5f);
     EXPECT_NEAR(glm::length(c.target - glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
     EXPECT_GT(c.distance, b.radius());
     c.orbit(0, 1e6f);
@@ -29,6 +32,29 @@ TEST(Camera, FrameFitsTheBoundsAndOrbitKeepsThePitchBelowVertical) {
     const float d = c.distance;
     c.zoom(1);
     EXPECT_LT(c.distance, d);
+}
+
+// Law: a framed bounding sphere of radius r seen from distance d subtends asin(r / d) each side;
+// it fits a view when that is at most the narrower half field of view. A wide view is limited by
+// fovY, a tall one by fovX, tan(fovX / 2) = aspect · tan(fovY / 2): the sphere then touches the
+// view's sides, and its rays through the view's edges (ndc ±1) just graze it.
+TEST(Camera, FrameFitsTheBoundingSphereInTheNarrowerFieldOfView) {
+    Bounds b;
+    b.add({-1, 0, -1});
+    b.add({1, 2, 1});
+    for (const float aspect : {2.0f, 1.0f, 0.5f, 0.25f}) {
+        Camera c;
+        c.frame(b, aspect);
+        const float halfY = c.fovY / 2, halfX = std::atan(aspect * std::tan(halfY));
+        const float seen = std::asin(b.radius() / c.distance);
+        EXPECT_NEAR(seen, std::min(halfX, halfY), 1e-5f) << "aspect " << aspect;
+        // The ray through the middle of the narrower edge is tangent to the sphere.
+        const Ray edge = c.ray(aspect < 1 ? glm::vec2(1, 0) : glm::vec2(0, 1), aspect);
+        const glm::vec3 toCentre = b.centre() - edge.origin;
+        const float miss =
+            glm::length(toCentre - glm::dot(toCentre, edge.direction) * edge.direction);
+        EXPECT_NEAR(miss, b.radius(), 1e-3f * b.radius()) << "aspect " << aspect;
+    }
 }
 
 TEST(Picking, NearestVertexToTheRayWithinTheAngle) {
