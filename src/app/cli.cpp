@@ -79,6 +79,25 @@ void checkOutputFile(const std::string& flag, const std::string& file) {
         throw InputError("command line", flag, "cannot write '" + file + "': " + target.reason);
 }
 
+void checkDistinctFiles(const std::vector<std::pair<std::string, std::string>>& files) {
+    namespace fs = std::filesystem;
+    std::vector<std::pair<const std::string*, fs::path>> seen;  // flag, the file written
+    for (const auto& [flag, path] : files) {
+        if (path.empty()) continue;
+        const OutputTarget target = resolveOutput(path);
+        if (target.kind != OutputTarget::Kind::Replace) continue;
+        std::error_code ec;
+        fs::path file = fs::weakly_canonical(fs::absolute(target.file), ec);
+        if (ec) continue;  // checkOutputFile or the loader says what is wrong with it
+        for (const auto& [other, earlier] : seen)
+            if (earlier == file)
+                throw InputError("command line", flag,
+                                 "'" + path + "' is the file " + *other + " names (" +
+                                     file.string() + "): give each output a file of its own");
+        seen.emplace_back(&flag, std::move(file));
+    }
+}
+
 void prepareFramesDir(const std::string& flag, const std::string& dir) {
     namespace fs = std::filesystem;
     std::error_code ec;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "model/errors.h"
@@ -38,6 +39,11 @@ private:
 // A file: refused where model/output_file.h would refuse it (a directory, a socket, a folder that
 // does not exist). Nothing for an empty path (the flag was not given).
 void checkOutputFile(const std::string& flag, const std::string& file);
+// A command's files, each (flag, path) with "SCENE" for its input: two that name one file (after
+// ./, .. and symlinks) are refused, naming both, since the later write would replace the
+// earlier output or the scene. Empty paths (flags not given) and devices or FIFOs, which are
+// written through and never replaced, are skipped.
+void checkDistinctFiles(const std::vector<std::pair<std::string, std::string>>& files);
 // --frames DIR: made (with its parents) now, and refused if it is not a writable directory.
 void prepareFramesDir(const std::string& flag, const std::string& dir);
 

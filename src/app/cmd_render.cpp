@@ -309,6 +309,7 @@ int renderCommand(Args& args) {
 #ifdef CLOTH_HAVE_RENDER
     // Before the GL context and the solver: a bad output is refused before anything runs.
     checkOutputFile("--png", o.png);
+    checkDistinctFiles({{"SCENE", o.scenePath}, {"--png", o.png}});
     if (!o.framesDir.empty()) prepareFramesDir("--frames", o.framesDir);
     gpuRenderer();  // makes the EGL context before either solver: the GPU one computes in it
     settleBackendAndSay(o.backend, scene, o.doubleAsked, false);

@@ -246,6 +246,13 @@ int runCommand(Args& args) {
     checkOutputFile("--out-obj", o.obj);
     checkOutputFile("--out-colliders", o.colliders);
     checkOutputFile("--out-solves", o.solves);
+    checkDistinctFiles({{"SCENE", o.scenePath},
+                        {"--out-csv", o.csv},
+                        {"--out-obj", o.obj},
+                        {"--out-pc2", o.pc2},
+                        {"--out-pc2's OBJ at rest", o.pc2.empty() ? "" : pc2ObjPath(o.pc2)},
+                        {"--out-colliders", o.colliders},
+                        {"--out-solves", o.solves}});
     if (!o.solves.empty() && scene.integrator.method != Method::ImplicitEuler)
         throw InputError("command line", "--out-solves",
                          std::string("the scene's integrator ") +

@@ -73,8 +73,11 @@ int viewCommand(Args& args) {
         } else
             args.unknown(f);
     }
+    common.finish();  // --backend gpu --precision double is refused, as run and render refuse it
     checkOutputFile("--screenshot", o.screenshot);
     checkOutputFile("--out-csv", o.outCsv);
+    checkDistinctFiles(
+        {{"SCENE", o.scenePath}, {"--screenshot", o.screenshot}, {"--out-csv", o.outCsv}});
     if (o.frames > 0) o.vsync = false;  // a scripted run need not wait for the display
     o.doubleAsked = common.doubleAsked();
     return runViewer(o);

@@ -142,9 +142,10 @@ void loadRequestedScene(ViewerUi& ui, std::unique_ptr<ViewerSession>& session,
     }
 }
 
-// The screenshot after the last frame (--screenshot), and the panel's when asked.
-void takeScreenshots(ViewerUi& ui, const ViewerOptions& o, bool last) {
-    if (last && !o.screenshot.empty()) saveScreenshot(ui, o.screenshot);
+// The screenshot after the last frame (--screenshot; none of an unstable state, as the exit 3
+// says), and the panel's when asked.
+void takeScreenshots(ViewerUi& ui, const ViewerOptions& o, bool last, bool unstable) {
+    if (last && !unstable && !o.screenshot.empty()) saveScreenshot(ui, o.screenshot);
     if (std::exchange(ui.screenshotRequested, false)) {
         try {
             ui.message = "wrote " + saveScreenshot(ui);
@@ -217,7 +218,7 @@ int runViewer(const ViewerOptions& o) {
         ImGui::Render();
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         const bool last = (o.frames > 0 && frame >= o.frames) || glfwWindowShouldClose(window);
-        takeScreenshots(ui, o, last);
+        takeScreenshots(ui, o, last, session->unstable());
         glfwSwapInterval(ui.vsync ? 1 : 0);
         glfwSwapBuffers(window);
         if (last) break;

@@ -15,7 +15,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "support/process.h"
 
@@ -217,6 +219,42 @@ TEST(OutputTargets, FramesWhereNoDirectoryCanBeMadeIsExitTwoBeforeAnyStep) {
     EXPECT_EQ(r.exitCode, 2) << test::describe(r);
     EXPECT_NE(r.err.find(frames), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "");
+}
+
+// Nothing lost: two outputs naming one file (however the path is written: ./x, a/../x, a
+// symlink), or an output naming the scene, are exit 2 before any step, naming both flags, and
+// every file stays as it was. /dev/null given twice is written through twice, never replaced.
+TEST(OutputTargets, OutputsNamingOneFileOrTheSceneAreExitTwoAndLoseNothing) {
+    const fs::path d = tempDir("one_file");
+    const fs::path scene = d / "scene.json", csv = d / "out.csv";
+    fs::copy_file(kChain, scene);
+    fs::create_directory(d / "sub");
+    fs::create_symlink(csv, d / "link.csv");
+    const std::string text = slurp(scene);
+    { std::ofstream(csv) << "previous\n"; }
+    const std::vector<std::vector<std::string>> cases = {
+        {"--out-csv", scene.string()},
+        {"--out-csv", csv.string(), "--out-obj", (d / "." / "out.csv").string()},
+        {"--out-csv", csv.string(), "--out-solves", (d / "sub" / ".." / "out.csv").string()},
+        {"--out-csv", (d / "link.csv").string(), "--out-colliders", csv.string()},
+        {"--out-pc2", (d / "cache.pc2").string(), "--out-csv", (d / "cache.obj").string()},
+    };
+    for (const std::vector<std::string>& outputs : cases) {
+        std::vector<std::string> command = {kExe, "run", scene.string(), "--steps", "10"};
+        command.insert(command.end(), outputs.begin(), outputs.end());
+        const auto r = runProcess(command, 60);
+        EXPECT_EQ(r.exitCode, 2) << outputs[1] << ": " << test::describe(r);
+        EXPECT_NE(r.err.find("give each output a file of its own"), std::string::npos) << r.err;
+        EXPECT_EQ(r.out, "");
+        EXPECT_EQ(slurp(scene), text);
+        EXPECT_EQ(slurp(csv), "previous\n");
+        EXPECT_FALSE(fs::exists(d / "cache.pc2"));
+    }
+    const auto r = runProcess({kExe, "run", scene.string(), "--steps", "10", "--quiet", "--out-csv",
+                               "/dev/null", "--out-obj", "/dev/null"},
+                              60);
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+    fs::remove_all(d);
 }
 
 }  // namespace

@@ -289,10 +289,10 @@ void viewScreenshot(const std::string& backend, const fs::path& png,
 // exits 3 naming the step, as run does (DESIGN.md §5). Before, it wrote the state and exited 0.
 TEST(ViewerCommand, AnUnstableRunWritesNoStateAndExitsThree) {
     const fs::path d = test::testTempDir();
-    const fs::path csv = d / "unstable.csv";
+    const fs::path csv = d / "unstable.csv", png = d / "unstable.png";
     test::ProcessResult r;
     viewUnderXvfb({kScenes + "chain.json", "--backend", "cpu", "--set", "integrator.dt=0.05",
-                   "--frames", "5", "--out-csv", csv.string()},
+                   "--frames", "5", "--out-csv", csv.string(), "--screenshot", png.string()},
                   3000, r);
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFailure()) return;
     CLOTH_SKIP_IF_NO_GL(r);
@@ -300,6 +300,7 @@ TEST(ViewerCommand, AnUnstableRunWritesNoStateAndExitsThree) {
     EXPECT_NE(r.err.find("unstable at step"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("nothing was written for the unstable state"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(csv));
+    EXPECT_FALSE(fs::exists(png)) << "a screenshot of the unstable state";
     fs::remove_all(d);
 }
 
@@ -315,6 +316,16 @@ TEST(ViewerCommand, HelpAndBadInputNeedNoDisplay) {
         {CLOTH_EXE, "view", kScenes + "drape.json", "--set", "material.air_damping=-1"}, 30);
     EXPECT_EQ(r.exitCode, 2) << test::describe(r);
     EXPECT_NE(r.err.find("material.air_damping"), std::string::npos) << r.err;
+    r = test::runProcess(
+        {CLOTH_EXE, "view", kScenes + "drape.json", "--backend", "gpu", "--precision", "double"},
+        30);
+    EXPECT_EQ(r.exitCode, 2) << "the GPU in double: " << test::describe(r);
+    EXPECT_NE(r.err.find("--precision"), std::string::npos) << r.err;
+    r = test::runProcess({CLOTH_EXE, "view", kScenes + "drape.json", "--screenshot", "s.png",
+                          "--out-csv", "./s.png"},
+                         30);
+    EXPECT_EQ(r.exitCode, 2) << "two outputs in one file: " << test::describe(r);
+    EXPECT_NE(r.err.find("give each output a file of its own"), std::string::npos) << r.err;
     r = test::runProcess({CLOTH_EXE, "view", "--out-csv", "/nonexistent-dir/x.csv"}, 30);
     EXPECT_EQ(r.exitCode, 2) << "an unwritable --out-csv: " << test::describe(r);
     EXPECT_NE(r.err.find("--out-csv"), std::string::npos) << r.err;
