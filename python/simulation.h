@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -80,6 +81,10 @@ template <typename Interrupted>
 void Simulation::step(long n, Interrupted interrupted) {
     if (n < 0)
         throw std::invalid_argument("n: expected a number of steps >= 0, got " + std::to_string(n));
+    if (n > std::numeric_limits<long>::max() - solver_->stepsDone())
+        throw std::invalid_argument("n: " + std::to_string(n) + " steps after " +
+                                    std::to_string(solver_->stepsDone()) +
+                                    " would count past 2^63 - 1");
     const long end = solver_->stepsDone() + n;
     while (solver_->stepsDone() < end) {
         stepChunk(std::min(strainCheckSteps(scene_.integrator.dt), end - solver_->stepsDone()),

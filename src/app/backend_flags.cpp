@@ -10,7 +10,7 @@ bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice
     else if (flag == "--precision")
         choice.precision = parsePrecision(flag, args.value(flag));
     else if (flag == "--threads")
-        choice.threads = int(args.positiveInt(flag));
+        choice.threads = args.positiveInt32(flag);
     else
         return false;
     return true;

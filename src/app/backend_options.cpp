@@ -1,6 +1,7 @@
 #include "app/backend_options.h"
 
 #include <cstdlib>
+#include <filesystem>
 #include <regex>
 
 #include "model/errors.h"
@@ -64,7 +65,14 @@ BackendChoice backendChoiceFromEnvironment() {
 
 GpuSetup gpuSetupFromEnvironment() {
     GpuSetup setup;
-    if (const char* dir = environment("CLOTH_SHADER_DIR")) setup.shaderDir = dir;
+    if (const char* dir = environment("CLOTH_SHADER_DIR")) {
+        std::error_code ec;
+        if (!std::filesystem::is_directory(dir, ec))
+            throw InputError(
+                "", "CLOTH_SHADER_DIR",
+                std::string("'") + dir + "' is not a directory (the project's shaders/)");
+        setup.shaderDir = dir;
+    }
     if (const char* device = environment("CLOTH_EGL_DEVICE")) {
         char* end = nullptr;
         const long index = std::strtol(device, &end, 10);

@@ -68,7 +68,7 @@ bool parseGpuSweepFlag(const std::string& f, Args& args, GpuSweepOptions& o) {
                                                    {"per-step", {StepDispatch::PerStep}},
                                                    {"many-steps", {StepDispatch::ManySteps}}});
     else if (f == "--check-every")
-        o.checkEvery = int(args.positiveInt(f));
+        o.checkEvery = args.positiveInt32(f);
     else if (f == "--pass-times")
         o.passTimes = true;
     else
@@ -99,7 +99,7 @@ bool parseCommonFlag(const std::string& f, Args& args, BenchCommonOptions& o) {
     else if (f == "--label")
         o.label = args.value(f);
     else if (f == "--threads")
-        o.threads = int(args.positiveInt(f));
+        o.threads = args.positiveInt32(f);
     else if (f == "--quick")
         o.quick = true;
     else

@@ -3,10 +3,12 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
 #include "model/errors.h"
 #include "model/output_file.h"
@@ -42,9 +44,15 @@ std::string Args::flag() {
 std::string Args::value(const std::string& f) {
     if (hasPending_) {
         hasPending_ = false;
+        if (pendingValue_.empty()) throw InputError("command line", f, "needs a value, got ''");
         return pendingValue_;
     }
     if (done()) throw InputError("command line", f, "needs a value");
+    const std::string& v = args_[pos_];
+    // A flag where the value should be (`--out-csv --quiet`) is a value forgotten, not a file.
+    if (v.rfind("--", 0) == 0)
+        throw InputError("command line", f, "needs a value; '" + v + "' is the next option");
+    if (v.empty()) throw InputError("command line", f, "needs a value, got ''");
     return args_[pos_++];
 }
 
@@ -56,6 +64,14 @@ long Args::positiveInt(const std::string& f) {
     if (v.empty() || *end != '\0' || errno == ERANGE || n <= 0)
         throw InputError("command line", f, "expected a positive integer, got '" + v + "'");
     return n;
+}
+
+int Args::positiveInt32(const std::string& f) {
+    const long n = positiveInt(f);
+    if (n > std::numeric_limits<std::int32_t>::max())
+        throw InputError("command line", f,
+                         "expected a positive integer below 2^31, got " + std::to_string(n));
+    return int(n);
 }
 
 bool Args::takeScene(std::string& scenePath) {

@@ -20,6 +20,7 @@ public:
     std::string flag();                       // the next flag's name, "--steps"
     std::string value(const std::string& f);  // the flag's value; InputError if missing
     long positiveInt(const std::string& f);
+    int positiveInt32(const std::string& f);  // at most 2^31 − 1, refused beyond
     [[noreturn]] void unknown(const std::string& f) const;
     // Takes the next argument as the scene file when it is not a flag (a second is an error).
     bool takeScene(std::string& scenePath);

@@ -46,7 +46,7 @@ bool parseFlag(const std::string& f, Args& args, Options& o) {
     if (f == "--dt")
         o.dts = parsePositiveList(f, args.value(f));
     else if (f == "--rungs")
-        o.rungs = int(args.positiveInt(f));
+        o.rungs = args.positiveInt32(f);
     else if (f == "--time")
         o.time = parsePositive(f, args.value(f));
     else

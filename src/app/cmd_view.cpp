@@ -59,7 +59,7 @@ int viewCommand(Args& args) {
         if (f == "--no-vsync")
             o.vsync = false;
         else if (f == "--frames")
-            o.frames = int(args.positiveInt(f));
+            o.frames = args.positiveInt32(f);
         else if (f == "--screenshot")
             o.screenshot = args.value(f);
         else if (f == "--out-csv")
@@ -67,9 +67,9 @@ int viewCommand(Args& args) {
         else if (f == "--size") {
             const std::string v = args.value(f);
             if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 64 ||
-                o.height < 64)
+                o.height < 64 || o.width > 16384 || o.height > 16384)
                 throw InputError("command line", f,
-                                 "expected WxH (at least 64x64), got '" + v + "'");
+                                 "expected WxH (64x64 to 16384x16384), got '" + v + "'");
         } else
             args.unknown(f);
     }

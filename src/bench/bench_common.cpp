@@ -134,10 +134,11 @@ Scene loadBenchScene(BenchCommonOptions& o) {
 
 void checkOutputs(const std::string& dir, const std::string& label) {
     if (!isFileNamePart(label))
-        throw InputError("command line", "--label",
-                         "names files in --out: expected a non-empty name without '/', '\\' or "
-                         "control characters, got '" +
-                             label + "'");
+        throw InputError(
+            "command line", "--label",
+            "names files in --out: expected a non-empty name of at most 200 bytes "
+            "without '/', '\\' or control characters, got " +
+                (label.size() > 200 ? std::to_string(label.size()) + " bytes" : "'" + label + "'"));
     outputPath(dir, "");
 }
 

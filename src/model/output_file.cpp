@@ -43,9 +43,11 @@ OutputTarget replaceable(const std::string& file) {
 }  // namespace
 
 bool isFileNamePart(const std::string& part) {
-    return !part.empty() && std::none_of(part.begin(), part.end(), [](char c) {
-        return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
-    });
+    // 200 bytes leave room for the suffixes within a file name's 255 (NAME_MAX).
+    return !part.empty() && part.size() <= 200 &&
+           std::none_of(part.begin(), part.end(), [](char c) {
+               return c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+           });
 }
 
 OutputTarget resolveOutput(const std::string& path) {

@@ -40,8 +40,9 @@ struct OutputTarget {
 OutputTarget resolveOutput(const std::string& path);
 
 // Whether `part` may start a file name inside a folder the user gave (a scene's name in --frames,
-// a bench's --label): not empty, no '/' or '\' that would leave the folder, no control
-// character that would break a line of the files that quote it (the OBJ's object line).
+// a bench's --label): not empty, at most 200 bytes (a file name holds 255 with the suffixes), no
+// '/' or '\' that would leave the folder, no control character that would break a line of the
+// files that quote it (the OBJ's object line).
 bool isFileNamePart(const std::string& part);
 
 class OutputFile {

@@ -257,16 +257,27 @@ TEST(BadArguments, ExitTwo) {
         {kExe, "run", scene, "--no-such-option"},
         {kExe, "run", scene, "--backend", "abacus"},
         {kExe, "run", scene, "--precision", "half"},
+        // A value forgotten: the next flag is not taken as a file named "--quiet", nor '' as
+        // "no output"; a count past an int is not cut to another count.
+        {kExe, "run", scene, "--steps", "3", "--out-csv", "--quiet"},
+        {kExe, "run", scene, "--steps", "3", "--out-csv", ""},
+        {kExe, "run", scene, "--steps", "3", "--out-csv="},
+        {kExe, "run", scene, "--steps", "3", "--threads", "4294967297"},
+        {kExe, "view", scene, "--size", "100000x100000"},
+        {kExe, "run", scene, "--steps", "3", "--set", "name=\"" + std::string(300, 'a') + "\""},
     };
     for (const auto& argv : cases) {
         const ProcessResult r = runProcess(argv, kTimeout);
         std::string line;
-        for (const auto& a : argv) line += a + " ";
+        for (const auto& a : argv) line += (a.size() > 40 ? a.substr(0, 40) + "…" : a) + " ";
         SCOPED_TRACE(line);
         ASSERT_FALSE(r.crashed) << test::describe(r);
         EXPECT_EQ(r.exitCode, 2) << test::describe(r);
         EXPECT_FALSE(r.err.empty()) << "no message";
+        EXPECT_LT(r.err.size(), 400u) << "a message that quotes a whole bad value";
     }
+    const ProcessResult r = runProcess({kExe, "run", scene, "--out-csv", "--quiet"}, kTimeout);
+    EXPECT_NE(r.err.find("'--quiet' is the next option"), std::string::npos) << r.err;
 }
 
 // The GPU computes in float: asking it for double is refused naming --precision (in either

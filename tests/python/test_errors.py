@@ -243,3 +243,13 @@ def test_a_gpu_simulation_called_from_another_thread_says_which_thread(gpu, root
     assert "thread" in str(raised[0])
     sim.step(1)
     assert sim.steps == 2
+
+
+def test_a_step_count_past_the_counter_is_a_value_error(root):
+    """step(n) adds n to the steps done: n that would count past 2^63 - 1 is refused, not
+    wrapped round to a negative end that returns at once."""
+    sim = clothsim.Simulation(root / "scenes/spring.json")
+    sim.step(1)
+    with pytest.raises(ValueError, match="2\\^63"):
+        sim.step(2**63 - 1)
+    assert sim.steps == 1
