@@ -161,8 +161,8 @@ void printModel(const Scene& s) {
                     s.damping > 0 ? "" : " (not modelled)");
     }
     if (s.wind && s.wind->strength != 0)
-        std::printf("             wind %s, K_w = %g N\n", vec(s.wind->direction).c_str(),
-                    s.wind->strength);
+        std::printf("             wind %s, K_w = %g %s\n", vec(s.wind->direction).c_str(),
+                    s.wind->strength, s.material ? "N/m^2 (a pressure)" : "N");
     else
         std::printf("             wind not modelled\n");
     if (s.selfCollision)
