@@ -1,4 +1,6 @@
 // clothsim run SCENE [options]: a headless simulation (DESIGN.md §5).
+#include <sys/stat.h>
+
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -124,6 +126,13 @@ std::optional<Pc2Writer> openPc2(const RunOptions& o, const Scene& scene, long t
                              "; name the cache FILE.pc2");
     checkOutputFile("--out-pc2", o.pc2);
     checkOutputFile("--out-pc2", obj);
+    struct stat st {};
+    if (::stat(o.pc2.c_str(), &st) == 0 && S_ISCHR(st.st_mode))  // /dev/null: OBJ in /dev
+        throw InputError("command line", "--out-pc2",
+                         "'" + o.pc2 +
+                             "' is a device: the cache's OBJ at rest would be made "
+                             "beside it as '" +
+                             obj + "'; name a file");
     const long samples = total / o.every + 1;
     if (samples > std::numeric_limits<std::int32_t>::max())
         throw InputError("command line", "--every",

@@ -43,8 +43,16 @@ int lineOfKey(const std::string& text, size_t n) {
     return 0;
 }
 
+// A document nested deeper than kMaxDepth arrays and objects: a scene needs 5, and a path of a
+// million levels took the parser's callbacks minutes and a message of megabytes.
+constexpr std::size_t kMaxDepth = 64;
+struct TooDeep {
+    std::string path;  // where it went past kMaxDepth
+};
+
 // Follows the parser through the document so that an error inside a value (a number that
-// overflows a double, 1e999) can still name its key path, and refuses a duplicate key.
+// overflows a double, 1e999) can still name its key path, and refuses a duplicate key and a
+// nesting deeper than kMaxDepth.
 class PathTracker {
 public:
     bool operator()(int, Json::parse_event_t event, Json& parsed) {
@@ -89,7 +97,10 @@ private:
         std::string key;
         std::map<std::string, size_t> seen;  // keys of this object so far, with their places
     };
-    void push(bool isArray) { frames_.push_back({isArray, 0, {}, {}}); }
+    void push(bool isArray) {
+        if (frames_.size() >= kMaxDepth) throw TooDeep{path()};
+        frames_.push_back({isArray, 0, {}, {}});
+    }
     void completeElement() {
         if (!frames_.empty() && frames_.back().isArray) ++frames_.back().count;
     }
@@ -112,6 +123,9 @@ Json parseSceneText(const std::string& text, const std::string& source) {
                              (a == b ? "both on line " + std::to_string(a)
                                      : "lines " + std::to_string(a) + " and " + std::to_string(b)) +
                              "); the later would silently replace the earlier");
+    } catch (const TooDeep& d) {
+        throw InputError(source, d.path,
+                         "nested deeper than " + std::to_string(kMaxDepth) + " arrays and objects");
     } catch (const Json::parse_error& e) {
         std::string what = e.what();
         const size_t cut = what.find("] ");  // drop nlohmann's "[json.exception...] " tag

@@ -235,8 +235,9 @@ TEST(PointCache, ChainObjHasEverySegment) {
     EXPECT_EQ(obj.l, (std::vector<std::string>{"l 1/1 2/2", "l 2/2 3/3"}));
 }
 
-// Law: an output that cannot be written, a cache whose OBJ would land on itself or on --out-obj,
-// and --every 0 or without an output are exit 2 naming the flag, before anything is written.
+// Law: an output that cannot be written, a cache whose OBJ would land on itself or on --out-obj
+// or beside a device, and --every 0 or without an output are exit 2 naming the flag, before
+// anything is written.
 TEST(PointCache, BadOutputsAreInvalidInputAndWriteNothing) {
     const fs::path d = test::freshTempDir("point_cache_test", "bad");
     fs::create_directories(d / "dir.pc2");
@@ -247,6 +248,7 @@ TEST(PointCache, BadOutputsAreInvalidInputAndWriteNothing) {
         {{"--out-pc2", (d / "a.pc2").string(), "--out-obj", (d / "a.obj").string()}, "--out-pc2"},
         {{"--out-pc2", (d / "cache.pc2").string(), "--every", "0"}, "--every"},
         {{"--every", "5"}, "--every"},
+        {{"--out-pc2", "/dev/null"}, "is a device"},  // its OBJ would be made as /dev/null.obj
     };
     for (const auto& [extra, flag] : cases) {
         auto args = extra;
@@ -258,6 +260,7 @@ TEST(PointCache, BadOutputsAreInvalidInputAndWriteNothing) {
     }
     // Only the folder the test made: no cache, no OBJ, no temporary file.
     EXPECT_EQ(std::distance(fs::directory_iterator(d), fs::directory_iterator()), 1);
+    EXPECT_FALSE(fs::exists("/dev/null.obj"));
 }
 
 // Law: a run that becomes unstable writes no cache and no OBJ, keeps the previous cache as it

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -144,6 +145,26 @@ TEST(ParseScene, DuplicateKeyInsideListsAndOverridesNamesItsPath) {
         "colliders": [{"type": "sphere", "center": [0, 0, 0], "radius": 1},
                       {"type": "sphere", "center": [0, 0, 0], "radius": 2}]})",
                                "mem.json"));
+}
+
+// A document nested past 64 arrays and objects is refused where it goes past, naming the path
+// so far, in time linear in the text: a million levels (2 MB) once took 77 s and gave a 3 MB
+// message. 64 levels still parse (to the loader's own complaint about the key).
+TEST(ParseScene, NestingPastSixtyFourLevelsIsRefusedWithoutQuadraticWork) {
+    const int depth = 1000000;
+    const std::string deep =
+        "{\"cloth\": " + std::string(depth, '[') + "1e999" + std::string(depth, ']') + "}";
+    const auto start = std::chrono::steady_clock::now();
+    const InputError e = parseError(deep);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_NE(e.reason().find("nested deeper than 64"), std::string::npos) << e.reason();
+    EXPECT_EQ(e.key().rfind("cloth[0]", 0), 0u) << e.key();
+    EXPECT_LT(std::string(e.what()).size(), 1000u);
+    EXPECT_LT(seconds, 2.0);
+    const InputError shallow =
+        parseError("{\"cloth\": " + std::string(63, '[') + "1" + std::string(63, ']') + "}");
+    EXPECT_EQ(shallow.reason().find("nested"), std::string::npos) << shallow.reason();
 }
 
 // ---- derived quantities that overflow although every key is in range --------------------
