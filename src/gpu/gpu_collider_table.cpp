@@ -255,6 +255,15 @@ std::vector<glm::vec4> ColliderTable::poseBatch(
 }
 
 void ColliderTable::checkFits(long long maxBytes, const std::string& source) const {
+    // The kernels unroll one call per collider (COLLIDERS_IN_SCENE_ORDER): past this many,
+    // building them takes seconds per collider and gigabytes of the driver's memory (20,000
+    // spheres held 11.5 GB after two minutes on llvmpipe).
+    constexpr std::size_t kMaxColliders = 64;
+    if (entries_.size() > kMaxColliders)
+        throw InputError(source, "colliders",
+                         std::to_string(entries_.size()) + " colliders: the GPU backend builds " +
+                             "each into its kernels and takes at most " +
+                             std::to_string(kMaxColliders) + "; use --backend cpu");
     const long long bytes = (long long)(vec4Count() * kVec4Bytes);
     if (bytes <= maxBytes) return;
     std::string key = "colliders";

@@ -72,8 +72,9 @@ public:
     std::vector<glm::vec4> poseBatch(long first, const std::function<double(long)>& timeOf,
                                      const std::vector<std::optional<ColliderDrag>>& drags) const;
 
-    // InputError when the block exceeds `maxBytes` (one SSBO binding): naming the key
-    // colliders[n].cell of the mesh with the most samples (colliders otherwise).
+    // InputError when the scene has more than 64 colliders (the kernels unroll each), or when
+    // the block exceeds `maxBytes` (one SSBO binding): naming the key colliders[n].cell of the
+    // mesh with the most samples (colliders otherwise).
     void checkFits(long long maxBytes, const std::string& source) const;
 
 private:

@@ -29,10 +29,6 @@ using Clock = std::chrono::steady_clock;
 
 // Room for this many pins before setPinned has to grow the table.
 constexpr std::size_t kMinPinCapacity = 16;
-// The kernels unroll one call per collider (COLLIDERS_IN_SCENE_ORDER): past this many, building
-// them takes seconds per collider and gigabytes of the driver's memory (20,000 spheres held
-// 11.5 GB after two minutes on llvmpipe; 100 took 4.6 s and 146 MB).
-constexpr std::size_t kMaxGpuColliders = 64;
 
 // The scene's kernels (kernelsOf its integrator, and many_steps.comp when `manyStepsGroup` > 0)
 // with the variant's defines; none leaks if a later one fails to build.
@@ -40,12 +36,6 @@ std::array<unsigned, kKernelCount> buildPrograms(const Scene& scene, WorkGroup w
                                                  ForcesKernel forces, int manyStepsGroup,
                                                  const std::vector<bool>& dragged,
                                                  int storageBlockLimit, int multigridChunks) {
-    if (scene.colliders.size() > kMaxGpuColliders)
-        throw InputError(scene.source, "colliders",
-                         std::to_string(scene.colliders.size()) +
-                             " colliders: the GPU backend "
-                             "builds each into its kernels and takes at most " +
-                             std::to_string(kMaxGpuColliders) + "; use --backend cpu");
     const ShaderDirectory dir = findShaderDirectory();
     namespace fs = std::filesystem;
     std::error_code ec;

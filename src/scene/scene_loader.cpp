@@ -315,12 +315,8 @@ Scene SceneReader::read(const Json& doc) {
             fail("name", "expected a string, got " + describe(doc["name"]));
         scene.name = doc["name"].get<std::string>();
         if (!isFileNamePart(scene.name))  // it names the --frames files and the OBJ's object
-            fail("name",
-                 "names files: expected at most 200 bytes without '/', '\\' or control "
-                 "characters, got " +
-                     (scene.name.size() > 200
-                          ? "a name of " + std::to_string(scene.name.size()) + " bytes"
-                          : describe(doc["name"])));
+            fail("name", "names files: 1-200 bytes, no '/', '\\' or control characters; got " +
+                             describe(doc["name"]));
     }
     readCloth(required(doc, "cloth", ""), scene.cloth);
     if (doc.contains("material")) {
