@@ -128,7 +128,19 @@ InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r) {
         return {"dt is inside the predicted stability bound: the cloth is too soft for the load; " +
                     stiffenOrRaise(scene),
                 std::nullopt};
-    return {stabilityAdvice(scene), suggestedDt(scene)};
+    // Half the bound at or above the step that failed: a smaller step is not the cure (a wind of
+    // 1e300, a max_speed of 5e-324), and the advice must not offer a larger one.
+    const std::optional<double> dt = suggestedDt(scene);
+    if (dt && *dt >= scene.integrator.dt) {
+        char buf[300];
+        std::snprintf(buf, sizeof buf,
+                      "dt = %.3g s is already within half the predicted stability bound (%.3g s): "
+                      "a smaller step is not the cure; look for a force or size far outside a "
+                      "cloth's (wind.strength, max_speed, cloth.size, the springs)",
+                      scene.integrator.dt, 2 * *dt);
+        return {buf, std::nullopt};
+    }
+    return {stabilityAdvice(scene), dt};
 }
 
 }  // namespace cloth
