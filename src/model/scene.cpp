@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "model/errors.h"
+
 namespace cloth {
 
 const char* methodName(Method m) {
@@ -190,6 +192,11 @@ double Scene::springDamping() const {
 }
 
 long Scene::defaultSteps() const {
+    // Checked here, where the duration is used: a run given its steps (--steps, Python) does not
+    // need the duration's count of them.
+    if (!(duration / integrator.dt <= 1e12))
+        throw InputError(source, "duration",
+                         "needs more than 1e12 steps of integrator.dt; give the run --steps");
     return std::max(1L, std::lround(duration / integrator.dt));
 }
 

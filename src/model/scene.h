@@ -232,7 +232,8 @@ struct Scene {
     // "Spring damping"); 0 (and always in the per-vertex form): not modelled.
     double springDamping() const;
 
-    long defaultSteps() const;  // round(duration / dt), at least 1
+    // round(duration / dt), at least 1; InputError (key duration) past 1e12 steps.
+    long defaultSteps() const;
     int planeCount() const;
     int sphereCount() const;
     template <typename S>

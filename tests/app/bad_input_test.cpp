@@ -280,6 +280,20 @@ TEST(BadArguments, ExitTwo) {
     EXPECT_NE(r.err.find("'--quiet' is the next option"), std::string::npos) << r.err;
 }
 
+// The duration's count of steps is checked where the duration is used: past 1e12 steps a run
+// without --steps is exit 2 naming duration; with --steps it runs.
+TEST(BadArguments, TheDurationsStepsAreCheckedOnlyWhereTheDurationIsUsed) {
+    const std::string scene = kGoodScene.string();
+    ProcessResult r = runProcess(
+        {kExe, "run", scene, "--set", "duration=1e9", "--set", "integrator.dt=1e-5"}, kTimeout);
+    EXPECT_EQ(r.exitCode, 2) << test::describe(r);
+    EXPECT_NE(r.err.find("duration: needs more than 1e12 steps"), std::string::npos) << r.err;
+    r = runProcess({kExe, "run", scene, "--set", "duration=1e9", "--set", "integrator.dt=1e-5",
+                    "--steps", "3", "--quiet"},
+                   kTimeout);
+    EXPECT_EQ(r.exitCode, 0) << test::describe(r);
+}
+
 // The GPU computes in float: asking it for double is refused naming --precision (in either
 // order of the flags, for run and render), never computed in float silently; float is accepted.
 TEST(BadArguments, GpuInDoubleIsRefused) {
