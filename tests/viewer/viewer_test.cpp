@@ -321,6 +321,10 @@ TEST(ViewerCommand, HelpAndBadInputNeedNoDisplay) {
         30);
     EXPECT_EQ(r.exitCode, 2) << "the GPU in double: " << test::describe(r);
     EXPECT_NE(r.err.find("--precision"), std::string::npos) << r.err;
+    r = test::runProcess({CLOTH_EXE, "view", kScenes + "drape.json", "--size", "100000x100000"},
+                         30);
+    EXPECT_EQ(r.exitCode, 2) << "past 16384 px: " << test::describe(r);
+    EXPECT_NE(r.err.find("--size"), std::string::npos) << r.err;
     r = test::runProcess({CLOTH_EXE, "view", kScenes + "drape.json", "--screenshot", "s.png",
                           "--out-csv", "./s.png"},
                          30);
