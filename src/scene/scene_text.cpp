@@ -43,8 +43,8 @@ int lineOfKey(const std::string& text, size_t n) {
     return 0;
 }
 
-// A document nested deeper than kMaxDepth arrays and objects: a scene needs 5, and a path of a
-// million levels took the parser's callbacks minutes and a message of megabytes.
+// A document nested deeper than kMaxDepth arrays and objects: a scene needs a handful, and a
+// path of a million levels took the parser's callbacks minutes and a message of megabytes.
 constexpr std::size_t kMaxDepth = 64;
 struct TooDeep {
     std::string path;  // where it went past kMaxDepth
