@@ -1,6 +1,7 @@
 // implicit_euler with contacts in the solve (docs/integrators.md, "Contact in the solve"): the
-// solve's first guess Δv₀ = S Δv + z n, from the last step's solution Δv, or from 0 where that
-// was no better (cg.fromZero), and the contact's fixed velocity change z n. cg_warm_start.comp
+// solve's first guess Δv₀ = S Δv + the fixed part, from the last step's solution Δv, or from 0
+// where that was no better (cg.fromZero), and the contact's fixed velocity change (z n, and a
+// held contact's hold). cg_warm_start.comp
 // then forms A Δv₀ and |S (b − A Δv₀)|².
 #include "layout.glsl"
 #include "common.glsl"
@@ -12,7 +13,7 @@ void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (ij.x >= gridU() || ij.y >= gridV()) return;
     uint k = vertexIndex(ij);
-    vec4 c = cgContacts[k];  // 0 on pinned rows, whose Δv is 0
+    // 0 on pinned rows, whose Δv is 0
     vec3 dv = cg.fromZero != 0u ? vec3(0.0) : cgVelocityChange[k].xyz;
-    cgVelocityChange[k] = vec4(filterContact(k, dv) + c.w * c.xyz, 0.0);
+    cgVelocityChange[k] = vec4(filterContact(k, dv) + fixedChange(k), 0.0);
 }

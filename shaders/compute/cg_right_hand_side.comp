@@ -4,7 +4,7 @@
 // b's terms), the last solution Δv₀ held 0 on pinned rows
 // (the warm start's product reads it next), and with PRECONDITIONER_JACOBI the inverted diagonal
 // blocks of A. Pinned rows are 0. With contacts in the solve (solve_contact.glsl) also each
-// vertex's contact, predicted through the colliders at the end of step uStep, the friction's
+// vertex's contact, predicted through the colliders at the end of step uStep, and the friction's
 // impulse in b.
 #include "layout.glsl"
 #include "common.glsl"
@@ -16,22 +16,40 @@
 layout(location = 2) uniform uint uStep;
 #include "scene_colliders.glsl"
 
-// The contact of a free vertex at (x, v) (src/model/solve_contact.h predictContact): the
-// prediction p* = x + h v*, v* = v + h g through the colliders; pushed out by d ≠ 0, n = d/|d|
-// and z = ⟨n, p' − x⟩/h − ⟨n, v⟩ into cgContacts. Returns the friction's velocity change
-// S (v' − v*).
-vec3 predictContact(uint k, vec3 x, vec3 v) {
-    float h = params.dt;
+#include "coulomb.glsl"
+
+// The contact of a free vertex of mass m at (x, v) (src/model/solve_contact.h predictContact):
+// the prediction p* = x + h v*, v* = v + h g through the colliders; pushed out by d ≠ 0,
+// n = d/|d| and z = ⟨n, p' − x⟩/h − ⟨n, v⟩, and by the grip of the last step either the hold
+// (held) or the friction (sliding, new) and whether it stuck, into cgContacts. Returns the
+// friction's velocity change.
+vec3 predictContact(uint k, vec3 x, vec3 v, float m) {
+    float h = params.dt, grip = cgContacts[3u * k + 1u].w;
     vec3 vStar = v + h * params.gravity, pStar = x + h * vStar;
     vec3 p = pStar, w = vStar;
     applyColliders(uStep, p, w);
     vec3 d = p - pStar;
     float len = length(d);
-    cgContacts[k] = vec4(0.0);
+    cgContacts[3u * k] = vec4(0.0);
+    cgContacts[3u * k + 1u] = vec4(0.0);
+    cgContacts[3u * k + 2u] = vec4(0.0);
     if (!(len > 0.0)) return vec3(0.0);
     vec3 n = d / len;
-    cgContacts[k] = vec4(n, dot(n, p - x) / h - dot(n, v));
-    return filterContact(k, w - vStar);
+    float z = dot(n, p - x) / h - dot(n, v);
+    cgContacts[3u * k] = vec4(n, z);
+    vec3 slide = vStar - n * dot(n, vStar), vc = colliderSurfaceVelocity(uStep, pStar);
+    vec3 still = vc - n * dot(n, vc);
+    if (grip < 0.0) {
+        cgContacts[3u * k + 1u] = vec4(still - (v - n * dot(n, v)), grip);
+        return vec3(0.0);
+    }
+    vec3 kept = grip > 0.0 ? coulomb(pStar, n, slide, grip / m) : w - n * dot(n, w);
+    // Held next where the response took its static branch (v_c exactly) and the vertex did not
+    // already move with the surface.
+    bool stuck = kept == still && slide != still;
+    cgContacts[3u * k + 1u] = vec4(0.0, 0.0, 0.0, grip);
+    cgContacts[3u * k + 2u].w = stuck ? 1.0 : 0.0;
+    return kept - slide;
 }
 #endif
 
@@ -72,12 +90,13 @@ void main() {
             float m = 1.0 / x.w;  // m_k [kg]
             b = h * (forces[k].xyz + m * (params.gravity - params.dampingRate * v) - h * hv);
 #ifdef HAS_SOLVE_CONTACTS
-            b += m * predictContact(k, x.xyz, v);
+            b += m * predictContact(k, x.xyz, v, m);
+            cgContacts[3u * k + 2u].xyz = b;
 #endif
         } else {
             cgVelocityChange[k] = vec4(0.0);  // a new pin: the last solution moved it
 #ifdef HAS_SOLVE_CONTACTS
-            cgContacts[k] = vec4(0.0);
+            for (uint c = 0u; c < 3u; ++c) cgContacts[3u * k + c] = vec4(0.0);
 #endif
         }
         cgResidual[k] = vec4(b, 0.0);

@@ -84,10 +84,13 @@ void main() {
 #ifdef HAS_SOLVE_CONTACTS
     // A contact in the solve as a stiff normal spring, 10 times the mean diagonal
     // (src/cpu/cpu_multigrid.h kContactPenalty says why).
-    dvec3 normal = dvec3(cgContacts[k].xyz);
-    if (normal != dvec3(0.0lf))
-        centre += (1e1lf * (centre[0][0] + centre[1][1] + centre[2][2]) / 3.0lf) *
-                  outerProduct(normal, normal);
+    // A held one is fixed in every direction.
+    dvec3 normal = dvec3(cgContacts[3u * k].xyz);
+    double penalty = 1e1lf * (centre[0][0] + centre[1][1] + centre[2][2]) / 3.0lf;
+    if (contactHeld(k))
+        centre += dmat3(penalty);
+    else if (normal != dvec3(0.0lf))
+        centre += penalty * outerProduct(normal, normal);
 #endif
     storeBlock(blockAt(0, k, stencilSlot(0, 0)), centre);
 }

@@ -145,3 +145,36 @@ void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
 #endif
     COLLIDERS_IN_SCENE_ORDER
 }
+
+#ifdef HAS_SOLVE_CONTACTS
+// The velocity v_c of the surface that touches p last in scene order, the colliders applied as
+// applyColliders does (CpuColliders::surfaceVelocity): 0 for a still one, or where none touches.
+vec3 colliderSurfaceVelocity(uint step, vec3 p) {
+#ifdef HAS_MOVING_COLLIDERS
+    int pose = poseSlot(step);
+#endif
+    vec3 vel = vec3(0.0), vc = vec3(0.0), before;
+#undef PLANE
+#undef SPHERE
+#undef STILL
+#undef MOVING
+#ifdef HAS_PLANES
+#define PLANE(r) before = p; respondPlane(colliders[r].xyz, colliders[(r) + 1].xyz, p, vel); \
+    if (p != before) vc = vec3(0.0);
+#endif
+#ifdef HAS_SPHERES
+#define SPHERE(r) before = p; \
+    respondSphere(colliders[r].xyz, colliders[r].w, 0.0, 0.0, vec3(0.0), p, vel); \
+    if (p != before) vc = vec3(0.0);
+#endif
+#ifdef HAS_CONTACT
+#define STILL(fn, r) before = p; fn(r, vec3(0.0), p, vel); if (p != before) vc = vec3(0.0);
+#endif
+#ifdef HAS_MOVING_COLLIDERS
+#define MOVING(fn, r, w) before = p; { vec3 u = colliderVelocity(w, p); fn(r, u, p, vel); \
+    if (p != before) vc = u; }
+#endif
+    COLLIDERS_IN_SCENE_ORDER
+    return vc;
+}
+#endif

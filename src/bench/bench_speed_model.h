@@ -41,7 +41,8 @@ inline constexpr const char* kTrafficModel =
 // and keeps no forces) or the forces (the other integrators), and the pinned flag (1 byte); rk4
 // adds x0, v0, ΣX, ΣV and implicit Euler its CG vectors dv, r, p, Ap (4 vec3 each; with the
 // block-Jacobi preconditioner z and the inverted diagonal block, a vec3 and 6 scalars; with
-// colliders its contacts in the solve, a vec3 and a scalar), vbd the
+// colliders its contacts in the solve, 12 scalars: n, z, hold, b, grip and two flags padded),
+// vbd the
 // step's start, the inertial target and the previous velocity (Chebyshev's two iterates and,
 // with a material's bending, its Hessian diagonal, one scalar, are not counted), and the
 // inverse mass 1/m_k (one scalar per vertex); with row kernels vbd keeps the copy its kernel
@@ -56,7 +57,7 @@ inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
     if (method == Method::Vbd) vectors += 2;  // x_n, y, v_{n−1} in place of the forces
     std::size_t scalars = vectors * 3 + 1;
     if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
-    if (method == Method::ImplicitEuler && colliders) scalars += 4;
+    if (method == Method::ImplicitEuler && colliders) scalars += 12;
     const bool phases = method == Method::Vbd && rowKernels;
     if (phases) scalars += 3 * 3 + 1;
     return scalars * scalar + (phases ? 2 : 1);

@@ -57,6 +57,19 @@ public:
         for (const CpuCollider<T>& c : posed_)
             std::visit([&](const auto& s) { applyOne(c, s, p, v); }, c.shape);
     }
+    // The velocity v_c of the surface that touches p last, p moved by each collider as apply()
+    // moves it: 0 for a still one, or where none touches.
+    Vec3<T> surfaceVelocity(Vec3<T> p) const {
+        Vec3<T> vc(0), v(0);
+        for (const CpuCollider<T>& c : posed_)
+            std::visit(
+                [&](const auto& s) {
+                    const Vec3<T> u = c.velocityAt(p);
+                    if (collide(s, c.params, u, p, v)) vc = u;
+                },
+                c.shape);
+        return vc;
+    }
     // The same on the n vertices of a row of positions x and velocities v; planes and spheres
     // through the row kernels (the same bits, vectorised).
     void applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;

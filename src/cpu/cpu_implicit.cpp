@@ -83,9 +83,10 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     const bool multigrid = preconditioner_ == Preconditioner::Multigrid;
     const bool contacts = !contacts_.empty();
     auto filtered = [&](std::int64_t k, const Vec3<T>& w) {
-        return contacts ? filterContact(contacts_[std::size_t(k)].normal, w) : w;
+        return contacts ? filterContact(contacts_[std::size_t(k)], w) : w;
     };
     const auto collide = [this](Vec3<T>& p, Vec3<T>& w) { colliders_.apply(p, w); };
+    const auto surface = [this](const Vec3<T>& p) { return colliders_.surfaceVelocity(p); };
     // r = b: Hv first (v of the neighbours is the previous step's, already complete).
     stiffnessProduct(grid_.nu, grid_.nv, springs_, x_, v_, pinned_.data(), ap_.data(), band.begin,
                      band.end, bending_);
@@ -99,8 +100,11 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         if (pinned_[k]) dv_[k] = Vec3<T>(0);  // a new pin: the last solution moved it
         if (contacts) {
             SolveContact<T>& c = contacts_[std::size_t(k)];
-            c = {};
-            if (!pinned_[k]) b += m * predictContact(x_.get(k), v_.get(k), gravity_, h, collide, c);
+            if (pinned_[k])
+                c = {};
+            else
+                b += m * predictContact(x_.get(k), v_.get(k), gravity_, h, m, collide, surface, c);
+            c.load = b;
         }
         r_[k] = b;
         if (jacobi) blockInverse_[k] = pinned_[k] ? Sym3<T>{} : a.diagonal(k).inverse();
@@ -131,10 +135,10 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     });
     const bool fromZero = !(warm < bb);
     if (contacts) {
-        // Δv₀ = S Δv (or 0) + z n on every contact, then r = S (b − A Δv₀).
+        // Δv₀ = S Δv (or 0) + the fixed part on every contact, then r = S (b − A Δv₀).
         for (std::int64_t k = band.begin; k < band.end; ++k) {
             const SolveContact<T>& c = contacts_[std::size_t(k)];
-            dv_[k] = filterContact(c.normal, fromZero ? Vec3<T>(0) : dv_[k]) + c.speed * c.normal;
+            dv_[k] = filterContact(c, fromZero ? Vec3<T>(0) : dv_[k]) + fixedChange(c);
         }
         team.sync();  // the product reads the neighbours' Δv₀
         a.apply(dv_.data(), ap_.data(), band.begin, band.end);
@@ -201,6 +205,20 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     if (&band == &bands_[0])
         solveStats_.record(stepNumber, it, bb > 0 ? std::sqrt(rr / bb) : 0.0, rr <= goal,
                            !(rr <= goal) && it < maxIterations_);
+    if (contacts) {
+        // Each contact's impulse J = (A Δv)_k − b_k sets its grip for the next step; A Δv
+        // unfiltered, over the neighbours' final Δv.
+        team.sync();
+        ImplicitSystem<T, Soa3<T>> unfiltered = a;
+        unfiltered.contacts = nullptr;
+        unfiltered.apply(dv_.data(), ap_.data(), band.begin, band.end);
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            SolveContact<T>& c = contacts_[std::size_t(k)];
+            c.grip = nextGrip(c, x_.get(k), v_.get(k), gravity_, h,
+                              T(1) / inverseMass_[std::size_t(k)], ap_[k], collide);
+        }
+        team.sync();  // the finish below writes x, which the other bands' products read
+    }
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const Vec3<T> v = v_.get(k) + dv_[k];
         if (!finishStep(band, k, x_.get(k) + h * v, v)) return false;

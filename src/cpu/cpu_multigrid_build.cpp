@@ -247,7 +247,14 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
             const Vec3<S> n(fine.contacts[k].normal);
             if (fine.pinned[k] || n == Vec3<S>(0)) continue;
             Sym3<S>& d = level.symmetric[level.at(k, stencilSlot(0, 0))];
-            d.addOuter(kContactPenalty * (d.xx + d.yy + d.zz) / 3, n);
+            const S penalty = kContactPenalty * (d.xx + d.yy + d.zz) / 3;
+            if (fine.contacts[k].held) {  // fixed in every direction
+                d.xx += penalty;
+                d.yy += penalty;
+                d.zz += penalty;
+            } else {
+                d.addOuter(penalty, n);
+            }
         }
     }
     threads.sync();

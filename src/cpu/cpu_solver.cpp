@@ -167,8 +167,10 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
     colliders_.take(scene);
     // implicit_euler's contacts in the solve: only a scene with colliders has any.
-    if (method_ == Method::ImplicitEuler)
-        contacts_.assign(colliders_.empty() ? 0 : std::size_t(grid_.count()), SolveContact<T>{});
+    // The grips they keep from step to step survive a change of parameters.
+    const std::size_t contacts = colliders_.empty() ? 0 : std::size_t(grid_.count());
+    if (method_ == Method::ImplicitEuler && contacts_.size() != contacts)
+        contacts_.assign(contacts, SolveContact<T>{});
     if (scene.selfCollision) {
         if (!self_.active()) {
             self_ = CpuSelfCollision<T>(grid_, *scene.selfCollision);
@@ -222,9 +224,10 @@ void CpuSolver<T>::startAfresh(double time) {
     Solver::setTime(time);
     forcesValid_ = false;
     std::fill(dv_.begin(), dv_.end(), Vec3<T>(0));  // no last solution to start from
-    vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor
-    if (self_.active()) selfStart_ = x_;            // the next step starts from here
-    for (Band& b : bands_) {                        // a written state starts afresh, as on the GPU
+    std::fill(contacts_.begin(), contacts_.end(), SolveContact<T>{});  // nor grips
+    vbdHistoryFrom_ = steps_ + 2;         // the written velocities have no predecessor
+    if (self_.active()) selfStart_ = x_;  // the next step starts from here
+    for (Band& b : bands_) {              // a written state starts afresh, as on the GPU
         b.badVertex = -1;
         b.reason.clear();
     }

@@ -46,8 +46,8 @@ enum Binding : unsigned {
     // fixed-point sums, the header); any integrator's scene may declare it.
     kSelfVectors = 15,
     kSelfInts = 16,
-    // implicit_euler with colliders: the contacts in the solve (solve_contact.glsl), (n, z) per
-    // vertex.
+    // implicit_euler with colliders: the contacts in the solve (solve_contact.glsl), three vec4
+    // per vertex: (n, z), (hold, grip), (b, stuck).
     kCgContacts = 17,
     // Step control (step_check.comp), any integrator's scene that declares it: the kept
     // positions, the kept velocities (n vec4 each), then each work group's largest stretch

@@ -18,10 +18,11 @@ using gpu::kVec4;
 // one number names different buffers (kCgPartials is kVbdBeforeLast): the size goes with the
 // binding in the integrator's list, never from the number alone.
 enum class Contents {
-    PerVertex,     // one vec4 per vertex, zeros
-    TwoPerVertex,  // two vec4 per vertex (the block-Jacobi inverses)
-    Partials,      // two floats per work group of the grid dispatch, in whole vec4s
-    CgState,       // one gpu::CgState
+    PerVertex,       // one vec4 per vertex, zeros
+    TwoPerVertex,    // two vec4 per vertex (the block-Jacobi inverses)
+    ThreePerVertex,  // three vec4 per vertex (the contacts in the solve)
+    Partials,        // two floats per work group of the grid dispatch, in whole vec4s
+    CgState,         // one gpu::CgState
 };
 struct IntegratorBuffer {
     gpu::Binding binding;
@@ -46,7 +47,7 @@ std::vector<IntegratorBuffer> integratorBuffers(Method m, Preconditioner p, bool
                                                 {gpu::kCgState, Contents::CgState}};
             if (p == Preconditioner::Jacobi)
                 cg.push_back({gpu::kCgInverse, Contents::TwoPerVertex});
-            if (contacts) cg.push_back({gpu::kCgContacts});
+            if (contacts) cg.push_back({gpu::kCgContacts, Contents::ThreePerVertex});
             return cg;
         }
         case Method::Vbd:
@@ -80,6 +81,9 @@ void GpuSolver::allocateIntegratorBuffers() {
                 break;
             case Contents::TwoPerVertex:
                 bufferData(buffer, nullptr, 2 * n * kVec4);
+                break;
+            case Contents::ThreePerVertex:
+                bufferData(buffer, nullptr, 3 * n * kVec4);
                 break;
             case Contents::Partials: {
                 const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);

@@ -50,9 +50,12 @@ void GpuSolver::startAfresh(double time) {
     vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor
     posedFrom_ = posedTo_ = 0;                      // posed again at the (new) time
     if (features_.selfCollision) storeSelfStart();  // the next step starts here
-    if (method_ == Method::ImplicitEuler) {         // no last solution to start from, as on the CPU
-        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[gpu::kCgVelocityChange]);
-        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
+    if (method_ == Method::ImplicitEuler) {  // no last solution to start from, nor grips, as on
+        for (gpu::Binding b : {gpu::kCgVelocityChange, gpu::kCgContacts}) {  // the CPU
+            if (b == gpu::kCgContacts && scene_.colliders.empty()) continue;
+            glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[b]);
+            glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
+        }
     }
     // A written state starts afresh: an earlier instability no longer freezes the kernels.
     const gpu::Status status = gpu::kStable;

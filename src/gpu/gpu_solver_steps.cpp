@@ -135,6 +135,7 @@ void GpuSolver::stepImplicit(long stepNumber) {
     }
     runReduction(gpu::kReduceStartDirection);
     recordSolve(stepNumber, solve());
+    if (contacts) runStepPass(Kernel::CgGrip, stepNumber);  // reads x_n, which the finish writes
     runStepPass(Kernel::ImplicitFinish, stepNumber);
 }
 

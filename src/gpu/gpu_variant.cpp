@@ -269,6 +269,7 @@ const char* kernelFile(Kernel k) {
                                                          "compute/self_apply.comp",
                                                          "compute/self_finish.comp",
                                                          "compute/cg_contact_start.comp",
+                                                         "compute/cg_grip.comp",
                                                          "compute/step_check.comp"};
     return kFiles[int(k)];
 }
@@ -284,6 +285,7 @@ std::vector<Kernel> kernelsOf(Method m, Preconditioner p, bool contacts) {
     if (m == Method::ImplicitEuler && contacts) {
         std::vector<Kernel> kernels = kernelsOf(m, p);
         kernels.push_back(Kernel::CgContactStart);
+        kernels.push_back(Kernel::CgGrip);
         return kernels;
     }
     if (m == Method::ImplicitEuler && p == Preconditioner::Multigrid) {

@@ -85,7 +85,8 @@ enum class Kernel {
     SelfApply,       // the mean correction, the colliders
     SelfFinish,      // the state, the velocities, the next step's start
     // implicit_euler with colliders (contacts in the solve, solve_contact.glsl):
-    CgContactStart,  // Δv₀ = S Δv + z n
+    CgContactStart,  // Δv₀ = S Δv + the contacts' fixed part
+    CgGrip,          // after the solve: each contact's grip for the next step
     // Step control (solver/step_check.h), when the scene declares it:
     StepCheck,  // each work group's largest growth of a structural spring's stretch
 };

@@ -71,7 +71,7 @@ struct ImplicitSystem {
             out[grabVertex] += h2 * grabStiffness * p[grabVertex];
         if (contacts)
             for (std::int64_t k = begin; k < end; ++k)
-                out[k] = filterContact(contacts[k].normal, out[k]);
+                out[k] = filterContact(contacts[k], out[k]);
     }
 
     // The 3×3 block A_kk of vertex k = (i, j), not pinned.

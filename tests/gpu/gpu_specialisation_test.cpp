@@ -175,7 +175,7 @@ TEST_F(GpuCompiles, EveryIntegratorCompilesWithEveryFeature) {
 }
 
 // A scene allocates its integrator's buffers only: RK4 adds four vec4 per vertex (start and
-// sums), implicit Euler four (Δv, r, p, A p), with colliders a fifth (the contacts in the
+// sums), implicit Euler four (Δv, r, p, A p), with colliders three more (the contacts in the
 // solve), and one float per work group plus the solve's scalars; the Euler schemes and Verlet
 // nothing beyond the state.
 TEST_F(GpuCompiles, OnlyTheScenesIntegratorAllocatesBuffers) {
@@ -189,11 +189,11 @@ TEST_F(GpuCompiles, OnlyTheScenesIntegratorAllocatesBuffers) {
     EXPECT_EQ(bytes(Method::SymplecticEuler), base);
     EXPECT_EQ(bytes(Method::Verlet), base);
     EXPECT_EQ(bytes(Method::Rk4), base + 4 * vertexBuffer);
-    // Δv, r, p, A p and the contacts (the scene has colliders); two partial sums of the one work
-    // group in a vec4; the solve's state; and for the block-Jacobi preconditioner its inverted
+    // Δv, r, p, A p and the contacts' three (the scene has colliders); two partial sums of the one
+    // work group in a vec4; the solve's state; and for the block-Jacobi preconditioner its inverted
     // blocks, two vec4 per vertex.
     ASSERT_FALSE(scene.colliders.empty());
-    const std::size_t cg = base + 5 * vertexBuffer + sizeof(glm::vec4) + sizeof(gpu::CgState);
+    const std::size_t cg = base + 7 * vertexBuffer + sizeof(glm::vec4) + sizeof(gpu::CgState);
     EXPECT_EQ(bytes(Method::ImplicitEuler), cg + 2 * vertexBuffer);  // jacobi, the default
     scene.integrator.preconditioner = Preconditioner::None;
     EXPECT_EQ(bytes(Method::ImplicitEuler), cg);

@@ -66,6 +66,7 @@ Simulation::Simulation(const Params& p) : prm_(p) {
     }
     p_ = rest_;
     v_.assign(n, V3{0, 0, 0});
+    grip_.assign(n, 0.0);
     pin(p_, v_);  // follow pins start at their pose at t = 0
 }
 
@@ -74,6 +75,7 @@ void Simulation::setState(const std::vector<V3>& p, const std::vector<V3>& v) {
         p_ = p;
         v_ = v;
         verletForces_.clear();
+        grip_.assign(p_.size(), 0.0);
     }
 }
 
@@ -198,24 +200,40 @@ V3 Simulation::windForce(const std::vector<V3>& p, int i, int j) const {
 // Plane (Q12): project onto it and cancel the normal velocity. Sphere (Q13): push to the surface
 // and cancel the radial velocity. In the order the scene lists them.
 void Simulation::applyColliders(V3& p, V3& v) const {
+    for (const Collider& c : prm_.colliders) applyCollider(c, p, v);
+}
+
+// The velocity of the surface that touches p last (p moved by each collider in turn), 0 for a
+// still one or where none touches.
+V3 Simulation::surfaceVelocity(V3 p) const {
+    V3 vc{0, 0, 0};
     for (const Collider& c : prm_.colliders) {
-        if (c.extended) {
-            collideMoving(c, colliderTime_, p, v);
-        } else if (!c.isSphere) {
-            const V3& n = c.plane.normal;
-            const double s = dot(sub(p, c.plane.point), n);
-            if (s < 0) {
-                p = sub(p, scale(s, n));
-                v = sub(v, scale(dot(v, n), n));
-            }
-        } else {
-            const V3 r = sub(p, c.sphere.center);
-            const double len = norm(r);
-            if (len < c.sphere.radius) {
-                const V3 n = len == 0 ? V3{0, 1, 0} : scale(1.0 / len, r);
-                p = add(c.sphere.center, scale(c.sphere.radius, n));
-                v = sub(v, scale(dot(v, n), n));
-            }
+        const V3 before = p;
+        const V3 u = c.extended ? motionVelocity(c.motion, colliderTime_, p) : V3{0, 0, 0};
+        V3 v{0, 0, 0};
+        applyCollider(c, p, v);
+        if (p[0] != before[0] || p[1] != before[1] || p[2] != before[2]) vc = u;
+    }
+    return vc;
+}
+
+void Simulation::applyCollider(const Collider& c, V3& p, V3& v) const {
+    if (c.extended) {
+        collideMoving(c, colliderTime_, p, v);
+    } else if (!c.isSphere) {
+        const V3& n = c.plane.normal;
+        const double s = dot(sub(p, c.plane.point), n);
+        if (s < 0) {
+            p = sub(p, scale(s, n));
+            v = sub(v, scale(dot(v, n), n));
+        }
+    } else {
+        const V3 r = sub(p, c.sphere.center);
+        const double len = norm(r);
+        if (len < c.sphere.radius) {
+            const V3 n = len == 0 ? V3{0, 1, 0} : scale(1.0 / len, r);
+            p = add(c.sphere.center, scale(c.sphere.radius, n));
+            v = sub(v, scale(dot(v, n), n));
         }
     }
 }

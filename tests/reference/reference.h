@@ -174,6 +174,8 @@ private:
     void addBending(const std::vector<V3>& w, std::vector<V3>& f, bool pinnedColumns = true) const;
     V3 windForce(const std::vector<V3>& p, int i, int j) const;
     void applyColliders(V3& p, V3& v) const;
+    void applyCollider(const Collider& c, V3& p, V3& v) const;
+    V3 surfaceVelocity(V3 p) const;
     double colliderTime_ = 0;  // the end of the step being taken [s]: where colliders are
     // a(x, v) = (F(x) + F_β(x, v) − μ_k v)/m_k + g on free vertices, 0 on pinned ones, F_β the
     // spring damping.
@@ -191,10 +193,13 @@ private:
     void stepImplicitEuler();
     void stepBackwardEuler();  // (reference_backward_euler.cpp)
     // Conjugate gradient on ((m_k + hμ_k) I + h² H(x)) dv = b from dv = `fixed`, filtered by the
-    // contacts' normals (0: none); records the solve in cg_.
+    // contacts' normals (0: none) and zero at the held ones; records the solve in cg_.
     std::vector<V3> solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b,
                                         const std::vector<V3>& normal,
+                                        const std::vector<bool>& held,
                                         const std::vector<V3>& fixed);
+    std::vector<V3> systemProduct(const std::vector<V3>& x, const std::vector<V3>& w) const;
+    V3 coulomb(const V3& pStar, const V3& n, const V3& slide, double approach) const;
 
     Params prm_;
     double du_ = 0, dv_ = 0;
@@ -205,6 +210,9 @@ private:
     std::vector<V3> rest_;     // pinned vertices are held at their rest position (moved by
                                // the followed collider's motion for a follow pin)
     std::vector<V3> p_, v_;
+    // implicit_euler's contacts, from step to step: 0 none, > 0 sliding with the last solve's
+    // normal impulse J_n [kg m/s], < 0 held.
+    std::vector<double> grip_;
     // verlet with spring damping: F(x_{n+1}, v_half) of the last step, which the next step's
     // first kick uses (as the solvers, which evaluate the forces once a step); empty: none yet.
     std::vector<V3> verletForces_;

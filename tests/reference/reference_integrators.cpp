@@ -104,9 +104,12 @@ void Simulation::stepImplicitEuler() {
     std::vector<V3> b(p_.size(), V3{0, 0, 0});
     // Contacts in the solve (docs/integrators.md, "Contact in the solve"): the prediction
     // p* = x + h (v + h g), v* = v + h g through the colliders; a vertex they push out by d gets
-    // n = d/|d| and ⟨n, Δv⟩ = ⟨n, p' − x⟩/h − ⟨n, v⟩, and the friction they took from v*'s
-    // tangential part enters b as an impulse.
+    // n = d/|d| and ⟨n, Δv⟩ = ⟨n, p' − x⟩/h − ⟨n, v⟩. Friction by the grip of the last step
+    // (grip_): held (< 0), the tangential velocity is fixed to the collider's v_c; sliding (> 0),
+    // the response with the approach J_n/m of the last solve takes its friction from v*'s
+    // tangential part, an impulse in b; new (0), the response on v* itself does.
     std::vector<V3> normal(p_.size(), V3{0, 0, 0}), fixed(p_.size(), V3{0, 0, 0});
+    std::vector<bool> held(p_.size(), false), stuck(p_.size(), false);
     for (std::size_t k = 0; k < p_.size(); ++k) {
         if (pinned_[k]) continue;  // the pinned rows are removed: Δv = 0 there
         const V3 rhs = add(sub(f[k], scale(drag(int(k)), v_[k])), scale(mass_[k], prm_.gravity));
@@ -117,13 +120,49 @@ void Simulation::stepImplicitEuler() {
         applyColliders(p, w);
         const V3 d = sub(p, pStar);
         if (norm(d) == 0) continue;
-        normal[k] = scale(1 / norm(d), d);
-        const double z = dot(normal[k], sub(p, p_[k])) / h - dot(normal[k], v_[k]);
-        fixed[k] = scale(z, normal[k]);
-        const V3 change = sub(w, vStar);
-        b[k] = add(b[k], scale(mass_[k], sub(change, scale(dot(normal[k], change), normal[k]))));
+        const V3 n = scale(1 / norm(d), d);
+        normal[k] = n;
+        const double z = dot(n, sub(p, p_[k])) / h - dot(n, v_[k]);
+        fixed[k] = scale(z, n);
+        const V3 slide = tangential(n, vStar), still = tangential(n, surfaceVelocity(pStar));
+        if (grip_[k] < 0) {
+            held[k] = true;
+            fixed[k] = add(fixed[k], sub(still, tangential(n, v_[k])));
+            continue;
+        }
+        const V3 kept =
+            grip_[k] > 0 ? coulomb(pStar, n, slide, grip_[k] / mass_[k]) : tangential(n, w);
+        // Held next step where the response stuck (returned v_c) and the vertex did not already
+        // move with the surface.
+        auto same = [](const V3& a, const V3& c) {
+            return a[0] == c[0] && a[1] == c[1] && a[2] == c[2];
+        };
+        stuck[k] = same(kept, still) && !same(slide, still);
+        b[k] = add(b[k], scale(mass_[k], sub(kept, slide)));
     }
-    const std::vector<V3> dv = solveImplicitSystem(p_, b, normal, fixed);
+    const std::vector<V3> dv = solveImplicitSystem(p_, b, normal, held, fixed);
+    // The grips of the next step from each contact's impulse J = (A Δv)_k − b_k.
+    const std::vector<V3> adv = systemProduct(p_, dv);
+    for (std::size_t k = 0; k < p_.size(); ++k) {
+        const V3& n = normal[k];
+        const V3 impulse = sub(adv[k], b[k]);
+        const double jn = dot(n, impulse);
+        if (pinned_[k] || norm(n) == 0 || !(jn > 0)) {
+            grip_[k] = 0;
+            continue;
+        }
+        if (!held[k]) {
+            grip_[k] = stuck[k] ? -jn : jn;
+            continue;
+        }
+        // Held while Coulomb's law with J_n supplies J_t: the response on the velocity without
+        // J_t, at the approach J_n/m, removes all of J_t/m.
+        const V3 jt = scale(1 / mass_[k], tangential(n, impulse));
+        const V3 free = sub(add(tangential(n, v_[k]), tangential(n, dv[k])), jt);
+        const V3 pStar = add(p_[k], scale(h, add(v_[k], scale(h, prm_.gravity))));
+        const V3 kept = coulomb(pStar, n, free, jn / mass_[k]);
+        grip_[k] = norm(sub(kept, free)) >= 0.999 * norm(jt) ? -jn : jn;
+    }
     for (std::size_t k = 0; k < p_.size(); ++k) {
         v_[k] = add(v_[k], dv[k]);
         p_[k] = add(p_[k], scale(h, v_[k]));
@@ -131,14 +170,43 @@ void Simulation::stepImplicitEuler() {
     pinAndCollide(p_, v_);
 }
 
+// The colliders' Coulomb law at p* on a tangential velocity `slide` approaching the surface at
+// `approach`: the tangential velocity their response leaves (a first run finds the collider's
+// normal velocity).
+V3 Simulation::coulomb(const V3& pStar, const V3& n, const V3& slide, double approach) const {
+    V3 q = pStar, w = slide;
+    applyColliders(q, w);
+    q = pStar;
+    w = add(slide, scale(dot(n, w) - approach, n));
+    applyColliders(q, w);
+    return tangential(n, w);
+}
+
+// A w = (m_k + hμ_k) w + h D w + h² H w, pinned rows 0.
+std::vector<V3> Simulation::systemProduct(const std::vector<V3>& x,
+                                          const std::vector<V3>& w) const {
+    const double h = prm_.dt;
+    std::vector<V3> y = hessianProduct(x, w);
+    std::vector<V3> damping(x.size(), V3{0, 0, 0});  // −D w: w is 0 on pinned vertices
+    addSpringDamping(x, w, damping);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+        const double diagonal = mass_[k] + h * drag(int(k));
+        y[k] = pinned_[k]
+                   ? V3{0, 0, 0}
+                   : sub(add(scale(diagonal, w[k]), scale(h * h, y[k])), scale(h, damping[k]));
+    }
+    return y;
+}
+
 // Conjugate gradient from Δv = c (r = S (b − A c), p = r): α = r·r / p·Ap, Δv += α p,
 // r −= α S Ap, stop when |r| ≤ tolerance·max(|b|, |r₀|) or after max_iterations, β = r_new·r_new /
-// r·r, p = r + β p. S w = w − n ⟨n, w⟩ at a contact of normal n, c its fixed velocity change (0
-// elsewhere). Dot products run over the free vertices only; pinned entries of p and r stay 0.
+// r·r, p = r + β p. S w = w − n ⟨n, w⟩ at a contact of normal n, 0 at a held one, c its fixed
+// velocity change (0 elsewhere). Dot products run over the free vertices only; pinned entries of
+// p and r stay 0.
 std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x, const std::vector<V3>& b,
                                                 const std::vector<V3>& normal,
+                                                const std::vector<bool>& held,
                                                 const std::vector<V3>& fixed) {
-    const double h = prm_.dt;
     const std::size_t n = x.size();
     auto dotFree = [&](const std::vector<V3>& a, const std::vector<V3>& c) {
         double s = 0;
@@ -149,21 +217,10 @@ std::vector<V3> Simulation::solveImplicitSystem(const std::vector<V3>& x, const 
     };
     auto filter = [&](std::vector<V3> w) {
         for (std::size_t k = 0; k < n; ++k)
-            w[k] = sub(w[k], scale(dot(normal[k], w[k]), normal[k]));
+            w[k] = held[k] ? V3{0, 0, 0} : tangential(normal[k], w[k]);
         return w;
     };
-    auto apply = [&](const std::vector<V3>& w) {  // S A w, A w = (m_k + hμ_k) w + h D w + h² H w
-        std::vector<V3> y = hessianProduct(x, w);
-        std::vector<V3> damping(n, V3{0, 0, 0});  // −D w: w is 0 on pinned vertices
-        addSpringDamping(x, w, damping);
-        for (std::size_t k = 0; k < n; ++k) {
-            const double diagonal = mass_[k] + h * drag(int(k));
-            y[k] = pinned_[k]
-                       ? V3{0, 0, 0}
-                       : sub(add(scale(diagonal, w[k]), scale(h * h, y[k])), scale(h, damping[k]));
-        }
-        return filter(y);
-    };
+    auto apply = [&](const std::vector<V3>& w) { return filter(systemProduct(x, w)); };
     std::vector<V3> dv = fixed, r = filter(b);
     const std::vector<V3> ac = apply(dv);
     for (std::size_t k = 0; k < n; ++k) r[k] = sub(r[k], ac[k]);

@@ -29,5 +29,9 @@ inline V3 cross(const V3& a, const V3& b) {
 inline V3 normalised(const V3& a) {
     return scale(1.0 / norm(a), a);
 }
+// w − n ⟨n, w⟩: w's part along the surface of unit normal n (w itself where n = 0).
+inline V3 tangential(const V3& n, const V3& w) {
+    return sub(w, scale(dot(n, w), n));
+}
 
 }  // namespace ref

@@ -83,6 +83,27 @@ inline Json clothOnTiltedBox(double degrees, double friction) {
     return j;
 }
 
+// A 0.6 m cotton sheet (12²) dropped 0.2 m off-centre onto a sphere (R = 0.15 m at y = 0.5 m,
+// thickness 5 mm, friction c_f), its integrator given: static friction against the sheet's own
+// tension holds it there (tests/cpu/implicit_contact_test.cpp).
+inline Json sheetOverSphere(double friction, const Json& integrator) {
+    return {{"name", "sheet over a sphere (test)"},
+            {"cloth",
+             {{"resolution", {12, 12}},
+              {"size", {0.6, 0.6}},
+              {"origin", {-0.22, 0.7, -0.3}},
+              {"u_axis", {1, 0, 0}},
+              {"v_axis", {0, 0, 1}}}},
+            {"material", {{"preset", "cotton"}}},
+            {"integrator", integrator},
+            {"colliders",
+             {{{"type", "sphere"},
+               {"center", {0, 0.5, 0}},
+               {"radius", 0.15},
+               {"thickness", 0.005},
+               {"friction", friction}}}}};
+}
+
 // A 3×3 patch of 2 cm at y = 0.5, without gravity, 1 cm above a plain sphere (DESIGN.md §2's
 // rule, v_c = 0) of radius 0.49 at the origin.
 inline const char* const kPatchAbovePlainSphere = R"({
