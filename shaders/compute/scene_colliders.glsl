@@ -146,7 +146,7 @@ void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
     COLLIDERS_IN_SCENE_ORDER
 }
 
-#ifdef HAS_SOLVE_CONTACTS
+#ifdef HAS_CONTACT
 // The velocity v_c of the surface that touches p last in scene order, the colliders applied as
 // applyColliders does (CpuColliders::surfaceVelocity): 0 for a still one, or where none touches.
 vec3 colliderSurfaceVelocity(uint step, vec3 p) {

@@ -20,8 +20,15 @@ bool RunFlags::take(const std::string& flag, Args& args) {
     precisionGiven |= flag == "--precision";
     if (parseBackendFlag(flag, args, backend)) return true;
     if (flag != "--set") return false;
-    addSet(sets, args.value(flag));
+    addSet(sets, args.value(flag), &notices);
     return true;
+}
+
+void RunFlags::finish(bool quiet) const {
+    refuseGpuDouble(backend, precisionGiven);
+    if (quiet) return;
+    for (const std::string& notice : notices)
+        std::fprintf(stderr, "clothsim: note: %s\n", notice.c_str());
 }
 
 void settleBackendAndSay(BackendChoice& choice, const Scene& scene, bool doubleAsked, bool quiet) {

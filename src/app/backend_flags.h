@@ -16,15 +16,16 @@ namespace cloth::app {
 bool parseBackendFlag(const std::string& flag, Args& args, BackendChoice& choice);
 
 // The flags of a command that runs one backend (run, render, view): the backend flags and --set.
-// take() is true when `flag` was one of them; finish() refuses their bad combinations (run,
-// render).
+// take() is true when `flag` was one of them; finish() refuses their bad combinations and, unless
+// `quiet`, prints the notes on --set replacing an earlier --set.
 struct RunFlags {
     BackendChoice& backend;
     std::vector<std::string>& sets;
     bool precisionGiven = false;
+    std::vector<std::string> notices;
 
     bool take(const std::string& flag, Args& args);
-    void finish() const { refuseGpuDouble(backend, precisionGiven); }
+    void finish(bool quiet = false) const;
     // --precision double was asked for: --backend auto then picks the CPU.
     bool doubleAsked() const { return precisionGiven && backend.precision == Precision::Double; }
 };

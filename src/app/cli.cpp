@@ -16,9 +16,14 @@
 
 namespace cloth::app {
 
-void addSet(std::vector<std::string>& sets, std::string assignment) {
-    for (const std::string& notice : replacedOverrides(sets, assignment))
-        std::fprintf(stderr, "clothsim: note: %s\n", notice.c_str());
+void addSet(std::vector<std::string>& sets, std::string assignment,
+            std::vector<std::string>* notices) {
+    for (const std::string& notice : replacedOverrides(sets, assignment)) {
+        if (notices)
+            notices->push_back(notice);
+        else
+            std::fprintf(stderr, "clothsim: note: %s\n", notice.c_str());
+    }
     sets.push_back(std::move(assignment));
 }
 

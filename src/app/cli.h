@@ -50,7 +50,9 @@ void prepareFramesDir(const std::string& flag, const std::string& dir);
 
 // Appends a --set assignment; one that replaces an earlier one gets a notice on stderr (the
 // later still wins).
-void addSet(std::vector<std::string>& sets, std::string assignment);
+// With `notices`, the notes go there for the caller to print (after --quiet is known).
+void addSet(std::vector<std::string>& sets, std::string assignment,
+            std::vector<std::string>* notices = nullptr);
 
 int runCommand(Args& args);
 int validateCommand(Args& args);

@@ -99,7 +99,7 @@ bool parse(Args& args, RunOptions& o) {
             args.unknown(f);
     }
     if (o.scenePath.empty()) throw InputError("command line", "SCENE", "run needs a scene file");
-    common.finish();
+    common.finish(o.quiet);
     o.doubleAsked = common.doubleAsked();
     if (!o.framesDir.empty() && o.every == 0)
         throw InputError("command line", "--every", "--frames DIR needs --every K");

@@ -20,6 +20,7 @@ using Options = AccuracyOptions;
 
 constexpr double kConverged = 1e-9;         // reference: change on halving / extent
 constexpr long kReferenceSteps = 1L << 21;  // most steps the reference may take
+constexpr long kMostSteps = 1L << 30;       // most steps one --dt may ask for
 
 struct Run {
     SimState state;  // the final state (empty when unstable)
@@ -239,6 +240,13 @@ int runBenchAccuracy(const AccuracyOptions& options) {
     const std::string csv = outputPath(o.out, "accuracy_" + o.label + ".csv");
     double time = o.time > 0 ? o.time : std::min(0.5, scene.duration);
     if (o.quick && o.time == 0) time = std::min(time, 0.1);
+    // Each Δt asked for takes time/Δt steps: refused before anything runs where that is past
+    // kMostSteps (a Δt of 1e-300 s rounded its count to 1 and ran at Δt = time).
+    for (double dt : o.dts)
+        if (!(time / dt <= double(kMostSteps)))
+            throw InputError("command line", "--dt",
+                             cell(dt) + " s would take " + cell(time / dt) + " steps over " +
+                                 cell(time) + " s; at most " + cell(double(kMostSteps)));
     const double extent = scene.grid().extent() > 0 ? scene.grid().extent() : 1.0;
     const auto targets = availableTargets(
         parseTargets("--backend", o.backend, {Precision::Double, Precision::Float}), scene,

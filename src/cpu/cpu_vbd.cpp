@@ -10,6 +10,7 @@
 #include "cpu/cpu_solver.h"
 #include "cpu/cpu_solver_vertex.h"
 #include "model/forces.h"
+#include "model/start_inside.h"
 #include "model/vbd_colouring.h"
 #include "model/vbd_local.h"
 
@@ -17,7 +18,8 @@ namespace cloth {
 
 // One step: the start (x_n, y, the initial guess), `iterations` sweeps over the five colours
 // (each followed, with ρ > 0, by the Chebyshev extrapolation), then v_{n+1} = (x − x_n)/h and
-// finishStep's pins, colliders and check.
+// finishStep's pins, colliders and check; a vertex that started inside a collider keeps none of
+// the correction that put it out as velocity (model/start_inside.h).
 template <typename T>
 bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     vbdStart(band, team, stepNumber);
@@ -34,9 +36,14 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
         }
     }
     const T h = dt_t_;
+    const auto collide = [this](Vec3<T>& p, Vec3<T>& w) { colliders_.apply(p, w); };
+    const auto surface = [this](const Vec3<T>& p) { return colliders_.surfaceVelocity(p); };
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> x = x_.get(k);
-        if (!finishStep(band, k, x, (x - xStart_.get(k)) / h)) return false;
+        const Vec3<T> x = x_.get(k), start = xStart_.get(k), v = (x - start) / h;
+        const bool inside = !colliders_.empty() && !pinned_[k];  // (model/start_inside.h)
+        if (!finishStep(band, k, x,
+                        inside ? withoutStartCorrection(start, v, h, collide, surface) : v))
+            return false;
     }
     return true;
 }

@@ -129,4 +129,18 @@ T nextGrip(const SolveContact<T>& c, const Vec3<T>& x, const Vec3<T>& v, const V
     return glm::length(kept - free) >= T(0.999) * glm::length(jt) ? -jn : jn;
 }
 
+// The velocity a contact leaves its vertex with after the solve, v_new = v + Δv, of a vertex
+// that started the step at (x, v): less any normal part that takes it away from the surface
+// faster than the surface moves (v_c = surface(p*)). The solve's z lands the end of the step on
+// the surface; a vertex that started inside gets there at depth/h, and that is a position
+// correction, kept as no velocity, as the explicit schemes' projection keeps none. A vertex the
+// collider pushes moves with it: its normal part is v_c's and stays.
+template <typename T, typename Surface>
+Vec3<T> contactVelocity(const SolveContact<T>& c, const Vec3<T>& x, const Vec3<T>& v,
+                        const Vec3<T>& g, T h, const Vec3<T>& vNew, const Surface& surface) {
+    if (c.normal == Vec3<T>(0)) return vNew;
+    const T away = glm::dot(c.normal, vNew - surface(x + h * (v + h * g)));
+    return away > T(0) ? vNew - away * c.normal : vNew;
+}
+
 }  // namespace cloth

@@ -106,8 +106,10 @@ double methodDt(Method method, double omega2, double c) {
 double dampedMethodDt(Method method, double omega2, double c, double beta) {
     if (beta > 0 && omega2 > 0) {
         if (method == Method::Verlet) {  // leapfrog with the drag βω² at v_half
+            // (−b + √(b² + 4ω²))/ω², written without the cancellation at b² ≫ ω² and without
+            // squaring b (hypot): spring damping of 1e200 gave 0/0 or ∞ before.
             const double b = beta * omega2;
-            return (-b + std::sqrt(b * b + 4 * omega2)) / omega2;
+            return 4 / (b + std::hypot(b, 2 * std::sqrt(omega2)));
         }
         // The stiffest mode's rate: explicit Euler's Δt < c_ω/ω² = c/ω² + β and c_ω Δt < 2,
         // symplectic Euler's ω²Δt² + 2c_ω Δt < 4 all bind there.
@@ -120,7 +122,8 @@ double dampedMethodDt(Method method, double omega2, double c, double beta) {
             if (omega2 <= 0) return drag;
             return std::min(c / omega2, drag);
         case Method::SymplecticEuler:
-            return omega2 > 0 ? (-c + std::sqrt(c * c + 4 * omega2)) / omega2 : drag;
+            // (−c + √(c² + 4ω²))/ω², in the same cancellation-free form as Verlet's.
+            return omega2 > 0 ? 4 / (c + std::hypot(c, 2 * std::sqrt(omega2))) : drag;
         case Method::Verlet:
             return omega2 > 0 ? 2 / std::sqrt(omega2) : kInf;
         case Method::Rk4:

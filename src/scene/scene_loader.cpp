@@ -1,7 +1,5 @@
 #include "scene/scene_loader.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -13,6 +11,7 @@
 
 #include "model/collider_limits.h"
 #include "model/errors.h"
+#include "model/machine_memory.h"
 #include "model/material_presets.h"
 #include "model/output_file.h"
 #include "model/pin_follow.h"
@@ -121,11 +120,6 @@ const Json& SceneReader::required(const Json& obj, const std::string& key,
                                   const std::string& path) const {
     if (!obj.contains(key)) fail(child(path, key), "required key is missing");
     return obj.at(key);
-}
-
-double physicalMemoryBytes() {
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 8e9;
 }
 
 void SceneReader::readCloth(const Json& j, ClothSpec& cloth) const {

@@ -17,8 +17,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 Scene parseScene(const std::string& text, const std::string& source,
                  const std::vector<std::string>& overrides = {});
 
-// Bytes of memory a cloth of `vertices` needs at most across backends; the loader refuses a
-// resolution whose need exceeds the machine's physical memory before anything is allocated.
+// Bytes of memory a cloth needs per vertex at the least (the explicit schemes' CPU arrays); the
+// loader refuses a resolution whose need exceeds the machine's physical memory before anything
+// is allocated. The CPU solver checks its integrator's own arrays (cpu/cpu_memory.h).
 inline constexpr double kBytesPerVertex = 160;
 
 }  // namespace cloth

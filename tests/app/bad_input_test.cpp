@@ -206,6 +206,13 @@ TEST(RepeatedOverride, LaterWinsWithOneNoticeNamingTheKey) {
             EXPECT_TRUE(contains(r.out, "bend       not modelled")) << test::describe(r);
         }
     }
+    // run's --quiet silences the note, though it comes after the --set options.
+    const ProcessResult quiet =
+        runProcess({kExe, "run", kGoodScene.string(), "--set", "springs.bend=100", "--set",
+                    "springs.bend=0", "--steps", "1", "--quiet"},
+                   kTimeout);
+    EXPECT_EQ(quiet.exitCode, 0) << test::describe(quiet);
+    EXPECT_FALSE(contains(quiet.err, "note:")) << test::describe(quiet);
     // Both spellings of a list entry are one key.
     const ProcessResult same =
         runProcess({kExe, "validate", kGoodScene.string(), "--set", "colliders.1.radius=0.4",

@@ -193,6 +193,7 @@ TEST(BenchArgs, BadInputExitsTwoNamingTheFlag) {
         {{"accuracy", spring, "--dt", "0.01,abc"}, "--dt"},
         {{"accuracy", spring, "--dt", "-0.01"}, "--dt"},
         {{"accuracy", spring, "--dt", ""}, "--dt"},
+        {{"accuracy", spring, "--dt", "1e-300"}, "--dt"},  // 5e299 steps
         {{"accuracy", spring, "--time", "0"}, "--time"},
         {{"accuracy", spring, "--backend", "tpu"}, "--backend"},
         {{"accuracy", spring, "--bogus"}, "--bogus"},

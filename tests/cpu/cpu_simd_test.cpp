@@ -4,14 +4,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 #include <tuple>
 
 #include "bench/bench_speed_model.h"
+#include "cpu/cpu_backend.h"
 #include "cpu/cpu_solver.h"
 #include "model/errors.h"
+#include "model/machine_memory.h"
 #include "scene/scene_loader.h"
 #include "support/integrator_scenes.h"
 #include "support/same_bits.h"
@@ -166,6 +169,25 @@ TEST(RowColliders, EveryKindGivesTheScalarPathsBitsOnEveryIsaAndThreadCount) {
                 expectSameBits(run<double>(scene, isa, t, steps), d, what + " double");
             }
         }
+    }
+}
+
+// A grid that passes the loader's coarse check (160 B a vertex) but whose integrator's arrays
+// would not fit: implicit Euler in double with colliders holds 369 B a vertex. makeCpuSolver
+// refuses it, naming cloth.resolution, before allocating anything.
+TEST(CpuMemory, AGridWhoseArraysExceedTheMemoryIsRefusedBeforeAllocating) {
+    const int side = int(std::sqrt(physicalMemoryBytes() / 300));
+    const std::string text =
+        R"({"cloth": {"resolution": [)" + std::to_string(side) + ", " + std::to_string(side) +
+        R"(], "size": [1, 1]}, "integrator": {"method": "implicit_euler", "dt": 0.001},
+            "colliders": [{"type": "plane", "point": [0, -5, 0], "normal": [0, 1, 0]}]})";
+    const Scene scene = parseScene(text, "big (test)");
+    try {
+        makeCpuSolver(scene, {Precision::Double, 1});
+        ADD_FAILURE() << side << "² was not refused";
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.key(), "cloth.resolution") << e.what();
+        std::printf("%s\n", e.what());
     }
 }
 

@@ -104,6 +104,28 @@ TEST_F(GpuColliderContact, ImplicitStaticFrictionHoldsAsOnTheCpu) {
     EXPECT_NEAR(v.z, 0.0, 1e-3);
 }
 
+// Invariant (inelastic contact) under implicit Euler and vbd on the GPU, as on the CPU
+// (tests/cpu/implicit_contact_test.cpp): a sheet started 1 cm under a plane leaves it at rest; one
+// a rising plane pushes moves up with it.
+TEST_F(GpuColliderContact, LargeStepContactLeavesAVertexThatStartedInsideAtRest) {
+    for (const char* method : {"implicit_euler", "vbd"}) {
+        auto solver = makeGpuSolver(parseScene(sheetUnderPlane(0.01, 0, method).dump(), "test"));
+        ASSERT_FALSE(solver->step(1).unstable);
+        double fastest = 0;
+        for (const glm::dvec3& v : solver->read().velocities)
+            fastest = std::max(fastest, glm::length(v));
+        solver = makeGpuSolver(parseScene(sheetUnderPlane(0, 0.5, method).dump(), "test"));
+        ASSERT_FALSE(solver->step(100).unstable);
+        const double rising = meanOf(solver->read().velocities).y;
+        std::printf(
+            "gpu %s: started 1 cm inside, fastest %.3g m/s after a step; pushed by a "
+            "plane rising at 0.5 m/s: %.4f m/s\n",
+            method, fastest, rising);
+        EXPECT_LT(fastest, 0.01) << method;
+        EXPECT_NEAR(rising, 0.5, 1e-3) << method;
+    }
+}
+
 // The poses of a step do not depend on how the steps are grouped into calls, status reads and
 // pose batches: runs of many steps longer than a batch (checkEvery 200), one step per call, and
 // runs that straddle batches give the same bits.

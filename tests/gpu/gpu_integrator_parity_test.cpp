@@ -93,8 +93,12 @@ TEST_P(GpuIntegratorParity, MatchesTheCpuFloatBackend) {
 
 // The viewer's Δt = 1/60 s with springs 100× stiffer (h² λ_max/m ≈ 130, far beyond every
 // explicit scheme's bound): the CG works for its result over many iterations, and the GPU's
-// float reductions still land where the CPU's double ones do, with either preconditioner and the
-// warm start; the block-Jacobi one takes as many iterations on both backends (±10 %).
+// float reductions still land where the CPU's do, with either preconditioner and the warm start;
+// the block-Jacobi one takes as many iterations on both backends (±10 %). The cloth slides on the
+// sphere from step 55, and a contact is a threshold (is p* inside?): at step 70 vertex (2, 2),
+// grazing the sphere 1e-5 m out, is predicted inside on the GPU and not on the CPU, and the two
+// part by 1.0e-3 of the extent there and 1.3e-4–1.8e-4 after 100 steps (2e-6 at step 60; CPU
+// float and double stay within 6e-6). So the contact tolerance, as for the contact parity above.
 TEST_F(GpuIntegratorParity, ImplicitEulerAtALargeStepMatchesTheCpu) {
     for (Preconditioner p : {Preconditioner::None, Preconditioner::Jacobi}) {
         Scene scene = sceneFor(Method::ImplicitEuler, 1.0 / 60);
@@ -107,7 +111,7 @@ TEST_F(GpuIntegratorParity, ImplicitEulerAtALargeStepMatchesTheCpu) {
             "iterations gpu %ld (most %d), cpu %ld (most %d)\n",
             preconditionerName(p), diff, runs.gpuSolves.iterations, runs.gpuSolves.mostIterations,
             runs.cpuSolves.iterations, runs.cpuSolves.mostIterations);
-        EXPECT_LT(diff, kTolerance) << preconditionerName(p);
+        EXPECT_LT(diff, kImplicitContactTolerance) << preconditionerName(p);
         EXPECT_GT(runs.gpuSolves.mostIterations, 8) << preconditionerName(p);
         EXPECT_NEAR(double(runs.gpuSolves.iterations), double(runs.cpuSolves.iterations),
                     0.1 * double(runs.cpuSolves.iterations))

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
-#include "scene/scene_loader.h"
 #include "cpu/cpu_backend.h"
+#include "scene/scene_loader.h"
 #include "solver/solver.h"
 
 namespace cloth {
@@ -117,6 +117,21 @@ TEST(IntegratorBounds, ClosedFormsOfTheUndampedMode) {
     // The rigid drag mode alone: |1 − cΔt| ≤ 1 for the Euler schemes, RK4's real-axis reach.
     EXPECT_DOUBLE_EQ(methodDt(Method::SymplecticEuler, 0, m, 2), 2 / (2 / m));
     EXPECT_NEAR(methodDt(Method::Rk4, 0, m, 2), 2.7853 / (2 / m), 1e-3);
+}
+
+// Heavy damping: the symplectic and Verlet bounds (−c + √(c² + 4ω²))/ω² tend to 2/c (Verlet's c
+// the spring damping's βω²). Evaluated as written they cancelled to 0 ("none") at βω² = 1e14 and
+// overflowed to ∞ ("unconditional") at β = 1e200; the cancellation-free form keeps 2/c.
+TEST(IntegratorBounds, HeavyDampingKeepsTheBoundsFiniteAndPositive) {
+    const double omega2 = 1e4;
+    for (double beta : {1e10, 1e100, 1e200}) {
+        const double c = beta * omega2;
+        for (Method m : {Method::SymplecticEuler, Method::Verlet}) {
+            const double dt = dampedMethodDt(m, omega2, 0, beta);
+            EXPECT_TRUE(std::isfinite(dt) && dt > 0) << methodName(m) << " β " << beta;
+            EXPECT_NEAR(dt * c / 2, 1.0, 1e-9) << methodName(m) << " β " << beta;
+        }
+    }
 }
 
 TEST(IntegratorBounds, ImplicitEulerDecaysFarPastEveryExplicitBound) {

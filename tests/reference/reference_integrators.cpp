@@ -163,9 +163,16 @@ void Simulation::stepImplicitEuler() {
         const V3 kept = coulomb(pStar, n, free, jn / mass_[k]);
         grip_[k] = norm(sub(kept, free)) >= 0.999 * norm(jt) ? -jn : jn;
     }
+    // The end of step lands on the surface; a contact keeps no normal velocity away from it
+    // faster than the surface moves (a vertex that started inside leaves at rest).
     for (std::size_t k = 0; k < p_.size(); ++k) {
-        v_[k] = add(v_[k], dv[k]);
-        p_[k] = add(p_[k], scale(h, v_[k]));
+        const V3 vNew = add(v_[k], dv[k]),
+                 pStar = add(p_[k], scale(h, add(v_[k], scale(h, prm_.gravity))));
+        p_[k] = add(p_[k], scale(h, vNew));
+        v_[k] = vNew;
+        if (norm(normal[k]) == 0) continue;
+        const double away = dot(normal[k], sub(vNew, surfaceVelocity(pStar)));
+        if (away > 0) v_[k] = sub(vNew, scale(away, normal[k]));
     }
     pinAndCollide(p_, v_);
 }

@@ -104,6 +104,23 @@ inline Json sheetOverSphere(double friction, const Json& integrator) {
                {"friction", friction}}}}};
 }
 
+// A 5×5 sheet of 20 cm lying flat `depth` under a plane y = 0 (no thickness or friction), the
+// plane moving up at `rise` m/s, at Δt = 1 ms by `method`.
+inline Json sheetUnderPlane(double depth, double rise, const char* method = "implicit_euler") {
+    Json j = {{"name", "sheet under a plane (test)"},
+              {"cloth",
+               {{"resolution", {5, 5}},
+                {"size", {0.2, 0.2}},
+                {"origin", {-0.1, -depth, -0.1}},
+                {"u_axis", {1, 0, 0}},
+                {"v_axis", {0, 0, 1}}}},
+              {"material", {{"density", 0.2}, {"stretch", 100}, {"shear", 10}}},
+              {"integrator", {{"method", method}, {"dt", 0.001}}},
+              {"colliders", {{{"type", "plane"}, {"point", {0, 0, 0}}, {"normal", {0, 1, 0}}}}}};
+    if (rise != 0) j["colliders"][0]["motion"] = {{"type", "linear"}, {"velocity", {0, rise, 0}}};
+    return j;
+}
+
 // A 3×3 patch of 2 cm at y = 0.5, without gravity, 1 cm above a plain sphere (DESIGN.md §2's
 // rule, v_c = 0) of radius 0.49 at the origin.
 inline const char* const kPatchAbovePlainSphere = R"({
