@@ -22,7 +22,7 @@ struct RunFlags {
     BackendChoice& backend;
     std::vector<std::string>& sets;
     bool precisionGiven = false;
-    std::vector<std::string> notices;
+    std::vector<std::string> notices{};
 
     bool take(const std::string& flag, Args& args);
     void finish(bool quiet = false) const;
