@@ -166,8 +166,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
                            : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
     colliders_.take(scene);
-    // implicit_euler's contacts in the solve: only a scene with colliders has any.
-    // The grips they keep from step to step survive a change of parameters.
+    // implicit_euler's contacts in the solve (a scene with colliders); their grips survive this.
     const std::size_t contacts = colliders_.empty() ? 0 : std::size_t(grid_.count());
     if (method_ == Method::ImplicitEuler && contacts_.size() != contacts)
         contacts_.assign(contacts, SolveContact<T>{});

@@ -70,8 +70,7 @@ struct ImplicitSystem {
         if (grabVertex >= begin && grabVertex < end && !pinned[grabVertex])
             out[grabVertex] += h2 * grabStiffness * p[grabVertex];
         if (contacts)
-            for (std::int64_t k = begin; k < end; ++k)
-                out[k] = filterContact(contacts[k], out[k]);
+            for (std::int64_t k = begin; k < end; ++k) out[k] = filterContact(contacts[k], out[k]);
     }
 
     // The 3×3 block A_kk of vertex k = (i, j), not pinned.
