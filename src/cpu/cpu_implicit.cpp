@@ -221,12 +221,9 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     }
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const Vec3<T> v = v_.get(k) + dv_[k], x = x_.get(k) + h * v;
-        if (!contacts) {
-            if (!finishStep(band, k, x, v)) return false;
-            continue;
-        }
-        const Vec3<T> left = contactVelocity(contacts_[std::size_t(k)], x_.get(k), v_.get(k),
-                                             gravity_, h, v, surface);
+        const Vec3<T> left = contacts ? contactVelocity(contacts_[std::size_t(k)], x_.get(k),
+                                                        v_.get(k), gravity_, h, v, surface)
+                                      : v;
         if (!finishStep(band, k, x, left)) return false;
     }
     return true;

@@ -40,9 +40,9 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     const auto surface = [this](const Vec3<T>& p) { return colliders_.surfaceVelocity(p); };
     for (std::int64_t k = band.begin; k < band.end; ++k) {
         const Vec3<T> x = x_.get(k), start = xStart_.get(k), v = (x - start) / h;
-        const bool inside = !colliders_.empty() && !pinned_[k];  // (model/start_inside.h)
+        const bool collides = !colliders_.empty() && !pinned_[k];  // (model/start_inside.h)
         if (!finishStep(band, k, x,
-                        inside ? withoutStartCorrection(start, v, h, collide, surface) : v))
+                        collides ? withoutStartCorrection(start, v, h, collide, surface) : v))
             return false;
     }
     return true;
