@@ -136,6 +136,13 @@ layout(std430, binding = 11) buffer VbdBefore {
 layout(std430, binding = 12) buffer VbdBeforeLast {
     vec4 vbdBeforeLast[];
 };
+#ifdef HAS_COLLIDERS
+// With colliders, vbd's contacts (src/cpu/cpu_vbd_phases.h VbdContacts), two vec4 per vertex:
+// [2k] = (unit normal n, w = c_f λ [N]), [2k + 1] = (h v_c [m], 0); w = 0: no contact.
+layout(std430, binding = 13) buffer VbdContacts {
+    vec4 vbdContacts[];
+};
+#endif
 #endif
 
 int gridU() { return params.grid.x; }

@@ -147,34 +147,44 @@ void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
 }
 
 #ifdef HAS_CONTACT
-// The velocity v_c of the surface that touches p last in scene order, the colliders applied as
-// applyColliders does (CpuColliders::surfaceVelocity): 0 for a still one, or where none touches.
-vec3 colliderSurfaceVelocity(uint step, vec3 p) {
+// The surface that touches p last in scene order, the colliders applied as applyColliders does
+// (CpuColliders::surfaceAt): its velocity v_c (0 for a still one) and friction coefficient c_f,
+// both 0 where none touches.
+void colliderSurface(uint step, vec3 p, out vec3 vc, out float friction) {
 #ifdef HAS_MOVING_COLLIDERS
     int pose = poseSlot(step);
 #endif
-    vec3 vel = vec3(0.0), vc = vec3(0.0), before;
+    vec3 vel = vec3(0.0), before;
+    vc = vec3(0.0);
+    friction = 0.0;
 #undef PLANE
 #undef SPHERE
 #undef STILL
 #undef MOVING
 #ifdef HAS_PLANES
 #define PLANE(r) before = p; respondPlane(colliders[r].xyz, colliders[(r) + 1].xyz, p, vel); \
-    if (p != before) vc = vec3(0.0);
+    if (p != before) { vc = vec3(0.0); friction = 0.0; }
 #endif
 #ifdef HAS_SPHERES
 #define SPHERE(r) before = p; \
     respondSphere(colliders[r].xyz, colliders[r].w, 0.0, 0.0, vec3(0.0), p, vel); \
-    if (p != before) vc = vec3(0.0);
+    if (p != before) { vc = vec3(0.0); friction = 0.0; }
 #endif
 #ifdef HAS_CONTACT
-#define STILL(fn, r) before = p; fn(r, vec3(0.0), p, vel); if (p != before) vc = vec3(0.0);
+#define STILL(fn, r) before = p; fn(r, vec3(0.0), p, vel); \
+    if (p != before) { vc = vec3(0.0); friction = colliders[r].y; }
 #endif
 #ifdef HAS_MOVING_COLLIDERS
 #define MOVING(fn, r, w) before = p; { vec3 u = colliderVelocity(w, p); fn(r, u, p, vel); \
-    if (p != before) vc = u; }
+    if (p != before) { vc = u; friction = colliders[r].y; } }
 #endif
     COLLIDERS_IN_SCENE_ORDER
+}
+
+vec3 colliderSurfaceVelocity(uint step, vec3 p) {
+    vec3 vc;
+    float friction;
+    colliderSurface(step, p, vc, friction);
     return vc;
 }
 #endif

@@ -1,6 +1,6 @@
 // vbd, the Chebyshev extrapolation after a sweep (docs/integrators.md "vbd", the paper's §3.8;
 // src/cpu/cpu_vbd.cpp vbdAccelerate): x ← ω (x − x^(n−2)) + x^(n−2) on the free vertices, then
-// the colliders' projection as after a Newton step.
+// the colliders' projection alone (vbdProject: no friction, the contacts kept).
 #include "layout.glsl"
 #include "common.glsl"
 #include "step_end.glsl"
@@ -20,15 +20,8 @@ void main() {
         vec3 last = vbdBeforeLast[k].xyz;
         x = uVbd * (x - last) + last;
 #ifdef HAS_COLLIDERS
-        float h = params.dt;
-        vec3 xn = vbdStart[k].xyz, before = (x - xn) / h, p = x, vel = before;
-        applyColliders(uStep, p, vel);
-        vec3 push = p - x;
-        float pushed = length(push);
-        if (pushed > 0.0) {
-            vec3 n = push / pushed, lost = before - vel;
-            x = p - h * (lost - dot(lost, n) * n);
-        }
+        vec3 vel = vec3(0.0);
+        applyColliders(uStep, x, vel);
 #endif
         positions[k] = vec4(x, x4.w);
     }

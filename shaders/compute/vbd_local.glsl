@@ -68,6 +68,30 @@ float vbdBendingDiagonal(ivec2 ij, vec3 weights) {
 }
 #endif
 
+#ifdef HAS_COLLIDERS
+// ε_v [m/s] (kVbdStickSpeed): below this slide speed against the surface friction holds.
+#define VBD_STICK_SPEED 1e-3
+
+// Friction as an energy with the lagged normal force (vbdFrictionLane): u = x − x_n − h v_c,
+// n and w = c_f λ of the vertex's last projection, ε = ε_v h; g += s S u, H += s S with
+// s = w f1(|S u|)/|S u|.
+void addVbdFriction(inout VbdLocal l, vec3 u, vec3 n, float weight, float epsilon) {
+    vec3 t = u - dot(u, n) * n;
+    float slide = length(t);
+    float ratio = slide < epsilon ? (2.0 - slide / epsilon) / epsilon : 1.0 / slide;
+    float s = weight * ratio;
+    l.gradient += s * t;
+    addDiagonal(l, s);
+    addOuter(l, -s, n);
+}
+
+// nᵀ H n (vbdNormalStiffness).
+float vbdNormalStiffness(VbdLocal l, vec3 n) {
+    vec3 o = l.offDiagonal;
+    return dot(l.diagonal, n * n) + 2.0 * (o.x * n.x * n.y + o.y * n.x * n.z + o.z * n.y * n.z);
+}
+#endif
+
 // x − H⁻¹g by the adjugate (vbdNewtonStep, in float here); a step with det H ≤ 1e-12·floor³
 // (H ⪰ floor·I, floor = m/h²) is skipped. Returns whether it moved.
 bool vbdNewtonStep(VbdLocal l, float floor, inout vec3 x) {

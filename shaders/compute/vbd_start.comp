@@ -1,5 +1,6 @@
 // vbd, the step's start (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp vbdStart): x_n and the
-// inertial target y = x_n + h v_n + h² (g + F_w(x_n)/m), the wind from the normals of x_n.
+// inertial target y = x_n + h v_n + h² (g + F_w(x_n)/m), the wind from the normals of x_n, which
+// it writes for the renderer (vbd has no force pass).
 #include "layout.glsl"
 #include "common.glsl"
 
@@ -22,12 +23,13 @@ void main() {
     uint k = vertexIndex(ij);
     vec4 x = positions[k];
     vec3 a = params.gravity;
-#ifdef HAS_WIND
     int i = ij.x, j = ij.y;
     vec3 n = vertexNormal(positions[vertexIndex(ivec2(min(i + 1, gridU() - 1), j))].xyz,
                           positions[vertexIndex(ivec2(max(i - 1, 0), j))].xyz,
                           positions[vertexIndex(ivec2(i, min(j + 1, gridV() - 1)))].xyz,
                           positions[vertexIndex(ivec2(i, max(j - 1, 0)))].xyz);
+    normals[k] = vec4(n, 0.0);  // the renderer's, as the other integrators' force pass writes them
+#ifdef HAS_WIND
     a += x.w * windForce(n, params.windDirection, windStrengthAt(ij));
 #endif
     float h = params.dt;

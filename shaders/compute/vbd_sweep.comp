@@ -1,6 +1,6 @@
 // vbd, one colour of a sweep (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp vbdVertex): every
-// free vertex with (i + 2j) mod 5 = uVbd takes one Newton step on its local G, then the
-// colliders' projection with the friction law on the step's displacement (vbdCollide). Vertices
+// free vertex with (i + 2j) mod 5 = uVbd takes one Newton step on its local G (with its
+// contact's friction), then the colliders' projection, which sets the contact (vbdTouch). Vertices
 // of one colour share no energy term: one dispatch per colour, no atomics. The dispatch covers
 // the colour's vertices only: invocation (m, j) is row j's m-th, i = first(j) + 5m.
 #include "layout.glsl"
@@ -53,16 +53,27 @@ void main() {
         l.gradient -= grabForce(x, uGrab.xyz, uGrab.w);
         addDiagonal(l, uGrab.w);
     }
+#ifdef HAS_COLLIDERS
+    vec4 contact = vbdContacts[2u * k];
+    addVbdFriction(l, (x - xn) - vbdContacts[2u * k + 1u].xyz, contact.xyz, contact.w,
+                   h * VBD_STICK_SPEED);
+#endif
     if (!vbdNewtonStep(l, mass / (h * h), x)) return;
 #ifdef HAS_COLLIDERS
-    vec3 before = (x - xn) / h, p = x, vel = before;
+    vec3 p = x, vel = vec3(0.0);
     applyColliders(uStep, p, vel);
     vec3 push = p - x;
     float pushed = length(push);
-    if (pushed > 0.0) {
-        vec3 n = push / pushed, lost = before - vel;
-        x = p - h * (lost - dot(lost, n) * n);
+    if (pushed > 0.0) {  // the contact for the next sweep (vbdTouch): n, c_f λ, h v_c
+        vec3 n = push / pushed, vc;
+        float friction;
+        colliderSurface(uStep, x, vc, friction);
+        vbdContacts[2u * k] = vec4(n, friction * (pushed * vbdNormalStiffness(l, n)));
+        vbdContacts[2u * k + 1u] = vec4(h * vc, 0.0);
+    } else {
+        vbdContacts[2u * k].w = 0.0;
     }
+    x = p;
 #endif
     positions[k] = vec4(x, x4.w);
 }

@@ -57,19 +57,25 @@ public:
         for (const CpuCollider<T>& c : posed_)
             std::visit([&](const auto& s) { applyOne(c, s, p, v); }, c.shape);
     }
-    // The velocity v_c of the surface that touches p last, p moved by each collider as apply()
-    // moves it: 0 for a still one, or where none touches.
-    Vec3<T> surfaceVelocity(Vec3<T> p) const {
-        Vec3<T> vc(0), v(0);
+    // The surface that touches p last, p moved by each collider as apply() moves it: its velocity
+    // v_c (0 for a still one) and its friction coefficient c_f; both 0 where none touches.
+    struct Surface {
+        Vec3<T> velocity{0};
+        T friction = 0;
+    };
+    Surface surfaceAt(Vec3<T> p) const {
+        Surface last;
+        Vec3<T> v(0);
         for (const CpuCollider<T>& c : posed_)
             std::visit(
                 [&](const auto& s) {
                     const Vec3<T> u = c.velocityAt(p);
-                    if (collide(s, c.params, u, p, v)) vc = u;
+                    if (collide(s, c.params, u, p, v)) last = {u, c.params.friction};
                 },
                 c.shape);
-        return vc;
+        return last;
     }
+    Vec3<T> surfaceVelocity(const Vec3<T>& p) const { return surfaceAt(p).velocity; }
     // The same on the n vertices of a row of positions x and velocities v; planes and spheres
     // through the row kernels (the same bits, vectorised).
     void applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;

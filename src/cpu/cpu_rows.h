@@ -110,7 +110,7 @@ struct ContactRow {
 // run is at + m and its neighbours lie a fixed offset away; it writes the moved vertices there
 // and into the iterate. A pinned vertex, and `skip` (the grabbed one, which the caller steps),
 // keep their position; moved[m] says whether vertex m took its step (the caller then applies the
-// colliders).
+// colliders, with the Hessians the kernel leaves it).
 template <typename T>
 struct VbdRow {
     Row3<T> x{nullptr, nullptr, nullptr};  // the iterate, in the grid's order: written
@@ -131,6 +131,13 @@ struct VbdRow {
     T h{}, dampingRate{};
     bool bending = false;  // with bending: its weights w_u, w_v, t inside the sheet (bending.h)
     T wu{}, wv{}, t{};
+    // With colliders: the contacts in phases (cpu_vbd_phases.h VbdContacts) whose friction
+    // enters the local problems (vbdFrictionLane, ε = ε_v h), and where each vertex's local
+    // Hessian goes (xx, yy, zz, xy, xz, yz; vertex m of the run at m) for the projection after.
+    ConstRow3<T> contactNormal{nullptr, nullptr, nullptr}, contactSlide{nullptr, nullptr, nullptr};
+    const T* contactWeight = nullptr;  // null: no colliders
+    T epsilon{};
+    T* hessian[6]{};
 };
 
 // Every kernel runs over n elements from the given (already offset) pointers.

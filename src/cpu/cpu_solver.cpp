@@ -166,10 +166,11 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
                            : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
     colliders_.take(scene);
-    // implicit_euler's contacts in the solve (a scene with colliders); their grips survive this.
+    // The contacts of implicit_euler's solve or of vbd (a scene with colliders) survive this.
     const std::size_t contacts = colliders_.empty() ? 0 : std::size_t(grid_.count());
     if (method_ == Method::ImplicitEuler && contacts_.size() != contacts)
         contacts_.assign(contacts, SolveContact<T>{});
+    vbdContacts_.resize(method_ == Method::Vbd ? contacts : 0);
     if (scene.selfCollision) {
         if (!self_.active()) {
             self_ = CpuSelfCollision<T>(grid_, *scene.selfCollision);
@@ -224,6 +225,7 @@ void CpuSolver<T>::startAfresh(double time) {
     forcesValid_ = false;
     std::fill(dv_.begin(), dv_.end(), Vec3<T>(0));  // no last solution to start from
     std::fill(contacts_.begin(), contacts_.end(), SolveContact<T>{});  // nor grips
+    vbdContacts_.clear();
     vbdHistoryFrom_ = steps_ + 2;         // the written velocities have no predecessor
     if (self_.active()) selfStart_ = x_;  // the next step starts from here
     for (Band& b : bands_) {              // a written state starts afresh, as on the GPU
@@ -292,9 +294,8 @@ StepResult CpuSolver<T>::step(long n) {
 
 template <typename T>
 StepResult CpuSolver<T>::stepThreaded(long n) {
-    // Every vertex's update reads only its own force and the previous positions, and dot
-    // products sum fixed chunks in order, so the result is bit-identical to a serial run
-    // whatever the number of threads.
+    // Every vertex's update reads only its own force and the previous positions, and dot products
+    // sum fixed chunks in order: the result is bit-identical to a serial run for any thread count.
     SpinBarrier sync(int(bands_.size()));
     const Team team{&sync};
     // The end of a step: once every band is done, the fused sweep's new positions become x_.
@@ -302,9 +303,8 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
     long posed = steps_ + 1;
     poseColliders(posed);
     std::atomic<bool> bad{false};
-    // Whether the threads stop after this step: decided once, in the step end's completion, so
-    // that every thread reads the same answer (a fast thread may already have set `bad` in the
-    // next step while a slow one is still leaving the barrier).
+    // Whether the threads stop after this step: decided once, in the step end's completion, so that
+    // all read one answer (a fast thread may set `bad` in the next step before a slow one leaves).
     bool stop = false;
     // With self-collision the threads resolve the step's contacts between the two barriers,
     // with the colliders still at the step's pose; the second poses them for the next.
@@ -370,7 +370,7 @@ std::size_t CpuSolver<T>::allocatedBytes() const {
                           &ap_, &z_, &inertial_, &vPrevious_, &xBefore_, &xBeforeLast_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
-           contacts_.size() * sizeof(SolveContact<T>) +
+           contacts_.size() * sizeof(SolveContact<T>) + vbdContacts_.bytes() +
            (inverseMass_.size() + bendingDiagonal_.size() + phases_.inverseMass.size() +
             phases_.bendDiagonal.size()) *
                sizeof(T) +

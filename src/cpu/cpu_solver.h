@@ -25,6 +25,7 @@
 #include "model/implicit_system.h"
 #include "model/pin_follow.h"
 #include "model/stiffness.h"
+#include "model/vbd_lane.h"
 #include "solver/solver.h"
 #include "solver/step_check.h"
 
@@ -142,10 +143,13 @@ private:
     void vbdRunOffsets(VbdRow<T>& r, int i) const;
     void vbdSet(std::int64_t k, const Vec3<T>& x);  // the iterate, and its copy in phases
     void vbdVertex(std::int64_t k, int i, int j);
-    void vbdCollide(std::int64_t k, Vec3<T>& x) const;
-    void vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved, int n);
+    void vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p, const VbdLane<T>& hessian);
+    void vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved, int n,
+                       const T* const* hessian);
+    void vbdProject(Vec3<T>& x) const;
     void vbdFillPhases(const Band& band);
-    void vbdFriction(Vec3<T>& x, const Vec3<T>& p, const Vec3<T>& before, const Vec3<T>& v) const;
+    // Where vertex k's contact is kept (VbdContacts: in phases' order with phases).
+    std::int64_t vbdContactAt(std::int64_t k) const { return phases_.active() ? phases_.at(k) : k; }
     void vbdAccelerate(const Band& band, double omega);
     // The end of every step: pins, colliders in scene order, then the instability check.
     bool finishStep(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
@@ -219,6 +223,7 @@ private:
     std::vector<Vec3<T>> inertial_, vPrevious_, xBefore_, xBeforeLast_;
     std::vector<T> bendingDiagonal_;  // W_kk per vertex (model/vbd_local.h), with bending only
     VbdPhases<T> phases_;             // what the row kernel reads (with row kernels)
+    VbdContacts<T> vbdContacts_;      // with colliders
     int vbdIterations_ = 0;
     double chebyshevRho_ = 0;
     long vbdHistoryFrom_ = 2;          // the first step whose v_{n−1} is in vPrevious_ (1-based)

@@ -126,7 +126,10 @@ void CpuSolver<T>::vbdSweep(const Band& band, int colour) {
     if (kernels_) row = vbdRow();
     constexpr int kRun = 64;
     std::uint8_t moved[kRun];
+    alignas(64) T hessian[6][kRun];
     row.moved = moved;
+    if (row.contactWeight)
+        for (int e = 0; e < 6; ++e) row.hessian[e] = hessian[e];
     for (int j = band.rowBegin; j < band.rowEnd; ++j) {
         int i = ((colour - 2 * j) % kVbdColours + kVbdColours) % kVbdColours;
         if (kernels_ && j >= 2 && j < nv - 2) {
@@ -140,7 +143,7 @@ void CpuSolver<T>::vbdSweep(const Band& band, int colour) {
                 if (row.skip >= row.first && row.skip < row.first + kVbdColours * n &&
                     (row.skip - row.first) % kVbdColours == 0 && !pinned_[row.skip])
                     vbdVertex(row.skip, int(row.skip % nu), j);
-                if (!colliders_.empty()) vbdCollideRun(row.first, row.at, moved, n);
+                if (!colliders_.empty()) vbdCollideRun(row.first, row.at, moved, n, row.hessian);
                 i += kVbdColours * n;
             }
         }
@@ -169,6 +172,12 @@ VbdRow<T> CpuSolver<T>::vbdRow() {
     }
     r.h = dt_t_;
     r.dampingRate = dampingRate_;
+    if (vbdContacts_.active()) {
+        r.contactNormal = vbdContacts_.normal.row(0);
+        r.contactSlide = vbdContacts_.slide.row(0);
+        r.contactWeight = vbdContacts_.weight.data();
+        r.epsilon = dt_t_ * T(kVbdStickSpeed);
+    }
     r.bending = bending_.active();
     r.wu = T(bending_.alongU);
     r.wv = T(bending_.alongV);
@@ -194,79 +203,88 @@ void CpuSolver<T>::vbdSet(std::int64_t k, const Vec3<T>& x) {
     if (phases_.active()) phases_.x.set(phases_.at(k), x);
 }
 
-// One vertex's Newton step on its local G, then the colliders' projection of the new position
-// (docs/integrators.md "vbd": contact by projection after each local step).
+// One vertex's Newton step on its local G (with its contact's friction), then the colliders'
+// projection of the new position (docs/integrators.md "vbd": contact and friction).
 template <typename T>
 void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
     const T h = dt_t_, mass = T(1) / inverseMass_[std::size_t(k)];
     Vec3<T> x = x_.get(k);
+    const Vec3<T> start = xStart_.get(k);
     VbdLocal<T> local;
-    addVbdInertia(x, inertial_[k], xStart_.get(k), mass, h, dampingRate_, local);
+    addVbdInertia(x, inertial_[k], start, mass, h, dampingRate_, local);
     const T bendDiagonal = bending_.active() ? bendingDiagonal_[std::size_t(k)] : T(0);
     addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, bendDiagonal, x_, xStart_, h, k, i, j,
                   local);
     if (grab_ && grab_->vertex == k) addVbdGrab(x, grab_->target, grab_->stiffness, local);
+    const std::int64_t c = vbdContactAt(k);
+    if (vbdContacts_.active())
+        addVbdFriction(x - start - vbdContacts_.slide.get(c), vbdContacts_.normal.get(c),
+                       vbdContacts_.weight[c], h * T(kVbdStickSpeed), local);
     if (!vbdNewtonStep(local, double(mass) / (double(h) * h), x)) return;
-    vbdCollide(k, x);
+    if (!colliders_.empty()) {
+        Vec3<T> p = x, v(0);
+        applyColliders(p, v);
+        vbdTouch(c, x, p, vbdLane(local));
+        x = p;
+    }
     vbdSet(k, x);
 }
 
-// vbdCollide on the run's vertices that moved (k = first + 5m, in phases at + m, moved[m]): the
+// Contact c after a projection moved the Newton step's x to p, H the local problem's Hessian
+// there: its normal n = (p − x)/|p − x|, the normal force λ = |p − x| nᵀHn
+// (vbdNormalStiffness), and the surface's c_f and v_c at x; no contact where nothing pushed.
+template <typename T>
+void CpuSolver<T>::vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
+                            const VbdLane<T>& hessian) {
+    const Vec3<T> push = p - x;
+    const T pushed = glm::length(push);
+    if (!(pushed > T(0))) {
+        vbdContacts_.weight[c] = T(0);
+        return;
+    }
+    const Vec3<T> n = push / pushed;
+    const auto surface = colliders_.surfaceAt(x);
+    vbdContacts_.normal.set(c, n);
+    vbdContacts_.slide.set(c, dt_t_ * surface.velocity);
+    vbdContacts_.weight[c] =
+        surface.friction * (pushed * vbdNormalStiffness(hessian, n.x, n.y, n.z));
+}
+
+// vbdTouch on the run's vertices that moved (k = first + 5m, in phases at + m, moved[m]): the
 // colliders through their row code (CpuColliders::applyRow: the same bits as apply, vertex by
 // vertex) on the whole run, read contiguously from the copy in phases; the vertices that did not
-// move keep their position.
+// move keep their position. hessian: the run's local Hessians as the kernel exported them, or
+// null for a projection that sets no contact (Chebyshev's extrapolation).
 template <typename T>
 void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved,
-                                 int n) {
+                                 int n, const T* const* hessian) {
     constexpr int kRun = 64;
-    alignas(64) T p[3][kRun], v[3][kRun], x[3][kRun], before[3][kRun];
-    const T h = dt_t_;
+    alignas(64) T p[3][kRun], v[3][kRun] = {};
     const T* position[3] = {phases_.x.x.data() + at, phases_.x.y.data() + at,
                             phases_.x.z.data() + at};
-    const T* start[3] = {phases_.xn.x.data() + at, phases_.xn.y.data() + at,
-                         phases_.xn.z.data() + at};
     for (int c = 0; c < 3; ++c)
-        for (int m = 0; m < n; ++m) {
-            x[c][m] = p[c][m] = position[c][m];
-            before[c][m] = v[c][m] = (position[c][m] - start[c][m]) / h;
-        }
+        for (int m = 0; m < n; ++m) p[c][m] = position[c][m];
     colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_);
     for (int m = 0; m < n; ++m) {
-        const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old(x[0][m], x[1][m], x[2][m]);
-        if (!moved[m] || pushed == old) continue;  // nothing pushed it: vbdFriction keeps x
-        Vec3<T> y = old;
-        vbdFriction(y, pushed, Vec3<T>(before[0][m], before[1][m], before[2][m]),
-                    Vec3<T>(v[0][m], v[1][m], v[2][m]));
-        x_.set(first + std::int64_t(kVbdColours) * m, y);
-        phases_.x.set(at + m, y);
+        if (!moved[m]) continue;
+        const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old = phases_.x.get(at + m);
+        if (hessian && hessian[0])
+            vbdTouch(at + m, old, pushed,
+                     {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m],
+                      hessian[4][m], hessian[5][m]});
+        if (pushed == old) continue;
+        x_.set(first + std::int64_t(kVbdColours) * m, pushed);
+        phases_.x.set(at + m, pushed);
     }
 }
 
-// The colliders on an iterate (docs/integrators.md "vbd", contact): the position is projected
-// out as at a step's end, and the friction of docs/colliders.md §2 — which takes from the
-// tangential velocity at most c_f times the normal velocity removed — takes the same from the
-// step's displacement x − x_n = h v. The projection alone would leave no normal velocity for
-// finishStep's friction to act on: a resting vertex would slide freely.
+// The colliders' projection alone on an extrapolated iterate (Chebyshev's): no friction, no
+// change to the contacts.
 template <typename T>
-void CpuSolver<T>::vbdCollide(std::int64_t k, Vec3<T>& x) const {
+void CpuSolver<T>::vbdProject(Vec3<T>& x) const {
     if (colliders_.empty()) return;
-    const T h = dt_t_;
-    const Vec3<T> before = (x - xStart_.get(k)) / h;
-    Vec3<T> p = x, v = before;
-    applyColliders(p, v);
-    vbdFriction(x, p, before, v);
-}
-
-// x, moved by the colliders to p while its step's velocity went from `before` to v: x = p less
-// h × the tangential velocity friction took. x is kept where nothing pushed it.
-template <typename T>
-void CpuSolver<T>::vbdFriction(Vec3<T>& x, const Vec3<T>& p, const Vec3<T>& before,
-                               const Vec3<T>& v) const {
-    const Vec3<T> push = p - x;
-    const T pushed = glm::length(push);
-    if (!(pushed > T(0))) return;
-    const Vec3<T> n = push / pushed, lost = before - v;
-    x = p - dt_t_ * (lost - glm::dot(lost, n) * n);  // the tangential part friction took
+    Vec3<T> v(0);
+    applyColliders(x, v);
 }
 
 // Chebyshev acceleration after sweep n (VBD §3.8): x_n ← ω_n (x̄_n − x_{n−2}) + x_{n−2} for the
@@ -288,7 +306,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
             if (pinned_[k]) continue;
             if (extrapolate) {
                 Vec3<T> x = extrapolated(k);
-                vbdCollide(k, x);
+                vbdProject(x);
                 vbdSet(k, x);
             }
             shift(k);
@@ -314,7 +332,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
                     x_.set(k, x);
                     phases_.x.set(at + m, x);
                 }
-                if (!colliders_.empty()) vbdCollideRun(first, at, moved, n);
+                if (!colliders_.empty()) vbdCollideRun(first, at, moved, n, nullptr);
                 for (int m = 0; m < n; ++m)
                     if (moved[m]) shift(first + std::int64_t(kVbdColours) * m);
             }
@@ -332,11 +350,11 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
     template void CpuSolver<T>::vbdSet(std::int64_t, const Vec3<T>&);                          \
     template void CpuSolver<T>::vbdFillPhases(const Band&);                                    \
     template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);                             \
-    template void CpuSolver<T>::vbdCollide(std::int64_t, Vec3<T>&) const;                      \
+    template void CpuSolver<T>::vbdTouch(std::int64_t, const Vec3<T>&, const Vec3<T>&,         \
+                                         const VbdLane<T>&);                                   \
     template void CpuSolver<T>::vbdCollideRun(std::int64_t, std::int64_t, const std::uint8_t*, \
-                                              int);                                            \
-    template void CpuSolver<T>::vbdFriction(Vec3<T>&, const Vec3<T>&, const Vec3<T>&,          \
-                                            const Vec3<T>&) const;                             \
+                                              int, const T* const*);                           \
+    template void CpuSolver<T>::vbdProject(Vec3<T>&) const;                                    \
     template void CpuSolver<T>::vbdAccelerate(const Band&, double);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

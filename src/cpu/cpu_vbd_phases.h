@@ -11,6 +11,8 @@
 // (both written on every move, cpu_vbd.cpp vbdSet) and fills the rest once a step (vbdStart).
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 
 #include "cpu/cpu_soa.h"
@@ -40,6 +42,27 @@ struct VbdPhases {
     std::int64_t at(std::int64_t k) const { return at(int(k % nu), int(k / nu)); }
     // How far (i + di, j + dj) lies from (i, j) here: the same for every i of one phase.
     std::int64_t offset(int i, int di, int dj) const { return at(i + di, dj + 2) - at(i, 2); }
+};
+
+// vbd's contacts (docs/integrators.md "vbd", friction), kept from sweep to sweep and step to
+// step, one per vertex in phases' order where the solver keeps phases (the row kernel reads them
+// beside the iterate), else the grid's: the unit normal n of the vertex's last projection, the
+// surface's displacement over the step h v_c [m], and the friction's weight w = c_f λ [N] (λ the
+// normal force that projection exerted; 0: no contact). With colliders only.
+template <typename T>
+struct VbdContacts {
+    Soa3<T> normal, slide;
+    AlignedVector<T> weight;
+
+    // n contacts, none touching; those there are kept where there are n already.
+    void resize(std::size_t n) {
+        if (weight.size() == n) return;
+        for (Soa3<T>* a : {&normal, &slide}) a->assign(std::int64_t(n), Vec3<T>(0));
+        weight.assign(n, T(0));
+    }
+    void clear() { std::fill(weight.begin(), weight.end(), T(0)); }
+    bool active() const { return !weight.empty(); }
+    std::size_t bytes() const { return 7 * weight.size() * sizeof(T); }
 };
 
 }  // namespace cloth

@@ -42,6 +42,7 @@ enum Binding : unsigned {
     kVbdPrevious = 10,
     kVbdBefore = 11,
     kVbdBeforeLast = 12,
+    kVbdContacts = 13,  // with colliders: (n, c_f λ), (h v_c, 0) per vertex
     // Self-collision (self_contact.glsl): seven vec4 per vertex, and its integers (the hash, the
     // fixed-point sums, the header); any integrator's scene may declare it.
     kSelfVectors = 15,

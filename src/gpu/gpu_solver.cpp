@@ -247,10 +247,11 @@ void GpuSolver::uploadParams(const Scene& scene) {
     glBufferSubData(GL_UNIFORM_BUFFER, 0, sizeof p, &p);
 }
 
-// Pass 1 alone: fresh normals for the renderer (its forces are recomputed by the next step).
+// Pass 1 alone: fresh normals for the renderer (its forces are recomputed by the next step);
+// vbd's step start, which writes them too (its x_n and y are rewritten by the next step).
 void GpuSolver::computeNormals() const {
     bindBuffers();
-    runPass(Kernel::Forces);
+    runPass(method_ == Method::Vbd ? Kernel::VbdStart : Kernel::Forces);
 }
 
 void GpuSolver::bindBuffers() const {

@@ -19,7 +19,7 @@ using gpu::kVec4;
 // binding in the integrator's list, never from the number alone.
 enum class Contents {
     PerVertex,       // one vec4 per vertex, zeros
-    TwoPerVertex,    // two vec4 per vertex (the block-Jacobi inverses)
+    TwoPerVertex,    // two vec4 per vertex (the block-Jacobi inverses, vbd's contacts)
     ThreePerVertex,  // three vec4 per vertex (the contacts in the solve)
     Partials,        // two floats per work group of the grid dispatch, in whole vec4s
     CgState,         // one gpu::CgState
@@ -30,7 +30,7 @@ struct IntegratorBuffer {
 };
 
 // The buffers of docs/integrators.md's stage or solver state, beyond the core eight.
-// `contacts`: the scene has colliders (implicit_euler's contacts in the solve).
+// `contacts`: the scene has colliders (implicit_euler's contacts in the solve, vbd's contacts).
 std::vector<IntegratorBuffer> integratorBuffers(Method m, Preconditioner p, bool contacts) {
     switch (m) {
         case Method::Rk4:
@@ -50,12 +50,15 @@ std::vector<IntegratorBuffer> integratorBuffers(Method m, Preconditioner p, bool
             if (contacts) cg.push_back({gpu::kCgContacts, Contents::ThreePerVertex});
             return cg;
         }
-        case Method::Vbd:
-            return {{gpu::kVbdStart},
-                    {gpu::kVbdInertial},
-                    {gpu::kVbdPrevious},
-                    {gpu::kVbdBefore},
-                    {gpu::kVbdBeforeLast}};
+        case Method::Vbd: {
+            std::vector<IntegratorBuffer> vbd = {{gpu::kVbdStart},
+                                                 {gpu::kVbdInertial},
+                                                 {gpu::kVbdPrevious},
+                                                 {gpu::kVbdBefore},
+                                                 {gpu::kVbdBeforeLast}};
+            if (contacts) vbd.push_back({gpu::kVbdContacts, Contents::TwoPerVertex});
+            return vbd;
+        }
         default:
             return {};
     }

@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <vector>
 
 #include "gpu/egl_context.h"
 #include "gpu/gpu_buffers.h"
@@ -50,12 +51,14 @@ void GpuSolver::startAfresh(double time) {
     vbdHistoryFrom_ = steps_ + 2;                   // the written velocities have no predecessor
     posedFrom_ = posedTo_ = 0;                      // posed again at the (new) time
     if (features_.selfCollision) storeSelfStart();  // the next step starts here
-    if (method_ == Method::ImplicitEuler) {  // no last solution to start from, nor grips, as on
-        for (gpu::Binding b : {gpu::kCgVelocityChange, gpu::kCgContacts}) {  // the CPU
-            if (b == gpu::kCgContacts && scene_.colliders.empty()) continue;
-            glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[b]);
-            glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
-        }
+    // No last solution to start from, nor grips or contacts, as on the CPU.
+    std::vector<gpu::Binding> cleared;
+    if (method_ == Method::ImplicitEuler) cleared = {gpu::kCgVelocityChange, gpu::kCgContacts};
+    if (method_ == Method::Vbd) cleared = {gpu::kVbdContacts};
+    for (gpu::Binding b : cleared) {
+        if (b != gpu::kCgVelocityChange && scene_.colliders.empty()) continue;
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[b]);
+        glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_RGBA32F, GL_RGBA, GL_FLOAT, nullptr);
     }
     // A written state starts afresh: an earlier instability no longer freezes the kernels.
     const gpu::Status status = gpu::kStable;

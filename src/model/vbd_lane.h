@@ -90,6 +90,42 @@ CLOTH_LANE void vbdSpringDampingLane(T dx, T dy, T dz, T wx, T wy, T wz, T dampi
     vbdAddOuter(e * inverseH, dx, dy, dz, a);
 }
 
+// ε_v [m/s]: below this slide speed against the surface vbd's friction holds (vbdFrictionLane).
+inline constexpr double kVbdStickSpeed = 1e-3;
+
+// Friction as an energy of the local problem (docs/integrators.md "vbd", friction; IPC's lagged
+// friction, as the VBD paper takes it): D = w f0(|t|), w = c_f λ [N] with the normal force λ and
+// the unit normal n of the vertex's last projection (lagged), t = S u the tangential part of
+// u = x − x_n − h v_c, its slide over the step against the surface (S = I − n nᵀ). f0's
+// derivative is IPC's mollifier f1(y) = 2y/ε − y²/ε² below ε, 1 above (ε = ε_v h: stuck below
+// the slide speed ε_v): g += s t, H += s S with s = w f1(|t|)/|t|, the positive semi-definite
+// part of D's Hessian. Without a branch (w = 0 adds zeros), so that the row kernel vectorises.
+template <typename T>
+CLOTH_LANE void vbdFrictionLane(T ux, T uy, T uz, T nx, T ny, T nz, T weight, T epsilon,
+                                VbdLane<T>& a) {
+    const T un = ux * nx + uy * ny + uz * nz;
+    const T tx = ux - un * nx, ty = uy - un * ny, tz = uz - un * nz;
+    const T slide = std::sqrt(tx * tx + ty * ty + tz * tz);
+    const bool stuck = slide < epsilon;
+    const T inverseEpsilon = T(1) / epsilon;
+    const T ratio =
+        stuck ? (T(2) - slide * inverseEpsilon) * inverseEpsilon : T(1) / (stuck ? T(1) : slide);
+    const T s = weight * ratio;
+    a.gx += s * tx;
+    a.gy += s * ty;
+    a.gz += s * tz;
+    vbdAddDiagonal(s, a);
+    vbdAddOuter(-s, nx, ny, nz, a);
+}
+
+// nᵀ H n: the local problem's stiffness along a unit n [N/m]. A projection that moves the Newton
+// step's x by d along n holds it there with the normal force λ = d nᵀ H n.
+template <typename T>
+CLOTH_LANE T vbdNormalStiffness(const VbdLane<T>& a, T nx, T ny, T nz) {
+    return a.xx * nx * nx + a.yy * ny * ny + a.zz * nz * nz +
+           T(2) * (a.xy * nx * ny + a.xz * nx * nz + a.yz * ny * nz);
+}
+
 // The Newton step x ← x − H⁻¹g in double, H⁻¹ by the adjugate (glm::inverse's operations);
 // false, and x kept, where |det H| ≤ 1e-12 floor³ (vbdNewtonStep says why). Without a branch,
 // so that the row kernel's loop vectorises: a kept vertex selects its old x.

@@ -136,16 +136,30 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
     }
 }
 
+// Friction as an energy with the lagged normal force (vbdFrictionLane): u = x − x_n − h v_c,
+// n the unit normal and w = c_f λ of the vertex's last projection, ε = ε_v h.
+template <typename T>
+void addVbdFriction(const Vec3<T>& u, const Vec3<T>& n, T weight, T epsilon, VbdLocal<T>& local) {
+    onLane(local, [&](VbdLane<T>& a) {
+        vbdFrictionLane(u.x, u.y, u.z, n.x, n.y, n.z, weight, epsilon, a);
+    });
+}
+
+// The local problem's entries as a VbdLane.
+template <typename T>
+VbdLane<T> vbdLane(const VbdLocal<T>& local) {
+    const Vec3<T>& g = local.gradient;
+    const Sym3<T>& m = local.hessian;
+    return {g.x, g.y, g.z, m.xx, m.yy, m.zz, m.xy, m.xz, m.yz};
+}
+
 // The Newton step x ← x − H⁻¹g, solved in double (a stiff spring beside a light vertex makes H
 // too ill-conditioned for a float inverse). H ⪰ floor·I with floor = m/h² (every other term is
 // positive semi-definite), so det H ≥ floor³: a determinant below 1e-12 of that is rounding or a
 // non-finite state, and the vertex then keeps its position. Returns whether it moved.
 template <typename T>
 bool vbdNewtonStep(const VbdLocal<T>& local, double floor, Vec3<T>& x) {
-    const Vec3<T>& g = local.gradient;
-    const Sym3<T>& m = local.hessian;
-    const VbdLane<T> a{g.x, g.y, g.z, m.xx, m.yy, m.zz, m.xy, m.xz, m.yz};
-    return vbdNewtonLane(a, floor, x.x, x.y, x.z);
+    return vbdNewtonLane(vbdLane(local), floor, x.x, x.y, x.z);
 }
 
 // The paper's adaptive initial guess (§3.7): x = x_n + h v_n + h² ã, ã the component of the

@@ -83,7 +83,7 @@ TEST(Vbd, ConvergedItIsBackwardEulerSolvedByNewton) {
 
 // 48×80 vertices are 4 chunks of rows, which 3 threads split: bands read each other's border
 // rows between colours. With the grab (inside the sheet, where the row kernel would take it), a
-// sphere, spring damping and Chebyshev's extrapolation too. The row kernels of every
+// sphere with friction, spring damping and Chebyshev's extrapolation too. The row kernels of every
 // instruction set step the interior vertices in the scalar path's operations: the same bits.
 TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
     Scene scene = materialScene(Method::Vbd, kFrame);
@@ -93,6 +93,8 @@ TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
     scene.material->springDamping = 1e-3;
     scene.material->bend = 1e-4;
     scene.colliders.push_back(Sphere{scene.cloth.origin + glm::dvec3(0.4, -0.5, 0.5), 0.3});
+    scene.colliders.back().friction = 0.5;  // the friction term in the local problems
+    scene.colliders.back().thickness = 0.005;
     scene.integrator.chebyshevRho = 0.5;
     const Grab grab{2000, scene.cloth.origin + glm::dvec3(0.3, 0.2, 0.1), 5};
     for (Precision precision : {Precision::Double, Precision::Float}) {

@@ -3,6 +3,7 @@
 // friction angle and lets it slide above; a moving box carries the cloth resting on it;
 // setParameters moves colliders and changes their thickness and friction without a new kernel; a
 // mesh grid beyond one SSBO is an input error.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -102,6 +103,47 @@ TEST_F(GpuColliderContact, ImplicitStaticFrictionHoldsAsOnTheCpu) {
     // Held at v_c, not merely dragged along: with the hold's v_c taken as 0 it was 0.2903.
     EXPECT_NEAR(v.x, 0.3, 1e-3);
     EXPECT_NEAR(v.z, 0.0, 1e-3);
+}
+
+// Law (Coulomb) under vbd's friction, an energy of each vertex's local problem with the normal
+// force of its last projection (vbd_sweep.comp): on a slope the cloth holds 3° below the
+// friction angle and slides as on the CPU in float 5° above; the sheet wrapped over a sphere
+// stays on it; a moving box carries the cloth at its speed (Δt = 1/60 s throughout).
+TEST_F(GpuColliderContact, VbdFrictionActsAsOnTheCpu) {
+    const Json vbd = {{"method", "vbd"}, {"dt", 1.0 / 60}, {"iterations", 10}};
+    auto both = [&](Json j, const char* what, long steps) {
+        j["integrator"] = vbd;
+        const Scene s = parseScene(j.dump(), what);
+        std::unique_ptr<Solver> gpu = makeGpuSolver(s);
+        std::unique_ptr<Solver> cpu = makeCpuSolver(s, {Precision::Float, 1});
+        const glm::dvec3 start = meanOf(cpu->read().positions);
+        for (Solver* solver : {gpu.get(), cpu.get()}) EXPECT_FALSE(solver->step(steps).unstable);
+        return std::array<glm::dvec3, 3>{meanOf(gpu->read().positions) - start,
+                                         meanOf(cpu->read().positions) - start,
+                                         meanOf(gpu->read().velocities)};
+    };
+    const double angle = std::atan(0.5) * 180 / std::numbers::pi;
+    const auto held = both(clothOnTiltedBox(angle - 3, 0.5), "slope (test)", 60);
+    const auto slid = both(clothOnTiltedBox(angle + 5, 0.5), "slope (test)", 60);
+    const double heldGpu = glm::length(held[0]), slidGpu = glm::length(slid[0]);
+    const double slidCpu = glm::length(slid[1]);
+    std::printf("gpu vbd, c_f 0.5: %.2f° moved %.3g m; %.2f° slid %.4f m (cpu float %.4f m)\n",
+                angle - 3, heldGpu, angle + 5, slidGpu, slidCpu);
+    EXPECT_LT(heldGpu, 0.002);
+    EXPECT_NEAR(slidGpu, slidCpu, 0.005 * slidCpu);
+
+    const auto sphere = both(sheetOverSphere(0.8, vbd), "sheet over a sphere (test)", 90);
+    const double top = 0.7;  // the sheet's starting height
+    std::printf("gpu vbd: sheet over a sphere after 1.5 s: mean height %.4f m (cpu float %.4f m)\n",
+                top + sphere[0].y, top + sphere[1].y);
+    EXPECT_GT(top + sphere[0].y, 0.4);
+    EXPECT_NEAR(sphere[0].y, sphere[1].y, 0.01);
+
+    const auto carried = both(clothOnMovingBox(), "moving box (test)", 60);
+    std::printf("gpu vbd: box at 0.3 m/s: cloth's mean velocity (%.4f, %.4f, %.4f) m/s\n",
+                carried[2].x, carried[2].y, carried[2].z);
+    EXPECT_NEAR(carried[2].x, 0.3, 1e-3);
+    EXPECT_NEAR(carried[2].z, 0.0, 1e-3);
 }
 
 // Invariant (inelastic contact) under implicit Euler and vbd on the GPU, as on the CPU

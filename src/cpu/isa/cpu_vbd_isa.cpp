@@ -142,6 +142,23 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
             c.xx[m] += s, c.yy[m] += s, c.zz[m] += s;
         }
     }
+    if (r.contactWeight) {  // the friction after every other term, as vbdVertex adds it
+        const T* __restrict ux = r.contactSlide.x + a0, * __restrict uy = r.contactSlide.y + a0;
+        const T* __restrict uz = r.contactSlide.z + a0, * __restrict w = r.contactWeight + a0;
+        const T* __restrict cx = r.contactNormal.x + a0, * __restrict cy = r.contactNormal.y + a0;
+        const T* __restrict cz = r.contactNormal.z + a0;
+        for (int m = 0; m < n; ++m) {
+            VbdLane<T> a = c.get(m);
+            vbdFrictionLane((px[m] - nx[m]) - ux[m], (py[m] - ny[m]) - uy[m],
+                            (pz[m] - nz[m]) - uz[m], cx[m], cy[m], cz[m], w[m], r.epsilon, a);
+            c.set(m, a);
+        }
+        T* const* out = r.hessian;
+        for (int m = 0; m < n; ++m) {
+            out[0][m0 + m] = c.xx[m], out[1][m0 + m] = c.yy[m], out[2][m0 + m] = c.zz[m];
+            out[3][m0 + m] = c.xy[m], out[4][m0 + m] = c.xz[m], out[5][m0 + m] = c.yz[m];
+        }
+    }
     const std::uint8_t* __restrict pinned = r.pinned + a0;
     std::uint8_t* __restrict moved = r.moved + m0;
     const std::int64_t k0 = r.first + 5 * std::int64_t(m0);
