@@ -14,7 +14,8 @@ std::unique_ptr<Solver> makeCpuSolver(const Scene& scene, const CpuOptions& opti
     const double vertices = double(scene.cloth.nu) * double(scene.cloth.nv);
     const double need = vertices * double(cpuBytesPerVertex(
                                        options.precision, scene.integrator.method,
-                                       scene.integrator.preconditioner, !scene.colliders.empty())),
+                                       scene.integrator.preconditioner, !scene.colliders.empty(),
+                                       true, scene.anyFriction())),
                  have = physicalMemoryBytes();
     if (need > have) {
         char buf[240];

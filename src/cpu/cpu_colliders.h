@@ -65,12 +65,11 @@ public:
     };
     Surface surfaceAt(Vec3<T> p) const {
         Surface last;
-        Vec3<T> v(0);
         for (const CpuCollider<T>& c : posed_)
             std::visit(
                 [&](const auto& s) {
                     const Vec3<T> u = c.velocityAt(p);
-                    if (collide(s, c.params, u, p, v)) last = {u, c.params.friction};
+                    if (collidePosition(s, c.params, p)) last = {u, c.params.friction};
                 },
                 c.shape);
         return last;

@@ -20,13 +20,14 @@ namespace cloth {
 // colliders its contacts in the solve, 12 scalars: n, z, hold, b, grip and two flags padded),
 // vbd the step's start, the inertial target and the previous velocity (Chebyshev's two iterates
 // and, with a material's bending, its Hessian diagonal, one scalar, are not counted), and the
-// inverse mass 1/m_k (one scalar per vertex), with colliders its contacts (n, h v_c, c_f λ: 7
-// scalars); with row kernels vbd keeps the copy its kernel
+// inverse mass 1/m_k (one scalar per vertex), where a collider has friction its contacts (n,
+// h v_c, c_f λ: 7 scalars); with row kernels vbd keeps the copy its kernel
 // reads (cpu/cpu_vbd_phases.h: x, x_n, y, 1/m and the pin flag); the threads' scratch rows are
 // O(side), not counted, nor is the multigrid preconditioner's hierarchy.
 inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
                                      Preconditioner preconditioner = Preconditioner::Jacobi,
-                                     bool colliders = false, bool rowKernels = true) {
+                                     bool colliders = false, bool rowKernels = true,
+                                     bool friction = false) {
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
     std::size_t vectors = 4;
     if (method == Method::Rk4 || method == Method::ImplicitEuler) vectors += 4;
@@ -34,7 +35,7 @@ inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
     std::size_t scalars = vectors * 3 + 1;
     if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
     if (method == Method::ImplicitEuler && colliders) scalars += 12;
-    if (method == Method::Vbd && colliders) scalars += 7;
+    if (method == Method::Vbd && friction) scalars += 7;
     const bool phases = method == Method::Vbd && rowKernels;
     if (phases) scalars += 3 * 3 + 1;
     return scalars * scalar + (phases ? 2 : 1);

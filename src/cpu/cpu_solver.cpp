@@ -166,11 +166,11 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
                            : T(0);
     windDirection_ = scene.wind ? cast<T>(scene.wind->direction) : Vec3<T>(0);
     colliders_.take(scene);
-    // The contacts of implicit_euler's solve or of vbd (a scene with colliders) survive this.
+    // The contacts of implicit_euler's solve (with colliders) or of vbd's friction survive this.
     const std::size_t contacts = colliders_.empty() ? 0 : std::size_t(grid_.count());
     if (method_ == Method::ImplicitEuler && contacts_.size() != contacts)
         contacts_.assign(contacts, SolveContact<T>{});
-    vbdContacts_.resize(method_ == Method::Vbd ? contacts : 0);
+    vbdContacts_.resize(vbdContactCount(scene));
     if (scene.selfCollision) {
         if (!self_.active()) {
             self_ = CpuSelfCollision<T>(grid_, *scene.selfCollision);

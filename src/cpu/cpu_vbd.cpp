@@ -224,7 +224,7 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
     if (!colliders_.empty()) {
         Vec3<T> p = x, v(0);
         applyColliders(p, v);
-        vbdTouch(c, x, p, vbdLane(local));
+        if (vbdContacts_.active()) vbdTouch(c, x, p, vbdLane(local));
         x = p;
     }
     vbdSet(k, x);
@@ -268,7 +268,7 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
     for (int m = 0; m < n; ++m) {
         if (!moved[m]) continue;
         const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old = phases_.x.get(at + m);
-        if (hessian && hessian[0])
+        if (hessian && hessian[0] && (pushed != old || vbdContacts_.weight[at + m] != T(0)))
             vbdTouch(at + m, old, pushed,
                      {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m],
                       hessian[4][m], hessian[5][m]});

@@ -16,6 +16,7 @@
 #include <cstdint>
 
 #include "cpu/cpu_soa.h"
+#include "model/scene.h"
 
 namespace cloth {
 
@@ -44,11 +45,12 @@ struct VbdPhases {
     std::int64_t offset(int i, int di, int dj) const { return at(i + di, dj + 2) - at(i, 2); }
 };
 
-// vbd's contacts (docs/integrators.md "vbd", friction), kept from sweep to sweep and step to
-// step, one per vertex in phases' order where the solver keeps phases (the row kernel reads them
-// beside the iterate), else the grid's: the unit normal n of the vertex's last projection, the
-// surface's displacement over the step h v_c [m], and the friction's weight w = c_f λ [N] (λ the
-// normal force that projection exerted; 0: no contact). With colliders only.
+// vbd's contacts (docs/integrators.md "vbd", contact and friction), kept from sweep to sweep and
+// step to step, one per vertex in phases' order where the solver keeps phases (the row kernel
+// reads them beside the iterate), else the grid's: the unit normal n of the vertex's last
+// projection, the surface's displacement over the step h v_c [m], and the friction's weight
+// w = c_f λ [N] (λ the normal force that projection exerted; 0: no contact). Held only while a
+// collider has friction (vbdContactCount): frictionless contact is the projection alone.
 template <typename T>
 struct VbdContacts {
     Soa3<T> normal, slide;
@@ -64,5 +66,12 @@ struct VbdContacts {
     bool active() const { return !weight.empty(); }
     std::size_t bytes() const { return 7 * weight.size() * sizeof(T); }
 };
+
+// How many contacts vbd keeps for `scene`: one per vertex where a collider has friction, else 0.
+inline std::size_t vbdContactCount(const Scene& scene) {
+    return scene.integrator.method == Method::Vbd && scene.anyFriction()
+               ? std::size_t(scene.cloth.nu) * std::size_t(scene.cloth.nv)
+               : 0;
+}
 
 }  // namespace cloth

@@ -33,13 +33,41 @@ void respondVelocity(Vec3<T>& v, const Vec3<T>& n, const Vec3<T>& vc, T friction
         respondVelocityLane<T, false>(v.x, v.y, v.z, n.x, n.y, n.z, vc.x, vc.y, vc.z, friction);
 }
 
+// Where the response puts a vertex at p against a contact (φ, n): if φ < h, p ← p + (h − φ) n.
+// Returns whether it touched. The sphere's puts it on the shell (below).
+template <typename T>
+bool pushOut(const ContactT<T>& c, const ContactParamsT<T>& params, Vec3<T>& p) {
+    if (!(c.phi < params.thickness)) return false;
+    p += (params.thickness - c.phi) * c.normal;
+    return true;
+}
+
+// The sphere places the vertex at c + (R + h) n, on the shell to rounding, rather than adding
+// (h − φ) n (which would differ from DESIGN.md §2's c + R n in the last bits).
+template <typename T>
+bool pushOut(const SphereT<T>& sphere, const ContactT<T>& c, const ContactParamsT<T>& params,
+             Vec3<T>& p) {
+    if (!(c.phi < params.thickness)) return false;
+    p = sphere.center + (sphere.radius + params.thickness) * c.normal;
+    return true;
+}
+
+// The position part alone of collide() below: p pushed out as collide() pushes it.
+template <typename T, typename Shape>
+bool collidePosition(const Shape& shape, const ContactParamsT<T>& params, Vec3<T>& p) {
+    return pushOut(contact(shape, p), params, p);
+}
+template <typename T>
+bool collidePosition(const SphereT<T>& sphere, const ContactParamsT<T>& params, Vec3<T>& p) {
+    return pushOut(sphere, contact(sphere, p), params, p);
+}
+
 // The whole response for a vertex at (p, v) against a contact (φ, n) of a collider moving at v_c:
-// if φ < h, p ← p + (h − φ) n and the velocity is filtered as above. Returns whether it touched.
+// p pushed out (pushOut) and the velocity filtered as above. Returns whether it touched.
 template <typename T>
 bool respond(const ContactT<T>& c, const ContactParamsT<T>& params, const Vec3<T>& vc, Vec3<T>& p,
              Vec3<T>& v) {
-    if (!(c.phi < params.thickness)) return false;
-    p += (params.thickness - c.phi) * c.normal;
+    if (!pushOut(c, params, p)) return false;
     respondVelocity(v, c.normal, vc, params.friction);
     return true;
 }
@@ -51,14 +79,11 @@ bool collide(const Shape& shape, const ContactParamsT<T>& params, const Vec3<T>&
     return respond(contact(shape, p), params, vc, p, v);
 }
 
-// The sphere places the vertex at c + (R + h) n, on the shell to rounding, rather than adding
-// (h − φ) n (which would differ from DESIGN.md §2's c + R n in the last bits).
 template <typename T>
 bool collide(const SphereT<T>& sphere, const ContactParamsT<T>& params, const Vec3<T>& vc,
              Vec3<T>& p, Vec3<T>& v) {
     const ContactT<T> c = contact(sphere, p);
-    if (!(c.phi < params.thickness)) return false;
-    p = sphere.center + (sphere.radius + params.thickness) * c.normal;
+    if (!pushOut(sphere, c, params, p)) return false;
     respondVelocity(v, c.normal, vc, params.friction);
     return true;
 }

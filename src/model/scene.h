@@ -236,6 +236,11 @@ struct Scene {
     long defaultSteps() const;
     int planeCount() const;
     int sphereCount() const;
+    bool anyFriction() const {  // whether a collider has friction (c_f > 0)
+        for (const Collider& c : colliders)
+            if (c.friction > 0) return true;
+        return false;
+    }
     template <typename S>
     int count() const {
         int n = 0;

@@ -206,23 +206,29 @@ TEST(RowBands, ThreadCountsOneTwoThreeGiveTheSameBits) {
 }
 
 // bench speed reports app::cpuBytesPerVertex as the CPU's memory: it must be what the solver
-// holds, for every integrator and precision; the threads' scratch rows stay O(side).
+// holds, for every integrator and precision, with frictionless colliders and with friction; the
+// threads' scratch rows stay O(side).
 TEST(CpuMemory, BytesPerVertexOfTheBenchModelAreWhatTheSolverAllocates) {
-    for (Method m : kMethods) {
-        const Scene scene = sized(m, 64, 40, false);
-        CpuSolver<float> f(scene, 2);
-        CpuSolver<double> d(scene, 2);
-        const Preconditioner p = scene.integrator.preconditioner;
-        const bool colliders = !scene.colliders.empty();
-        const bool kernels = f.isa() != CpuIsa::Scalar;
-        EXPECT_EQ(f.allocatedBytes(),
-                  64 * 40 * app::cpuBytesPerVertex(Precision::Float, m, p, colliders, kernels))
-            << methodName(m);
-        EXPECT_EQ(d.allocatedBytes(),
-                  64 * 40 * app::cpuBytesPerVertex(Precision::Double, m, p, colliders, kernels))
-            << methodName(m);
-        EXPECT_LE(d.scratchBytes(), 2 * (3 * 6 + 3) * 64 * sizeof(double)) << methodName(m);
-    }
+    for (Method m : kMethods)
+        for (double rub : {0.0, 0.5}) {
+            Scene scene = sized(m, 64, 40, false);
+            ASSERT_FALSE(scene.colliders.empty());
+            scene.colliders[0].friction = rub;
+            CpuSolver<float> f(scene, 2);
+            CpuSolver<double> d(scene, 2);
+            const Preconditioner p = scene.integrator.preconditioner;
+            const bool colliders = !scene.colliders.empty(), friction = scene.anyFriction();
+            const bool kernels = f.isa() != CpuIsa::Scalar;
+            EXPECT_EQ(f.allocatedBytes(), 64 * 40 *
+                                              app::cpuBytesPerVertex(Precision::Float, m, p,
+                                                                     colliders, kernels, friction))
+                << methodName(m);
+            EXPECT_EQ(d.allocatedBytes(), 64 * 40 *
+                                              app::cpuBytesPerVertex(Precision::Double, m, p,
+                                                                     colliders, kernels, friction))
+                << methodName(m);
+            EXPECT_LE(d.scratchBytes(), 2 * (3 * 6 + 3) * 64 * sizeof(double)) << methodName(m);
+        }
 }
 
 TEST(CpuIsaChoice, AutoIsTheWidestSupportedAndAnUnknownNameIsNone) {

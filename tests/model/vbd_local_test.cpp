@@ -65,5 +65,42 @@ TEST(VbdLocal, TheNewtonStepOfAQuadraticLandsOnItsMinimum) {
     EXPECT_LT(glm::length(after.gradient), 1e-12);
 }
 
+// vbd's friction (vbdFrictionLane) is the gradient of D = w f0(|S u|), IPC's mollified Coulomb
+// energy: f0(y) = y²/ε − y³/(3ε²) + ε/3 below ε, y above (f0' = f1). Checked against central
+// differences of D in both regimes; no force along n; sliding, the force is Coulomb's w against
+// the slide; the Hessian's added part is s S, s = w f1(|t|)/|t| (nothing along n).
+TEST(VbdLocal, FrictionIsTheGradientOfTheMollifiedCoulombEnergy) {
+    const glm::dvec3 n = glm::normalize(glm::dvec3(0.2, 1.0, -0.3));
+    const double w = 0.7, eps = 1e-3;
+    const auto energy = [&](const glm::dvec3& u) {
+        const glm::dvec3 t = u - glm::dot(u, n) * n;
+        const double y = glm::length(t);
+        return w * (y < eps ? y * y / eps - y * y * y / (3 * eps * eps) + eps / 3 : y);
+    };
+    for (double scale : {0.3e-3, 0.8e-3, 5e-3, 0.2}) {  // stuck, stuck, sliding, sliding
+        const glm::dvec3 u = scale * glm::normalize(glm::dvec3(1.0, 0.4, 0.7)) + 0.01 * n;
+        VbdLocal<double> local;
+        addVbdFriction(u, n, w, eps, local);
+        const double step = 1e-6 * eps;
+        for (int c = 0; c < 3; ++c) {
+            glm::dvec3 e(0);
+            e[c] = step;
+            const double numeric = (energy(u + e) - energy(u - e)) / (2 * step);
+            EXPECT_NEAR(local.gradient[c], numeric, 1e-6 * w) << "scale " << scale << " axis " << c;
+        }
+        EXPECT_NEAR(glm::dot(local.gradient, n), 0, 1e-12) << scale;
+        if (scale > eps) {
+            EXPECT_NEAR(glm::length(local.gradient), w, 1e-12) << scale;
+        }
+        const VbdLane<double> a = vbdLane(local);
+        EXPECT_NEAR(vbdNormalStiffness(a, n.x, n.y, n.z), 0, 1e-9 * local.hessian.xx) << scale;
+        const glm::dvec3 t = u - glm::dot(u, n) * n;
+        EXPECT_NEAR(
+            vbdNormalStiffness(a, t.x / glm::length(t), t.y / glm::length(t), t.z / glm::length(t)),
+            glm::length(local.gradient) / glm::length(t), 1e-9 * local.hessian.xx)
+            << scale;
+    }
+}
+
 }  // namespace
 }  // namespace cloth
