@@ -21,6 +21,7 @@
 #include "cpu/cpu_backend.h"
 #include "scene/scene_loader.h"
 #include "solver/solver.h"
+#include "support/contact_runs.h"
 #include "support/contact_scenes.h"
 #include "support/reference_bridge.h"
 
@@ -69,25 +70,17 @@ TEST(ImplicitContact, FrictionHoldsBelowTheFrictionAngleAndTheSlideFollowsCoulom
     }
 }
 
-// test::sheetOverSphere(friction, integrator) run for 1.5 s on the CPU in double: its vertices'
-// mean height [m].
-double meanHeightOnSphere(double friction, const test::Json& integrator) {
-    const Scene s = parseScene(test::sheetOverSphere(friction, integrator).dump(), "test");
-    auto solver = makeCpuSolver(s, {Precision::Double, 1});
-    const StepResult r = solver->step(std::lround(1.5 / s.integrator.dt));
-    EXPECT_FALSE(r.unstable) << r.reason;
-    return test::meanOf(solver->read().positions).y;
-}
-
 // Law (Coulomb, static friction): a sheet wrapped off-centre over a sphere is held by friction
 // against its own tension, which presses it onto the sphere; without friction it slides off.
 // Symplectic Euler at Δt = 0.4 ms is the comparison. Measured: symplectic 0.475 m; implicit
 // Euler 0.508 m at 1/60 and 0.500 m at 1/120 (before static friction entered the solve, whose
 // friction saw gravity's load alone: −3.5 m and −4.2 m, off the sphere); frictionless −3.7 m.
 TEST(ImplicitContact, StaticFrictionHoldsASheetWrappedOverASphere) {
-    const double small = meanHeightOnSphere(0.8, {{"method", "symplectic_euler"}, {"dt", 4e-4}});
+    const double small =
+        test::meanHeightOnSphere(0.8, {{"method", "symplectic_euler"}, {"dt", 4e-4}});
     for (double dt : {kDt, kDt / 2}) {
-        const double held = meanHeightOnSphere(0.8, {{"method", "implicit_euler"}, {"dt", dt}});
+        const double held =
+            test::meanHeightOnSphere(0.8, {{"method", "implicit_euler"}, {"dt", dt}});
         std::printf(
             "sheet on a sphere, c_f 0.8, 1.5 s: implicit Euler at Δt %.4g s %.3f m, "
             "symplectic Euler at 0.4 ms %.3f m\n",
@@ -95,7 +88,7 @@ TEST(ImplicitContact, StaticFrictionHoldsASheetWrappedOverASphere) {
         EXPECT_GT(held, 0.4) << "Δt " << dt;
         EXPECT_NEAR(held, small, 0.06) << "Δt " << dt;
     }
-    const double slid = meanHeightOnSphere(0.0, {{"method", "implicit_euler"}, {"dt", kDt}});
+    const double slid = test::meanHeightOnSphere(0.0, {{"method", "implicit_euler"}, {"dt", kDt}});
     std::printf("frictionless: %.3f m\n", slid);
     EXPECT_LT(slid, 0.0) << "slid off without friction";
 }

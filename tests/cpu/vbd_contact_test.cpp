@@ -16,6 +16,7 @@
 #include "cpu/cpu_backend.h"
 #include "scene/scene_loader.h"
 #include "solver/solver.h"
+#include "support/contact_runs.h"
 #include "support/contact_scenes.h"
 
 namespace cloth {
@@ -66,23 +67,14 @@ TEST(VbdContact, FrictionHoldsBelowTheFrictionAngleAndTheSlideFollowsCoulomb) {
     }
 }
 
-// test::sheetOverSphere(friction, integrator) run for 1.5 s on the CPU in double: its vertices'
-// mean height [m].
-double meanHeightOnSphere(double friction, const test::Json& integrator) {
-    const Scene s = parseScene(test::sheetOverSphere(friction, integrator).dump(), "test");
-    auto solver = makeCpuSolver(s, {Precision::Double, 1});
-    const StepResult r = solver->step(std::lround(1.5 / s.integrator.dt));
-    EXPECT_FALSE(r.unstable) << r.reason;
-    return test::meanOf(solver->read().positions).y;
-}
-
 // Law (Coulomb, static friction): a sheet wrapped off-centre over a sphere is held by friction
 // against its own tension, which presses it onto the sphere; without friction it slides off.
 // Symplectic Euler at Δt = 0.4 ms is the comparison (0.475 m).
 TEST(VbdContact, StaticFrictionHoldsASheetWrappedOverASphere) {
-    const double small = meanHeightOnSphere(0.8, {{"method", "symplectic_euler"}, {"dt", 4e-4}});
-    const double held = meanHeightOnSphere(0.8, kVbd);
-    const double slid = meanHeightOnSphere(0.0, kVbd);
+    const double small =
+        test::meanHeightOnSphere(0.8, {{"method", "symplectic_euler"}, {"dt", 4e-4}});
+    const double held = test::meanHeightOnSphere(0.8, kVbd);
+    const double slid = test::meanHeightOnSphere(0.0, kVbd);
     std::printf(
         "sheet on a sphere, c_f 0.8, 1.5 s: vbd at 1/60 s %.3f m (frictionless %.3f m), "
         "symplectic Euler at 0.4 ms %.3f m\n",
