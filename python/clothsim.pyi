@@ -108,7 +108,7 @@ class Simulation:
 
     def __init__(
         self,
-        scene: str | bytes | os.PathLike[str] | Mapping[str, Any],
+        scene: str | bytes | os.PathLike[str] | os.PathLike[bytes] | Mapping[str, Any],
         *,
         backend: Literal["cpu", "gpu", "auto"] | None = None,
         precision: Literal["float", "double"] | None = None,

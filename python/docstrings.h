@@ -32,7 +32,8 @@ made it (its OpenGL context is current there).)doc";
 inline constexpr const char* kInit = R"doc(Loads ``scene`` and makes its solver.
 
 Args:
-    scene: a scene file's path (``str`` or ``os.PathLike``), or the scene document as a dict
+    scene: a scene file's path (``str``, ``bytes`` or ``os.PathLike``: its ``os.fsencode``
+        bytes, UTF-8 or not; a NUL in it is a ``ValueError``), or the scene document as a dict
         (the JSON file's content, e.g. ``json.load``'s result). Validated as ``clothsim run``
         validates a file (docs/design.md §4): unknown keys, out-of-range values and missing ones
         raise ``SceneError``.

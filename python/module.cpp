@@ -85,7 +85,8 @@ std::string jsonText(const py::handle& value, const std::string& source, const s
 }
 
 void warn(PyObject* category, const std::string& message) {
-    if (PyErr_WarnEx(category, message.c_str(), 1) != 0) throw py::error_already_set();
+    if (PyErr_WarnEx(category, std::string(text(message)).c_str(), 1) != 0)
+        throw py::error_already_set();
 }
 
 // The overrides of `integrator=` and `set=`, in that order, as `run --set` takes them; a key set
@@ -134,8 +135,13 @@ std::unique_ptr<Simulation> makeSimulation(const py::object& scene,
     if (!isPath && !isDict)
         throw py::type_error("scene: expected a path or a dict, got " +
                              std::string(py::repr(scene.get_type())));
+    // A path's bytes as the file system takes them (os.fsencode): any str, bytes or PathLike,
+    // UTF-8 or not; an embedded NUL is refused, as Python's open refuses it.
     const std::string source =
-        isPath ? os.attr("fsdecode")(scene).cast<std::string>() : std::string("<dict>");
+        isPath ? os.attr("fsencode")(scene).cast<py::bytes>().cast<std::string>() : "<dict>";
+    if (source.find('\0') != std::string::npos)
+        throw py::value_error("scene: embedded null byte in the path " +
+                              std::string(py::repr(scene)));
     Options options{backend.value_or(""), precision.value_or(""), threads,
                     overrides(integrator, set, source)};
     std::unique_ptr<Simulation> sim =

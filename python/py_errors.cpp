@@ -65,11 +65,18 @@ PyObject* newError(py::module_& m, const char* name, PyObject* base, const char*
 }
 
 // Sets `type(message)` as the pending exception, with the attributes set on it.
-void raise(PyObject* type, const char* message,
+void raise(PyObject* type, const std::string& message,
            std::initializer_list<std::pair<const char*, py::object>> attributes) {
-    py::object error = py::reinterpret_borrow<py::object>(type)(message);
+    py::object error = py::reinterpret_borrow<py::object>(type)(text(message));
     for (const auto& [key, value] : attributes) error.attr(key) = value;
     PyErr_SetObject(type, error.ptr());
+}
+
+// A path as os.fsdecode gives it (os.fsencode(error.file) is its bytes).
+py::str pathText(const std::string& path) {
+    PyObject* s = PyUnicode_DecodeFSDefaultAndSize(path.data(), Py_ssize_t(path.size()));
+    if (s == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(s);
 }
 
 py::object optionalFloat(const std::optional<double>& x) {
@@ -77,6 +84,13 @@ py::object optionalFloat(const std::optional<double>& x) {
 }
 
 }  // namespace
+
+py::str text(const std::string& message) {
+    PyObject* s =
+        PyUnicode_DecodeUTF8(message.data(), Py_ssize_t(message.size()), "backslashreplace");
+    if (s == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(s);
+}
 
 void registerErrors(py::module_& m) {
     sceneError = newError(m, "SceneError", PyExc_ValueError, kSceneErrorDoc,
@@ -96,7 +110,7 @@ void registerErrors(py::module_& m) {
             if (p) std::rethrow_exception(p);
         } catch (const InputError& e) {
             raise(sceneError, e.what(),
-                  {{"file", py::str(e.file())},
+                  {{"file", pathText(e.file())},
                    {"key", py::str(e.key())},
                    {"reason", py::str(e.reason())}});
         } catch (const Unstable& e) {
@@ -109,7 +123,7 @@ void registerErrors(py::module_& m) {
                    {"suggested_dt", optionalFloat(e.advice.dt)},
                    {"stable_dt", py::float_(e.stableDt)}});
         } catch (const GpuUnavailable& e) {
-            PyErr_SetString(gpuUnavailableError, e.what());
+            PyErr_SetObject(gpuUnavailableError, text(e.what()).ptr());
         }
     });
 }

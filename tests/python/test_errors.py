@@ -26,6 +26,30 @@ def test_missing_file(root):
     assert isinstance(e.value, ValueError)
 
 
+def test_any_path_the_file_system_takes_loads(root, tmp_path):
+    """A path is its bytes (os.fsencode): str, bytes or PathLike, UTF-8 or not. A non-UTF-8 name
+    raised a bare RuntimeError (the path was cast to a C++ string as UTF-8)."""
+    raw = bytes(tmp_path) + b"/sc\xe9ne.json"
+    with open(root / "scenes" / "spring.json", "rb") as f, open(raw, "wb") as out:
+        out.write(f.read())
+    for path in (raw, os.fsdecode(raw), type(tmp_path)(os.fsdecode(raw))):
+        assert clothsim.Simulation(path).steps == 0
+    missing = bytes(tmp_path) + b"/no\xff.json"
+    with pytest.raises(clothsim.SceneError) as e:
+        clothsim.Simulation(missing)
+    assert os.fsencode(e.value.file) == missing  # the file as os.fsdecode gives it
+    assert "no\\xff.json" in str(e.value)  # the message writes the byte as Python does
+    assert e.value.reason == "no such file"
+
+
+def test_an_embedded_null_byte_is_refused_as_open_refuses_it(root):
+    """The path was cut at the NUL and the error named another file ("sc")."""
+    for path in ("sc\x00ene.json", b"sc\x00ene.json"):
+        with pytest.raises(ValueError, match="embedded null byte") as e:
+            clothsim.Simulation(path)
+        assert not isinstance(e.value, clothsim.SceneError)
+
+
 def test_bad_value_in_a_dict_names_its_key_path(root):
     doc = scene_doc(root)
     doc["cloth"]["size"] = [1.0, -2.0]
