@@ -5,6 +5,7 @@
 #include "cpu/cpu_memory.h"
 #include "cpu/cpu_solver.h"
 #include "model/errors.h"
+#include "model/float_range.h"
 #include "model/machine_memory.h"
 
 namespace cloth {
@@ -27,8 +28,10 @@ std::unique_ptr<Solver> makeCpuSolver(const Scene& scene, const CpuOptions& opti
                       have / 1e9);
         throw InputError(scene.source, "cloth.resolution", buf);
     }
-    if (options.precision == Precision::Float)
+    if (options.precision == Precision::Float) {
+        checkFloatRange(scene);
         return std::make_unique<CpuSolver<float>>(scene, options.threads, options.isa);
+    }
     return std::make_unique<CpuSolver<double>>(scene, options.threads, options.isa);
 }
 

@@ -4,10 +4,12 @@
 #include "gpu/gpu_solver.h"
 #include "gpu/gpu_variant.h"
 #include "model/errors.h"
+#include "model/float_range.h"
 
 namespace cloth {
 
 std::unique_ptr<Solver> makeGpuSolver(const Scene& scene, const GpuOptions& options) {
+    checkFloatRange(scene);  // the GPU computes in float
     return std::make_unique<GpuSolver>(scene, options);
 }
 

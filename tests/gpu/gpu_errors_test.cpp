@@ -112,6 +112,15 @@ TEST_F(GpuErrors, ImpossibleGridIsAnInputError) {
     }
 }
 
+// The GPU computes in float: a cloth past what float can square (model/float_range.h) is refused
+// naming cloth.size, where its first step went non-finite and was reported unstable.
+TEST_F(GpuErrors, AClothFloatCannotSquareIsAnInputError) {
+    Scene s = smallScene(4, 4);
+    s.cloth.size = {1e50, 1e50};
+    const std::string m = messageOf<InputError>([&] { makeGpuSolver(s); });
+    EXPECT_NE(m.find("cloth.size"), std::string::npos) << m;
+}
+
 // The kernels unroll each collider: 64 build (a second), 65 are refused naming the key before any
 // kernel is built, where 20,000 spheres once took minutes and 11.5 GB.
 TEST_F(GpuErrors, TooManyCollidersForTheKernelsIsAnInputError) {
