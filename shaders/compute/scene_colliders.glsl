@@ -147,10 +147,10 @@ void applyColliders(uint step, inout vec3 p, inout vec3 vel) {
 }
 
 #ifdef HAS_CONTACT
-// The surface that touches p last in scene order, the colliders applied as applyColliders does
-// (CpuColliders::surfaceAt): its velocity v_c (0 for a still one) and friction coefficient c_f,
-// both 0 where none touches.
-void colliderSurface(uint step, vec3 p, out vec3 vc, out float friction) {
+// The colliders on p as applyColliders moves it (CpuColliders::project), and the surface that
+// touches it last in scene order: its velocity v_c (0 for a still one) and friction coefficient
+// c_f, both 0 where none touches.
+void colliderSurface(uint step, inout vec3 p, out vec3 vc, out float friction) {
 #ifdef HAS_MOVING_COLLIDERS
     int pose = poseSlot(step);
 #endif
@@ -184,7 +184,7 @@ void colliderSurface(uint step, vec3 p, out vec3 vc, out float friction) {
 vec3 colliderSurfaceVelocity(uint step, vec3 p) {
     vec3 vc;
     float friction;
-    colliderSurface(step, p, vc, friction);
+    colliderSurface(step, p, vc, friction);  // (p is this function's copy)
     return vc;
 }
 #endif

@@ -60,15 +60,14 @@ void main() {
 #endif
     if (!vbdNewtonStep(l, mass / (h * h), x)) return;
 #ifdef HAS_COLLIDERS
-    vec3 p = x, vel = vec3(0.0);
-    applyColliders(uStep, p, vel);
+    vec3 p = x, vc;
+    float friction;
+    colliderSurface(uStep, p, vc, friction);  // the projection, and the surface it met
     vec3 push = p - x;
     float pushed = length(push);
     if (pushed > 0.0) {  // the contact for the next sweep (vbdTouch): n, c_f λ, h v_c
-        vec3 n = push / pushed, vc;
-        float friction;
-        colliderSurface(uStep, x, vc, friction);
-        vbdContacts[2u * k] = vec4(n, friction * (pushed * vbdNormalStiffness(l, n)));
+        vbdContacts[2u * k] = vec4(push / pushed,
+                                   friction * (pushed * vbdNormalStiffness(l, push / pushed)));
         vbdContacts[2u * k + 1u] = vec4(h * vc, 0.0);
     } else {
         vbdContacts[2u * k].w = 0.0;

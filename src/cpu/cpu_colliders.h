@@ -63,7 +63,8 @@ public:
         Vec3<T> velocity{0};
         T friction = 0;
     };
-    Surface surfaceAt(Vec3<T> p) const {
+    // apply()'s positions alone (no velocity), and the surface that touched p last.
+    Surface project(Vec3<T>& p) const {
         Surface last;
         for (const CpuCollider<T>& c : posed_)
             std::visit(
@@ -74,6 +75,7 @@ public:
                 c.shape);
         return last;
     }
+    Surface surfaceAt(Vec3<T> p) const { return project(p); }
     Vec3<T> surfaceVelocity(const Vec3<T>& p) const { return surfaceAt(p).velocity; }
     // The same on the n vertices of a row of positions x and velocities v; planes and spheres
     // through the row kernels (the same bits, vectorised).

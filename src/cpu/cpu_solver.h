@@ -143,7 +143,8 @@ private:
     void vbdRunOffsets(VbdRow<T>& r, int i) const;
     void vbdSet(std::int64_t k, const Vec3<T>& x);  // the iterate, and its copy in phases
     void vbdVertex(std::int64_t k, int i, int j);
-    void vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p, const VbdLane<T>& hessian);
+    void vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
+                  const typename CpuColliders<T>::Surface& surface, const VbdLane<T>& hessian);
     void vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved, int n,
                        const T* const* hessian);
     void vbdProject(Vec3<T>& x) const;

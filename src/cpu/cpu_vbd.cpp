@@ -222,19 +222,21 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
                        vbdContacts_.weight[c], h * T(kVbdStickSpeed), local);
     if (!vbdNewtonStep(local, double(mass) / (double(h) * h), x)) return;
     if (!colliders_.empty()) {
-        Vec3<T> p = x, v(0);
-        applyColliders(p, v);
-        if (vbdContacts_.active()) vbdTouch(c, x, p, vbdLane(local));
+        Vec3<T> p = x;
+        const auto surface = colliders_.project(p);
+        if (vbdContacts_.active()) vbdTouch(c, x, p, surface, vbdLane(local));
         x = p;
     }
     vbdSet(k, x);
 }
 
-// Contact c after a projection moved the Newton step's x to p, H the local problem's Hessian
-// there: its normal n = (p − x)/|p − x|, the normal force λ = |p − x| nᵀHn
-// (vbdNormalStiffness), and the surface's c_f and v_c at x; no contact where nothing pushed.
+// Contact c after a projection moved the Newton step's x to p against `surface` (the last that
+// touched it), H the local problem's Hessian there: its normal n = (p − x)/|p − x|, the normal
+// force λ = |p − x| nᵀHn (vbdNormalStiffness), the surface's c_f and h v_c; no contact where
+// nothing pushed.
 template <typename T>
 void CpuSolver<T>::vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
+                            const typename CpuColliders<T>::Surface& surface,
                             const VbdLane<T>& hessian) {
     const Vec3<T> push = p - x;
     const T pushed = glm::length(push);
@@ -243,7 +245,6 @@ void CpuSolver<T>::vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
         return;
     }
     const Vec3<T> n = push / pushed;
-    const auto surface = colliders_.surfaceAt(x);
     vbdContacts_.normal.set(c, n);
     vbdContacts_.slide.set(c, dt_t_ * surface.velocity);
     vbdContacts_.weight[c] =
@@ -268,10 +269,13 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
     for (int m = 0; m < n; ++m) {
         if (!moved[m]) continue;
         const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old = phases_.x.get(at + m);
+        // The run's projection ran on whole rows; the surface is asked of the pushed ones only.
         if (hessian && hessian[0] && (pushed != old || vbdContacts_.weight[at + m] != T(0)))
-            vbdTouch(at + m, old, pushed,
-                     {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m],
-                      hessian[4][m], hessian[5][m]});
+            vbdTouch(
+                at + m, old, pushed,
+                pushed != old ? colliders_.surfaceAt(old) : typename CpuColliders<T>::Surface{},
+                {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m], hessian[4][m],
+                 hessian[5][m]});
         if (pushed == old) continue;
         x_.set(first + std::int64_t(kVbdColours) * m, pushed);
         phases_.x.set(at + m, pushed);
@@ -282,9 +286,7 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
 // change to the contacts.
 template <typename T>
 void CpuSolver<T>::vbdProject(Vec3<T>& x) const {
-    if (colliders_.empty()) return;
-    Vec3<T> v(0);
-    applyColliders(x, v);
+    colliders_.project(x);
 }
 
 // Chebyshev acceleration after sweep n (VBD §3.8): x_n ← ω_n (x̄_n − x_{n−2}) + x_{n−2} for the
@@ -351,6 +353,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
     template void CpuSolver<T>::vbdFillPhases(const Band&);                                    \
     template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);                             \
     template void CpuSolver<T>::vbdTouch(std::int64_t, const Vec3<T>&, const Vec3<T>&,         \
+                                         const typename CpuColliders<T>::Surface&,             \
                                          const VbdLane<T>&);                                   \
     template void CpuSolver<T>::vbdCollideRun(std::int64_t, std::int64_t, const std::uint8_t*, \
                                               int, const T* const*);                           \
