@@ -118,11 +118,12 @@ layout(std430, binding = 14) buffer CgInverse {
 #endif
 
 #ifdef INTEGRATOR_VBD
-// vbd's step state (docs/integrators.md "vbd"), one vec4 per vertex: the step's start x_n (w as
-// in positions), the inertial target y, the previous step's velocity v_{n−1} (the adaptive
-// initial guess), and the Chebyshev iterates x^(n−1), x^(n−2).
-layout(std430, binding = 8) buffer VbdStart {
-    vec4 vbdStart[];
+// vbd's step state (docs/integrators.md "vbd"), one vec4 per vertex: the step's displacement
+// d = x − x_n (with positions, the iterate), the inertial target's ŷ = y − x_n, the previous
+// step's velocity v_{n−1} (the adaptive initial guess), and the Chebyshev iterates'
+// displacements d^(n−1), d^(n−2).
+layout(std430, binding = 8) buffer VbdDisplacement {
+    vec4 vbdDisplacement[];
 };
 layout(std430, binding = 9) buffer VbdInertial {
     vec4 vbdInertial[];

@@ -1,4 +1,4 @@
-// vbd's end of step (docs/integrators.md "vbd"): v_{n+1} = (x − x_n)/h, then pins, colliders and
+// vbd's end of step (docs/integrators.md "vbd"): v_{n+1} = d/h, then pins, colliders and
 // the instability check. A vertex that started inside a collider keeps none of the correction
 // that put it out as velocity (src/model/start_inside.h withoutStartCorrection).
 #include "layout.glsl"
@@ -25,9 +25,9 @@ void main() {
     if (ij.x >= gridU() || ij.y >= gridV() || frozen(uStep)) return;
     uint k = vertexIndex(ij);
     vec4 x = positions[k], v = velocities[k];
-    vec3 start = vbdStart[k].xyz, vel = (x.xyz - start) / params.dt;
+    vec3 d = vbdDisplacement[k].xyz, vel = d / params.dt;
 #ifdef HAS_CONTACT
-    if (x.w != 0.0) vel = withoutStartCorrection(start, vel, params.dt);
+    if (x.w != 0.0) vel = withoutStartCorrection(x.xyz - d, vel, params.dt);
 #endif
     finishStep(uStep, k, x, v, x.xyz, vel);
 }

@@ -18,11 +18,12 @@ void addOuter(inout VbdLocal l, float c, vec3 d) {  // += c d dᵀ
     l.offDiagonal += vec3(cd.x * d.y, cd.x * d.z, cd.y * d.z);
 }
 
-// Inertia and air drag: m/(2h²)|x − y|² + m c/(2h)|x − x_n|² (addVbdInertia).
-void addVbdInertia(inout VbdLocal l, vec3 x, vec3 y, vec3 xn, float mass, float h,
+// Inertia and air drag on the displacement d = x − x_n: m/(2h²)|d − ŷ|² + m c/(2h)|d|²,
+// ŷ = y − x_n (addVbdInertia).
+void addVbdInertia(inout VbdLocal l, vec3 d, vec3 target, float mass, float h,
                    float dampingRate) {
     float inertia = mass / (h * h), drag = mass * dampingRate / h;
-    l.gradient += inertia * (x - y) + drag * (x - xn);
+    l.gradient += inertia * (d - target) + drag * d;
     addDiagonal(l, inertia + drag);
 }
 
@@ -39,10 +40,10 @@ void addVbdSpring(inout VbdLocal l, vec3 pk, vec3 pq, float stiffness, float res
 
 #ifdef HAS_SPRING_DAMPING
 // Implicit Euler's D on the step's displacement (addVbdSpringDamping): w = Δ_q − Δ_k, the ends
-// at x_n.
-void addVbdSpringDamping(inout VbdLocal l, vec3 pkn, vec3 pqn, vec3 w, float dampingK,
-                         float restLength, float h) {
-    vec3 d = pqn - pkn;
+// at x_n: d = e − w, e = x_q − x_k now.
+void addVbdSpringDamping(inout VbdLocal l, vec3 e, vec3 w, float dampingK, float restLength,
+                         float h) {
+    vec3 d = e - w;
     l.gradient -= springDampingForce(d, w, dampingK, restLength) / h;
     float d2 = dot(d, d), floorLength = 1e-12 * restLength;
     if (d2 >= floorLength * floorLength) addOuter(l, dampingK / (h * d2), d);
@@ -72,7 +73,7 @@ float vbdBendingDiagonal(ivec2 ij, vec3 weights) {
 // ε_v [m/s] (kVbdStickSpeed): below this slide speed against the surface friction holds.
 #define VBD_STICK_SPEED 1e-3
 
-// Friction as an energy with the lagged normal force (vbdFrictionLane): u = x − x_n − h v_c,
+// Friction as an energy with the lagged normal force (vbdFrictionLane): u = d − h v_c,
 // n and w = c_f λ of the vertex's last projection, ε = ε_v h; g += s S u, H += s S with
 // s = w f1(|S u|)/|S u|.
 void addVbdFriction(inout VbdLocal l, vec3 u, vec3 n, float weight, float epsilon) {
@@ -92,9 +93,11 @@ float vbdNormalStiffness(VbdLocal l, vec3 n) {
 }
 #endif
 
-// x − H⁻¹g by the adjugate (vbdNewtonStep, in float here); a step with det H ≤ 1e-12·floor³
-// (H ⪰ floor·I, floor = m/h²) is skipped. Returns whether it moved.
-bool vbdNewtonStep(VbdLocal l, float floor, inout vec3 x) {
+// s = −H⁻¹g by the adjugate (vbdNewtonStep, in float here), for the caller to add to x and d; a
+// step with det H ≤ 1e-12·floor³ (H ⪰ floor·I, floor = m/h²) is skipped. Returns whether it
+// moved.
+bool vbdNewtonStep(VbdLocal l, float floor, out vec3 s) {
+    s = vec3(0.0);
     vec3 dg = l.diagonal, o = l.offDiagonal;  // o = (xy, xz, yz)
     float c00 = dg.y * dg.z - o.z * o.z, c01 = o.y * o.z - o.x * dg.z, c02 = o.x * o.z - o.y * dg.y;
     float det = dg.x * c00 + o.x * c01 + o.y * c02;
@@ -102,7 +105,7 @@ bool vbdNewtonStep(VbdLocal l, float floor, inout vec3 x) {
     float c11 = dg.x * dg.z - o.y * o.y, c12 = o.x * o.y - dg.x * o.z;
     float c22 = dg.x * dg.y - o.x * o.x;
     vec3 g = l.gradient;
-    x -= vec3(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
+    s = -vec3(c00 * g.x + c01 * g.y + c02 * g.z, c01 * g.x + c11 * g.y + c12 * g.z,
               c02 * g.x + c12 * g.y + c22 * g.z) / det;
     return true;
 }

@@ -1,5 +1,5 @@
-// vbd, the step's start (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp vbdStart): x_n and the
-// inertial target y = x_n + h v_n + h² (g + F_w(x_n)/m), the wind from the normals of x_n, which
+// vbd, the step's start (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp vbdStart): the inertial
+// target's displacement ŷ = h v_n + h² (g + F_w(x_n)/m), the wind from the normals of x_n, which
 // it writes for the renderer (vbd has no force pass).
 #include "layout.glsl"
 #include "common.glsl"
@@ -21,7 +21,6 @@ void main() {
     ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
     if (ij.x >= gridU() || ij.y >= gridV()) return;
     uint k = vertexIndex(ij);
-    vec4 x = positions[k];
     vec3 a = params.gravity;
     int i = ij.x, j = ij.y;
     vec3 n = vertexNormal(positions[vertexIndex(ivec2(min(i + 1, gridU() - 1), j))].xyz,
@@ -30,9 +29,8 @@ void main() {
                           positions[vertexIndex(ivec2(i, max(j - 1, 0)))].xyz);
     normals[k] = vec4(n, 0.0);  // the renderer's, as the other integrators' force pass writes them
 #ifdef HAS_WIND
-    a += x.w * windForce(n, params.windDirection, windStrengthAt(ij));
+    a += positions[k].w * windForce(n, params.windDirection, windStrengthAt(ij));
 #endif
     float h = params.dt;
-    vbdStart[k] = x;
-    vbdInertial[k] = vec4(x.xyz + h * velocities[k].xyz + (h * h) * a, 0.0);
+    vbdInertial[k] = vec4(h * velocities[k].xyz + (h * h) * a, 0.0);
 }

@@ -27,9 +27,9 @@ void main() {
     vec4 x4 = positions[k];
     if (x4.w == 0.0) return;  // pinned
     float h = params.dt, mass = 1.0 / x4.w;
-    vec3 x = x4.xyz, xn = vbdStart[k].xyz;
+    vec3 x = x4.xyz, d = vbdDisplacement[k].xyz;  // the iterate: position, displacement x − x_n
     VbdLocal l = vbdLocalZero();
-    addVbdInertia(l, x, vbdInertial[k].xyz, xn, mass, h, params.dampingRate);
+    addVbdInertia(l, d, vbdInertial[k].xyz, mass, h, params.dampingRate);
 #if NUM_SPRING_OFFSETS > 0
     for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
         ivec4 s = kSpringOffsets[o];
@@ -39,8 +39,7 @@ void main() {
         vec3 xq = positions[kq].xyz;
         addVbdSpring(l, x, xq, springStiffnessAt(s, ij), springRestLength(s));
 #ifdef HAS_SPRING_DAMPING
-        vec3 xqn = vbdStart[kq].xyz;
-        addVbdSpringDamping(l, xn, xqn, (xq - xqn) - (x - xn), springDampingAt(s, ij),
+        addVbdSpringDamping(l, xq - x, vbdDisplacement[kq].xyz - d, springDampingAt(s, ij),
                             springRestLength(s), h);
 #endif
     }
@@ -55,10 +54,13 @@ void main() {
     }
 #ifdef HAS_COLLIDERS
     vec4 contact = vbdContacts[2u * k];
-    addVbdFriction(l, (x - xn) - vbdContacts[2u * k + 1u].xyz, contact.xyz, contact.w,
+    addVbdFriction(l, d - vbdContacts[2u * k + 1u].xyz, contact.xyz, contact.w,
                    h * VBD_STICK_SPEED);
 #endif
-    if (!vbdNewtonStep(l, mass / (h * h), x)) return;
+    vec3 step;
+    if (!vbdNewtonStep(l, mass / (h * h), step)) return;
+    x += step;
+    d += step;
 #ifdef HAS_COLLIDERS
     vec3 p = x, vc;
     float friction;
@@ -72,7 +74,9 @@ void main() {
     } else {
         vbdContacts[2u * k].w = 0.0;
     }
+    d += push;
     x = p;
 #endif
     positions[k] = vec4(x, x4.w);
+    vbdDisplacement[k] = vec4(d, 0.0);
 }

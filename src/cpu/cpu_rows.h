@@ -113,11 +113,12 @@ struct ContactRow {
 // colliders, with the Hessians the kernel leaves it).
 template <typename T>
 struct VbdRow {
-    Row3<T> x{nullptr, nullptr, nullptr};  // the iterate, in the grid's order: written
-    // In phases: the iterate (read, written), the step's start, the inertial target y, 1/m
-    // [1/kg], W_kk (with bending), the pins.
-    Row3<T> px{nullptr, nullptr, nullptr};
-    ConstRow3<T> pxn{nullptr, nullptr, nullptr}, py{nullptr, nullptr, nullptr};
+    // The iterate, positions x and displacements d = x − x_n, in the grid's order: written.
+    Row3<T> x{nullptr, nullptr, nullptr}, d{nullptr, nullptr, nullptr};
+    // In phases: the iterate (read, written), the inertial target's ŷ = y − x_n, 1/m [1/kg],
+    // W_kk (with bending), the pins.
+    Row3<T> px{nullptr, nullptr, nullptr}, pd{nullptr, nullptr, nullptr};
+    ConstRow3<T> py{nullptr, nullptr, nullptr};
     const T* inverseMass = nullptr;
     const T* bendDiagonal = nullptr;
     const std::uint8_t* pinned = nullptr;

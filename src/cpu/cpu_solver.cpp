@@ -61,8 +61,8 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     if (method_ == Method::ImplicitEuler)
         for (auto* a : {&dv_, &r_, &p_, &ap_}) a->assign(n, Vec3<T>(0));
     if (method_ == Method::Vbd) {
-        xStart_.assign(n, Vec3<T>(0));
-        for (auto* a : {&inertial_, &vPrevious_}) a->assign(n, Vec3<T>(0));
+        displacement_.assign(n, Vec3<T>(0));
+        for (auto* a : {&inertialStep_, &vPrevious_}) a->assign(n, Vec3<T>(0));
         if (kernels_) {
             phases_.configure(nu, nv);
             phases_.bendDiagonal.assign(bendingDiagonal_.size(), T(0));
@@ -139,8 +139,8 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     maxIterations_ = scene.integrator.maxIterations;
     vbdIterations_ = scene.integrator.iterations;
     chebyshevRho_ = scene.integrator.chebyshevRho;
-    if (method_ == Method::Vbd && chebyshevRho_ > 0 && xBefore_.empty())
-        for (auto* a : {&xBefore_, &xBeforeLast_}) a->assign(std::size_t(x_.size()), Vec3<T>(0));
+    if (method_ == Method::Vbd && chebyshevRho_ > 0 && dBefore_.empty())
+        for (auto* a : {&dBefore_, &dBeforeLast_}) a->assign(std::size_t(x_.size()), Vec3<T>(0));
     forcesValid_ = false;
     // The masses of the scene as given: a new mass (the viewer's) rescales every vertex's.
     inverseMass_.resize(std::size_t(grid_.count()));
@@ -364,10 +364,10 @@ template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
     for (const Soa3<T>* a :
-         {&x_, &v_, &f_, &xNext_, &vNext_, &xStart_, &phases_.x, &phases_.xn, &phases_.y})
+         {&x_, &v_, &f_, &xNext_, &vNext_, &displacement_, &phases_.x, &phases_.d, &phases_.y})
         vectors += std::size_t(a->size());
     for (const auto* a : {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_,
-                          &ap_, &z_, &inertial_, &vPrevious_, &xBefore_, &xBeforeLast_})
+                          &ap_, &z_, &inertialStep_, &vPrevious_, &dBefore_, &dBeforeLast_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
            contacts_.size() * sizeof(SolveContact<T>) + vbdContacts_.bytes() +

@@ -141,13 +141,14 @@ private:
     void vbdSweep(const Band& band, int colour);
     VbdRow<T> vbdRow();
     void vbdRunOffsets(VbdRow<T>& r, int i) const;
-    void vbdSet(std::int64_t k, const Vec3<T>& x);  // the iterate, and its copy in phases
+    // Vertex k's iterate, position x and displacement d = x − x_n, and its copy in phases.
+    void vbdSet(std::int64_t k, const Vec3<T>& x, const Vec3<T>& d);
     void vbdVertex(std::int64_t k, int i, int j);
     void vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
                   const typename CpuColliders<T>::Surface& surface, const VbdLane<T>& hessian);
     void vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved, int n,
                        const T* const* hessian);
-    void vbdProject(Vec3<T>& x) const;
+    void vbdProject(Vec3<T>& x, Vec3<T>& d) const;
     void vbdFillPhases(const Band& band);
     // Where vertex k's contact is kept (VbdContacts: in phases' order with phases).
     std::int64_t vbdContactAt(std::int64_t k) const { return phases_.active() ? phases_.at(k) : k; }
@@ -218,10 +219,11 @@ private:
     CycleThreads cycleThreads(const Band& band, const Team& team) const {
         return {int(&band - bands_.data()), int(bands_.size()), team.barrier};
     }
-    // vbd: the step's start x_n, the inertial target y, the previous step's velocity v_{n−1}
-    // (the adaptive initial guess), and with Chebyshev acceleration the iterates n − 1, n − 2.
-    Soa3<T> xStart_;
-    std::vector<Vec3<T>> inertial_, vPrevious_, xBefore_, xBeforeLast_;
+    // vbd: the step's displacement d = x − x_n (the iterate with x_), the inertial target's
+    // ŷ = y − x_n = h v_n + h² a_ext, the previous step's velocity v_{n−1} (the adaptive initial
+    // guess), and with Chebyshev acceleration the displacements of iterates n − 1, n − 2.
+    Soa3<T> displacement_;
+    std::vector<Vec3<T>> inertialStep_, vPrevious_, dBefore_, dBeforeLast_;
     std::vector<T> bendingDiagonal_;  // W_kk per vertex (model/vbd_local.h), with bending only
     VbdPhases<T> phases_;             // what the row kernel reads (with row kernels)
     VbdContacts<T> vbdContacts_;      // with colliders

@@ -1,6 +1,7 @@
 // vbd on the CPU (docs/integrators.md "vbd"): Vertex Block Descent (Chen, Macklin et al. 2024)
 // minimises backward Euler's incremental potential by Gauss–Seidel sweeps of 3×3 Newton steps,
-// one vertex at a time (model/vbd_local.h). The colours of model/vbd_colouring.h run one after
+// one vertex at a time (model/vbd_local.h), on the iterate (x, d): positions and the step's
+// displacements d = x − x_n, moved alike. The colours of model/vbd_colouring.h run one after
 // another; within a colour every band steps its own vertices, which share no energy term with
 // each other, so the result has the same bits for any number of threads.
 #include <algorithm>
@@ -16,8 +17,8 @@
 
 namespace cloth {
 
-// One step: the start (x_n, y, the initial guess), `iterations` sweeps over the five colours
-// (each followed, with ρ > 0, by the Chebyshev extrapolation), then v_{n+1} = (x − x_n)/h and
+// One step: the start (ŷ, the initial guess), `iterations` sweeps over the five colours (each
+// followed, with ρ > 0, by the Chebyshev extrapolation), then v_{n+1} = d/h and
 // finishStep's pins, colliders and check; a vertex that started inside a collider keeps none of
 // the correction that put it out as velocity (model/start_inside.h).
 template <typename T>
@@ -39,44 +40,43 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     const auto collide = [this](Vec3<T>& p, Vec3<T>& w) { colliders_.apply(p, w); };
     const auto surface = [this](const Vec3<T>& p) { return colliders_.surfaceVelocity(p); };
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> x = x_.get(k), start = xStart_.get(k), v = (x - start) / h;
+        const Vec3<T> x = x_.get(k), d = displacement_.get(k), v = d / h;
         const bool collides = !colliders_.empty() && !pinned_[k];  // (model/start_inside.h)
         if (!finishStep(band, k, x,
-                        collides ? withoutStartCorrection(start, v, h, collide, surface) : v))
+                        collides ? withoutStartCorrection(x - d, v, h, collide, surface) : v))
             return false;
     }
     return true;
 }
 
-// x_n and the inertial target y = x_n + h v_n + h² (g + F_w(x_n)/m): the wind is taken
+// The inertial target's displacement ŷ = h v_n + h² (g + F_w(x_n)/m): the wind is taken
 // explicitly at x_n, from the normals of the positions every band still holds. Then, once every
-// band has read them, the initial guess (vbdInitialGuess); pinned vertices at their pin.
+// band has read them, the initial guess (vbdInitialGuess: x = x_n + d); pinned vertices at their
+// pin, d = pin − x_n.
 template <typename T>
 void CpuSolver<T>::vbdStart(const Band& band, const Team& team, long stepNumber) {
     const int nu = grid_.nu, nv = grid_.nv;
     const T h = dt_t_;
     auto at = [&](int i, int j) { return x_.get(std::int64_t(j) * nu + i); };
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> x = x_.get(k);
         Vec3<T> a = gravity_;
         if (features_.wind) {
             const int i = int(k % nu), j = int(k / nu);
             const Vec3<T> n = vertexNormal<T>(nu, nv, i, j, at);
             a += inverseMass_[std::size_t(k)] * windForce(n, windDirection_, windStrengthAt(i, j));
         }
-        xStart_.set(k, x);
-        inertial_[k] = x + h * v_.get(k) + (h * h) * a;
+        inertialStep_[k] = h * v_.get(k) + (h * h) * a;
     }
     team.sync();
     const bool history = stepNumber >= vbdHistoryFrom_;
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> v = v_.get(k);
-        const Vec3<T> x =
-            pinned_[k] ? pinPosition_[k]
-                       : vbdInitialGuess(xStart_.get(k), v, vPrevious_[k], gravity_, h, history);
+        const Vec3<T> v = v_.get(k), start = x_.get(k);
+        const Vec3<T> d = pinned_[k] ? pinPosition_[k] - start
+                                     : vbdInitialGuess(v, vPrevious_[k], gravity_, h, history);
         vPrevious_[k] = v;
-        x_.set(k, x);
-        if (!xBefore_.empty()) xBefore_[k] = x;
+        x_.set(k, pinned_[k] ? pinPosition_[k] : start + d);
+        displacement_.set(k, d);
+        if (!dBefore_.empty()) dBefore_[k] = d;
     }
     if (phases_.active()) vbdFillPhases(band);
     team.sync();
@@ -92,15 +92,15 @@ void CpuSolver<T>::vbdFillPhases(const Band& band) {
         for (int p = 0; p < kVbdColours && p < nu; ++p) {
             const std::int64_t k0 = std::int64_t(j) * nu + p, a0 = phases_.at(p, j);
             const int count = (nu - p + kVbdColours - 1) / kVbdColours;
-            const Vec3<T>* __restrict y = inertial_.data() + k0;
+            const Vec3<T>* __restrict y = inertialStep_.data() + k0;
             const T* __restrict inverseMass = inverseMass_.data() + k0;
             const std::uint8_t* __restrict pinned = pinned_.data() + k0;
             for (int m = 0; m < count; ++m) {
                 const std::int64_t k = kVbdColours * std::int64_t(m), a = a0 + m;
                 phases_.x.x[a] = x_.x[k0 + k], phases_.x.y[a] = x_.y[k0 + k];
                 phases_.x.z[a] = x_.z[k0 + k];
-                phases_.xn.x[a] = xStart_.x[k0 + k], phases_.xn.y[a] = xStart_.y[k0 + k];
-                phases_.xn.z[a] = xStart_.z[k0 + k];
+                phases_.d.x[a] = displacement_.x[k0 + k], phases_.d.y[a] = displacement_.y[k0 + k];
+                phases_.d.z[a] = displacement_.z[k0 + k];
                 phases_.y.x[a] = y[k].x, phases_.y.y[a] = y[k].y, phases_.y.z[a] = y[k].z;
                 phases_.inverseMass[a] = inverseMass[k];
                 phases_.pinned[a] = pinned[k];
@@ -157,8 +157,9 @@ template <typename T>
 VbdRow<T> CpuSolver<T>::vbdRow() {
     VbdRow<T> r{};
     r.x = x_.row(0);
+    r.d = displacement_.row(0);
     r.px = phases_.x.row(0);
-    r.pxn = phases_.xn.row(0);
+    r.pd = phases_.d.row(0);
     r.py = phases_.y.row(0);
     r.inverseMass = phases_.inverseMass.data();
     r.bendDiagonal = phases_.bendDiagonal.data();
@@ -198,36 +199,44 @@ void CpuSolver<T>::vbdRunOffsets(VbdRow<T>& r, int i) const {
 }
 
 template <typename T>
-void CpuSolver<T>::vbdSet(std::int64_t k, const Vec3<T>& x) {
+void CpuSolver<T>::vbdSet(std::int64_t k, const Vec3<T>& x, const Vec3<T>& d) {
     x_.set(k, x);
-    if (phases_.active()) phases_.x.set(phases_.at(k), x);
+    displacement_.set(k, d);
+    if (!phases_.active()) return;
+    const std::int64_t a = phases_.at(k);
+    phases_.x.set(a, x);
+    phases_.d.set(a, d);
 }
 
 // One vertex's Newton step on its local G (with its contact's friction), then the colliders'
-// projection of the new position (docs/integrators.md "vbd": contact and friction).
+// projection of the new position (docs/integrators.md "vbd": contact and friction); the
+// displacement moves with the position.
 template <typename T>
 void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
     const T h = dt_t_, mass = T(1) / inverseMass_[std::size_t(k)];
-    Vec3<T> x = x_.get(k);
-    const Vec3<T> start = xStart_.get(k);
+    Vec3<T> x = x_.get(k), d = displacement_.get(k);
     VbdLocal<T> local;
-    addVbdInertia(x, inertial_[k], start, mass, h, dampingRate_, local);
+    addVbdInertia(d, inertialStep_[k], mass, h, dampingRate_, local);
     const T bendDiagonal = bending_.active() ? bendingDiagonal_[std::size_t(k)] : T(0);
-    addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, bendDiagonal, x_, xStart_, h, k, i, j,
-                  local);
+    addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, bendDiagonal, x_, displacement_, h, k, i,
+                  j, local);
     if (grab_ && grab_->vertex == k) addVbdGrab(x, grab_->target, grab_->stiffness, local);
     const std::int64_t c = vbdContactAt(k);
     if (vbdContacts_.active())
-        addVbdFriction(x - start - vbdContacts_.slide.get(c), vbdContacts_.normal.get(c),
+        addVbdFriction(d - vbdContacts_.slide.get(c), vbdContacts_.normal.get(c),
                        vbdContacts_.weight[c], h * T(kVbdStickSpeed), local);
-    if (!vbdNewtonStep(local, double(mass) / (double(h) * h), x)) return;
+    Vec3<T> s;
+    if (!vbdNewtonStep(local, double(mass) / (double(h) * h), s)) return;
+    x += s;
+    d += s;
     if (!colliders_.empty()) {
         Vec3<T> p = x;
         const auto surface = colliders_.project(p);
         if (vbdContacts_.active()) vbdTouch(c, x, p, surface, vbdLane(local));
+        d += p - x;
         x = p;
     }
-    vbdSet(k, x);
+    vbdSet(k, x, d);
 }
 
 // Contact c after a projection moved the Newton step's x to p against `surface` (the last that
@@ -277,39 +286,51 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
                 {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m], hessian[4][m],
                  hessian[5][m]});
         if (pushed == old) continue;
-        x_.set(first + std::int64_t(kVbdColours) * m, pushed);
+        const std::int64_t k = first + std::int64_t(kVbdColours) * m;
+        const Vec3<T> d = phases_.d.get(at + m) + (pushed - old);
+        x_.set(k, pushed);
         phases_.x.set(at + m, pushed);
+        displacement_.set(k, d);
+        phases_.d.set(at + m, d);
     }
 }
 
 // The colliders' projection alone on an extrapolated iterate (Chebyshev's): no friction, no
-// change to the contacts.
+// change to the contacts; the displacement moves with the position.
 template <typename T>
-void CpuSolver<T>::vbdProject(Vec3<T>& x) const {
-    colliders_.project(x);
+void CpuSolver<T>::vbdProject(Vec3<T>& x, Vec3<T>& d) const {
+    Vec3<T> p = x;
+    colliders_.project(p);
+    d += p - x;
+    x = p;
 }
 
-// Chebyshev acceleration after sweep n (VBD §3.8): x_n ← ω_n (x̄_n − x_{n−2}) + x_{n−2} for the
-// free vertices, then the colliders' projection again. With the copy in phases, by runs of one
-// phase of a row, so that the colliders run on whole runs (vbdCollideRun).
+// Chebyshev acceleration after sweep n (VBD §3.8) on the displacements: d_n ← ω_n (d̄_n −
+// d_{n−2}) + d_{n−2} for the free vertices, the position moved by as much, then the colliders'
+// projection again. With the copy in phases, by runs of one phase of a row, so that the
+// colliders run on whole runs (vbdCollideRun).
 template <typename T>
 void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
     const T w = T(omega);
     const bool extrapolate = omega > 1;
-    auto extrapolated = [&](std::int64_t k) {
-        return w * (x_.get(k) - xBeforeLast_[k]) + xBeforeLast_[k];
+    // Vertex k's extrapolated iterate (x, d).
+    auto extrapolated = [&](std::int64_t k, Vec3<T>& x, Vec3<T>& d) {
+        const Vec3<T> now = displacement_.get(k);
+        d = w * (now - dBeforeLast_[k]) + dBeforeLast_[k];
+        x = x_.get(k) + (d - now);
     };
     auto shift = [&](std::int64_t k) {
-        xBeforeLast_[k] = xBefore_[k];
-        xBefore_[k] = x_.get(k);
+        dBeforeLast_[k] = dBefore_[k];
+        dBefore_[k] = displacement_.get(k);
     };
     if (!phases_.active() || !extrapolate) {
         for (std::int64_t k = band.begin; k < band.end; ++k) {
             if (pinned_[k]) continue;
             if (extrapolate) {
-                Vec3<T> x = extrapolated(k);
-                vbdProject(x);
-                vbdSet(k, x);
+                Vec3<T> x, d;
+                extrapolated(k, x, d);
+                vbdProject(x, d);
+                vbdSet(k, x, d);
             }
             shift(k);
         }
@@ -330,9 +351,12 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
                     const std::int64_t k = first + std::int64_t(kVbdColours) * m;
                     moved[m] = !pinned_[k];
                     if (!moved[m]) continue;
-                    const Vec3<T> x = extrapolated(k);
+                    Vec3<T> x, d;
+                    extrapolated(k, x, d);
                     x_.set(k, x);
+                    displacement_.set(k, d);
                     phases_.x.set(at + m, x);
+                    phases_.d.set(at + m, d);
                 }
                 if (!colliders_.empty()) vbdCollideRun(first, at, moved, n, nullptr);
                 for (int m = 0; m < n; ++m)
@@ -349,7 +373,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
     template void CpuSolver<T>::vbdSweep(const Band&, int);                                    \
     template VbdRow<T> CpuSolver<T>::vbdRow();                                                 \
     template void CpuSolver<T>::vbdRunOffsets(VbdRow<T>&, int) const;                          \
-    template void CpuSolver<T>::vbdSet(std::int64_t, const Vec3<T>&);                          \
+    template void CpuSolver<T>::vbdSet(std::int64_t, const Vec3<T>&, const Vec3<T>&);          \
     template void CpuSolver<T>::vbdFillPhases(const Band&);                                    \
     template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);                             \
     template void CpuSolver<T>::vbdTouch(std::int64_t, const Vec3<T>&, const Vec3<T>&,         \
@@ -357,7 +381,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
                                          const VbdLane<T>&);                                   \
     template void CpuSolver<T>::vbdCollideRun(std::int64_t, std::int64_t, const std::uint8_t*, \
                                               int, const T* const*);                           \
-    template void CpuSolver<T>::vbdProject(Vec3<T>&) const;                                    \
+    template void CpuSolver<T>::vbdProject(Vec3<T>&, Vec3<T>&) const;                          \
     template void CpuSolver<T>::vbdAccelerate(const Band&, double);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

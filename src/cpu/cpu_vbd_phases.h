@@ -24,7 +24,8 @@ template <typename T>
 struct VbdPhases {
     int nu = 0, nv = 0;
     std::int64_t start[5]{};
-    Soa3<T> x, xn, y;  // the iterate, the step's start x_n, the inertial target
+    // The iterate (positions x, displacements d = x − x_n), the inertial target's ŷ = y − x_n.
+    Soa3<T> x, d, y;
     AlignedVector<T> inverseMass;
     AlignedVector<T> bendDiagonal;  // with bending only (sized by the solver)
     AlignedVector<std::uint8_t> pinned;
@@ -34,7 +35,7 @@ struct VbdPhases {
         nv = v;
         for (int p = 1; p < 5; ++p) start[p] = start[p - 1] + (u - (p - 1) + 4) / 5;
         const std::int64_t n = std::int64_t(u) * v;
-        for (Soa3<T>* a : {&x, &xn, &y}) a->assign(n, Vec3<T>(0));
+        for (Soa3<T>* a : {&x, &d, &y}) a->assign(n, Vec3<T>(0));
         inverseMass.assign(std::size_t(n), T(0));
         pinned.assign(std::size_t(n), 1);
     }

@@ -35,9 +35,9 @@ enum Binding : unsigned {
     kCgPartials = 12,
     kCgState = 13,
     kCgInverse = 14,
-    // vbd: the step's start, the inertial target, the previous velocity, the Chebyshev iterates
-    // n − 1 and n − 2 (vec4 per vertex).
-    kVbdStart = 8,
+    // vbd: the step's displacement d = x − x_n, the inertial target's ŷ = y − x_n, the previous
+    // velocity, the Chebyshev iterates' displacements n − 1 and n − 2 (vec4 per vertex).
+    kVbdDisplacement = 8,
     kVbdInertial = 9,
     kVbdPrevious = 10,
     kVbdBefore = 11,

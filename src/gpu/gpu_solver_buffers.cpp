@@ -51,7 +51,7 @@ std::vector<IntegratorBuffer> integratorBuffers(Method m, Preconditioner p, bool
             return cg;
         }
         case Method::Vbd: {
-            std::vector<IntegratorBuffer> vbd = {{gpu::kVbdStart},
+            std::vector<IntegratorBuffer> vbd = {{gpu::kVbdDisplacement},
                                                  {gpu::kVbdInertial},
                                                  {gpu::kVbdPrevious},
                                                  {gpu::kVbdBefore},

@@ -40,8 +40,10 @@ CLOTH_LANE void vbdAddOuter(T c, T dx, T dy, T dz, VbdLane<T>& a) {
     a.zz += cz * dz;
 }
 
-// Inertia and air drag at x: g += m/h² (x − y) + m c/h (x − x_n), H += (m/h² + m c/h) I; one
-// component of g from x, y, x_n's (the row kernel's loops take one component at a time).
+// Inertia and air drag on the step's displacement d = x − x_n (the iterate, so that a float
+// cloth far from the origin keeps its small steps): g += m/h² (d − ŷ) + m c/h d with
+// ŷ = y − x_n = h v_n + h² a_ext, H += (m/h² + m c/h) I; one component of g from d, ŷ's (the row
+// kernel's loops take one component at a time).
 template <typename T>
 CLOTH_LANE T vbdInertiaWeight(T mass, T h) {
     return mass / (h * h);
@@ -51,8 +53,8 @@ CLOTH_LANE T vbdDragWeight(T mass, T h, T dampingRate) {
     return mass * dampingRate / h;
 }
 template <typename T>
-CLOTH_LANE T vbdInertiaGradient(T x, T target, T start, T inertia, T drag) {
-    return inertia * (x - target) + drag * (x - start);
+CLOTH_LANE T vbdInertiaGradient(T displacement, T target, T inertia, T drag) {
+    return inertia * (displacement - target) + drag * displacement;
 }
 
 // The spring along d = x_q − x_k: g −= K (|d| − L)/|d| d, H += t I + (K − t)/|d|² d dᵀ with
@@ -74,9 +76,10 @@ CLOTH_LANE void vbdSpringLane(T dx, T dy, T dz, T stiffness, T restLength, VbdLa
 }
 
 // The spring's damping on the step's displacement: d = x_q,n − x_k,n at the step's start, w the
-// displacement difference. With e = βK/|d|² (spring_math.h's springDampingCoefficient over
-// (w·d)): g −= e (w·d) d/h, H += e/h d dᵀ; nothing where |d| < 1e-12 L. One division, e (1/h is
-// the caller's loop invariant).
+// displacement difference (d is x_q − x_k − w: the positions now, less the step's difference).
+// With e = βK/|d|² (spring_math.h's springDampingCoefficient over (w·d)): g −= e (w·d) d/h,
+// H += e/h d dᵀ; nothing where |d| < 1e-12 L. One division, e (1/h is the caller's loop
+// invariant).
 template <typename T>
 CLOTH_LANE void vbdSpringDampingLane(T dx, T dy, T dz, T wx, T wy, T wz, T dampingK, T restLength,
                                      T inverseH, VbdLane<T>& a) {
@@ -126,11 +129,12 @@ CLOTH_LANE T vbdNormalStiffness(const VbdLane<T>& a, T nx, T ny, T nz) {
            T(2) * (a.xy * nx * ny + a.xz * nx * nz + a.yz * ny * nz);
 }
 
-// The Newton step x ← x − H⁻¹g in double, H⁻¹ by the adjugate (glm::inverse's operations);
-// false, and x kept, where |det H| ≤ 1e-12 floor³ (vbdNewtonStep says why). Without a branch,
-// so that the row kernel's loop vectorises: a kept vertex selects its old x.
+// The Newton step s = −H⁻¹g, solved in double and rounded to T once, for the caller to add to
+// the position and to the displacement alike; H⁻¹ by the adjugate (glm::inverse's operations).
+// s = 0, and false, where |det H| ≤ 1e-12 floor³ (vbdNewtonStep says why). Without a branch, so
+// that the row kernel's loop vectorises.
 template <typename T>
-CLOTH_LANE bool vbdNewtonLane(const VbdLane<T>& a, double floor, T& x, T& y, T& z) {
+CLOTH_LANE bool vbdNewtonLane(const VbdLane<T>& a, double floor, T& sx, T& sy, T& sz) {
     const double d00 = a.xx, d01 = a.xy, d02 = a.xz, d11 = a.yy, d12 = a.yz, d22 = a.zz;
     const double c0 = d11 * d22 - d12 * d12, c1 = d01 * d22 - d12 * d02;
     const double c2 = d01 * d12 - d11 * d02;
@@ -142,12 +146,12 @@ CLOTH_LANE bool vbdNewtonLane(const VbdLane<T>& a, double floor, T& x, T& y, T& 
     const double i21 = -(d00 * d12 - d02 * d01) * s, i02 = c2 * s;
     const double i12 = -(d00 * d12 - d01 * d02) * s, i22 = (d00 * d11 - d01 * d01) * s;
     const double gx = a.gx, gy = a.gy, gz = a.gz;
-    const T nx = x - T(i00 * gx + i10 * gy + i20 * gz);
-    const T ny = y - T(i01 * gx + i11 * gy + i21 * gz);
-    const T nz = z - T(i02 * gx + i12 * gy + i22 * gz);
-    x = step ? nx : x;
-    y = step ? ny : y;
-    z = step ? nz : z;
+    const T nx = T(-(i00 * gx + i10 * gy + i20 * gz));
+    const T ny = T(-(i01 * gx + i11 * gy + i21 * gz));
+    const T nz = T(-(i02 * gx + i12 * gy + i22 * gz));
+    sx = step ? nx : T(0);
+    sy = step ? ny : T(0);
+    sz = step ? nz : T(0);
     return step;
 }
 

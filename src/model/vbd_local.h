@@ -4,7 +4,10 @@
 //
 //   G(x) = Σ_k m_k/(2h²) |x_k − y_k|² + Σ_k m_k c/(2h) |x_k − x_n,k|² + E(x) + E_β(x),
 //
-// x_k moving, every other vertex held; and the 3×3 Newton step on it. E holds the springs
+// x_k moving, every other vertex held; and the 3×3 Newton step on it. The iterate is the pair
+// (x, d): the positions, which the springs and bending read, and the step's displacement
+// d = x − x_n, which inertia, drag, damping and friction read (a float x far from the origin
+// rounds a small step away; d keeps it). Every step moves both alike. E holds the springs
 // (½K(|d| − L)², each slot of the stencil with its stiffnessAt), the quadratic bending energy
 // (model/bending.h) and the grab; E_β is the spring damping of implicit Euler's D taken on the
 // step's displacement. Stateless: positions and parameters in, gradient and Hessian out, so the
@@ -43,15 +46,15 @@ void onLane(VbdLocal<T>& local, const F& f) {
     local.hessian = {a.xx, a.yy, a.zz, a.xy, a.xz, a.yz};
 }
 
-// Inertia and air drag: m/(2h²)|x − y|² + m c/(2h)|x − x_n|², y the inertial target
-// x_n + h v_n + h² a_ext. The drag term is backward Euler's −c m v_{n+1} with v_{n+1} =
-// (x − x_n)/h: its gradient m c (x − x_n)/h is that force's negative.
+// Inertia and air drag: m/(2h²)|d − ŷ|² + m c/(2h)|d|², d = x − x_n and ŷ = y − x_n =
+// h v_n + h² a_ext, y the inertial target. The drag term is backward Euler's −c m v_{n+1} with
+// v_{n+1} = d/h: its gradient m c d/h is that force's negative.
 template <typename T>
-void addVbdInertia(const Vec3<T>& x, const Vec3<T>& y, const Vec3<T>& xn, T mass, T h,
-                   T dampingRate, VbdLocal<T>& local) {
+void addVbdInertia(const Vec3<T>& d, const Vec3<T>& target, T mass, T h, T dampingRate,
+                   VbdLocal<T>& local) {
     const T inertia = vbdInertiaWeight(mass, h), drag = vbdDragWeight(mass, h, dampingRate);
     for (int c = 0; c < 3; ++c)
-        local.gradient[c] += vbdInertiaGradient(x[c], y[c], xn[c], inertia, drag);
+        local.gradient[c] += vbdInertiaGradient(d[c], target[c], inertia, drag);
     local.hessian.addDiagonal(inertia + drag);
 }
 
@@ -69,13 +72,13 @@ void addVbdSpring(const Vec3<T>& pk, const Vec3<T>& pq, T stiffness, T restLengt
 
 // Spring damping as implicit Euler's D (docs/integrators.md): the force −D v_{n+1}, D = Σ βK d̂d̂ᵀ
 // at the step's start x_n, with v_{n+1} = (x − x_n)/h, is minus the gradient of
-// E_β = Σ_springs βK/(2h) (d̂_n·(Δ_q − Δ_k))², Δ = x − x_n. w = Δ_q − Δ_k; pkn, pqn the ends at
-// x_n. The gradient is −F_β(x_n, w)/h (addSpringDamping with the displacement for the velocity),
-// the Hessian βK/h d̂_n d̂_nᵀ.
+// E_β = Σ_springs βK/(2h) (d̂_n·(Δ_q − Δ_k))², Δ = x − x_n. w = Δ_q − Δ_k; pk, pq the ends now, so
+// d_n = pq − pk − w. The gradient is −F_β(x_n, w)/h (addSpringDamping with the displacement for
+// the velocity), the Hessian βK/h d̂_n d̂_nᵀ.
 template <typename T>
-void addVbdSpringDamping(const Vec3<T>& pkn, const Vec3<T>& pqn, const Vec3<T>& w, T dampingK,
+void addVbdSpringDamping(const Vec3<T>& pk, const Vec3<T>& pq, const Vec3<T>& w, T dampingK,
                          T restLength, T h, VbdLocal<T>& local) {
-    const Vec3<T> d = pqn - pkn;
+    const Vec3<T> d = (pq - pk) - w;
     onLane(local, [&](VbdLane<T>& a) {
         vbdSpringDampingLane(d.x, d.y, d.z, w.x, w.y, w.z, dampingK, restLength, T(1) / h, a);
     });
@@ -102,13 +105,13 @@ void addVbdGrab(const Vec3<T>& x, const Vec3<T>& target, T stiffness, VbdLocal<T
 // Everything of G at vertex k = (i, j) that couples it to its neighbours: the springs of the
 // stencil (with their damping when modelled) and the bending energy, whose Hessian block
 // bendDiagonal·I (bendingDiagonal, constant: the caller keeps it) is added. x: the current
-// positions, xn: the step's start, both anything positionAt(x, k) reads.
+// positions, d: the step's displacements, both anything positionAt(x, k) reads.
 template <typename T, typename Positions>
 void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                    const BendingWeights& bending, T bendDiagonal, const Positions& x,
-                   const Positions& xn, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
+                   const Positions& d, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
     const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
-    const Vec3<T> pk = positionAt(x, k), pkn = positionAt(xn, k);
+    const Vec3<T> pk = positionAt(x, k), dk = positionAt(d, k);
     const T inverseH = T(1) / h;
     onLane(local, [&](VbdLane<T>& a) {  // addVbdSpring and addVbdSpringDamping, summed in place
         for (const StencilSpring<T>& s : springs) {
@@ -117,12 +120,11 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                 if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
             }
             const std::int64_t q = k + s.indexOffset;
-            const Vec3<T> pq = positionAt(x, q), d = pq - pk;
-            vbdSpringLane(d.x, d.y, d.z, stiffnessAt(s, i, j, nu, nv), s.restLength, a);
+            const Vec3<T> pq = positionAt(x, q), e = pq - pk;
+            vbdSpringLane(e.x, e.y, e.z, stiffnessAt(s, i, j, nu, nv), s.restLength, a);
             if (s.damping > 0) {
                 const bool half = s.halvedOnBorder && onBorderLine(s.di, s.dj, i, j, nu, nv);
-                const Vec3<T> pqn = positionAt(xn, q), dn = pqn - pkn;
-                const Vec3<T> w = (pq - pqn) - (pk - pkn);
+                const Vec3<T> w = positionAt(d, q) - dk, dn = e - w;
                 vbdSpringDampingLane(dn.x, dn.y, dn.z, w.x, w.y, w.z,
                                      half ? T(0.5) * s.damping : s.damping, s.restLength, inverseH,
                                      a);
@@ -136,7 +138,7 @@ void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
     }
 }
 
-// Friction as an energy with the lagged normal force (vbdFrictionLane): u = x − x_n − h v_c,
+// Friction as an energy with the lagged normal force (vbdFrictionLane): u = d − h v_c,
 // n the unit normal and w = c_f λ of the vertex's last projection, ε = ε_v h.
 template <typename T>
 void addVbdFriction(const Vec3<T>& u, const Vec3<T>& n, T weight, T epsilon, VbdLocal<T>& local) {
@@ -153,29 +155,30 @@ VbdLane<T> vbdLane(const VbdLocal<T>& local) {
     return {g.x, g.y, g.z, m.xx, m.yy, m.zz, m.xy, m.xz, m.yz};
 }
 
-// The Newton step x ← x − H⁻¹g, solved in double (a stiff spring beside a light vertex makes H
-// too ill-conditioned for a float inverse). H ⪰ floor·I with floor = m/h² (every other term is
-// positive semi-definite), so det H ≥ floor³: a determinant below 1e-12 of that is rounding or a
-// non-finite state, and the vertex then keeps its position. Returns whether it moved.
+// The Newton step s = −H⁻¹g, solved in double (a stiff spring beside a light vertex makes H
+// too ill-conditioned for a float inverse), for the caller to add to x and d. H ⪰ floor·I with
+// floor = m/h² (every other term is positive semi-definite), so det H ≥ floor³: a determinant
+// below 1e-12 of that is rounding or a non-finite state, and then s = 0. Returns whether it moved.
 template <typename T>
-bool vbdNewtonStep(const VbdLocal<T>& local, double floor, Vec3<T>& x) {
-    return vbdNewtonLane(vbdLane(local), floor, x.x, x.y, x.z);
+bool vbdNewtonStep(const VbdLocal<T>& local, double floor, Vec3<T>& s) {
+    return vbdNewtonLane(vbdLane(local), floor, s.x, s.y, s.z);
 }
 
-// The paper's adaptive initial guess (§3.7): x = x_n + h v_n + h² ã, ã the component of the
-// previous step's acceleration a = (v_n − v_{n−1})/h along gravity ĝ, clipped to [0, |g|]: a
-// vertex that fell freely starts where free fall takes it, one held up by the cloth starts
-// where its velocity does. Without a previous step (`history` false) ã = g, the inertial guess.
+// The paper's adaptive initial guess (§3.7) as a displacement: x − x_n = h v_n + h² ã, ã the
+// component of the previous step's acceleration a = (v_n − v_{n−1})/h along gravity ĝ, clipped to
+// [0, |g|]: a vertex that fell freely starts where free fall takes it, one held up by the cloth
+// starts where its velocity does. Without a previous step (`history` false) ã = g, the inertial
+// guess.
 template <typename T>
-Vec3<T> vbdInitialGuess(const Vec3<T>& xn, const Vec3<T>& vn, const Vec3<T>& vPrevious,
-                        const Vec3<T>& gravity, T h, bool history) {
+Vec3<T> vbdInitialGuess(const Vec3<T>& vn, const Vec3<T>& vPrevious, const Vec3<T>& gravity, T h,
+                        bool history) {
     const T g = glm::length(gravity);
     Vec3<T> a = gravity;
     if (history && g > T(0)) {
         const T along = glm::dot(vn - vPrevious, gravity) / (h * g);
         a = (std::clamp(along, T(0), g) / g) * gravity;
     }
-    return xn + h * vn + (h * h) * a;
+    return h * vn + (h * h) * a;
 }
 
 // The Chebyshev semi-iterative weight ω_n of iteration n ≥ 1 (Wang 2015, as VBD §3.8 uses it):

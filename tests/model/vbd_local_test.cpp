@@ -53,14 +53,17 @@ TEST(VbdLocal, TheBendingDiagonalIsTheEnergysSecondDerivative) {
 }
 
 TEST(VbdLocal, TheNewtonStepOfAQuadraticLandsOnItsMinimum) {
-    const V x0(0.2, 1.0, -0.3), y(0.25, 0.9, -0.3), xn(0.2, 1.0, -0.3), grabTarget(0.5, 0.5, 0.5);
-    V x = x0;
+    const V xn(0.2, 1.0, -0.3), y(0.25, 0.9, -0.3), grabTarget(0.5, 0.5, 0.5);
+    V x = xn + V(0.01, -0.02, 0.0), d = x - xn;  // the iterate: position and displacement
     VbdLocal<double> local;
-    addVbdInertia(x, y, xn, 0.01, 1.0 / 60, 2.0, local);
+    addVbdInertia(d, y - xn, 0.01, 1.0 / 60, 2.0, local);
     addVbdGrab(x, grabTarget, 3.0, local);
-    ASSERT_TRUE(vbdNewtonStep(local, 0.01 * 3600, x));
+    V s;
+    ASSERT_TRUE(vbdNewtonStep(local, 0.01 * 3600, s));
+    x += s;
+    d += s;
     VbdLocal<double> after;  // the gradient at the new x vanishes
-    addVbdInertia(x, y, xn, 0.01, 1.0 / 60, 2.0, after);
+    addVbdInertia(d, y - xn, 0.01, 1.0 / 60, 2.0, after);
     addVbdGrab(x, grabTarget, 3.0, after);
     EXPECT_LT(glm::length(after.gradient), 1e-12);
 }

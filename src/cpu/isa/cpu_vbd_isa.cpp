@@ -26,8 +26,9 @@ struct VbdChunk {
     alignas(64) T gx[kVbdChunk], gy[kVbdChunk], gz[kVbdChunk];
     alignas(64) T xx[kVbdChunk], yy[kVbdChunk], zz[kVbdChunk];
     alignas(64) T xy[kVbdChunk], xz[kVbdChunk], yz[kVbdChunk];
-    alignas(64) T nx[kVbdChunk], ny[kVbdChunk], nz[kVbdChunk];
-    alignas(64) T mass[kVbdChunk];  // m = 1/(1/m), once per vertex
+    alignas(64) T nx[kVbdChunk], ny[kVbdChunk], nz[kVbdChunk];  // the new positions
+    alignas(64) T dx[kVbdChunk], dy[kVbdChunk], dz[kVbdChunk];  // the new displacements
+    alignas(64) T mass[kVbdChunk];                              // m = 1/(1/m), once per vertex
     CLOTH_LANE VbdLane<T> get(int m) const {
         return {gx[m], gy[m], gz[m], xx[m], yy[m], zz[m], xy[m], xz[m], yz[m]};
     }
@@ -37,33 +38,32 @@ struct VbdChunk {
     }
 };
 
-// The chunk's new positions, where the vertex moved, into the iterate in phases (contiguous,
-// from a) and in the grid's order (five apart, from k); in its own function: the steps above
-// read the iterate through restrict pointers.
+// The chunk's new positions and displacements, where the vertex moved, into the iterate in
+// phases (contiguous, from a) and in the grid's order (five apart, from k); in its own function:
+// the steps above read the iterate through restrict pointers.
 template <typename T>
-void vbdStore(Row3<T> phases, Row3<T> grid, const VbdChunk<T>& c,
+void vbdStore(Row3<T> phases, Row3<T> grid, const T* x, const T* y, const T* z,
               const std::uint8_t* __restrict moved, std::int64_t a, std::int64_t k, int n) {
     T* __restrict px = phases.x + a, * __restrict py = phases.y + a, * __restrict pz = phases.z + a;
     for (int m = 0; m < n; ++m) {
         if (!moved[m]) continue;
-        px[m] = c.nx[m], py[m] = c.ny[m], pz[m] = c.nz[m];
+        px[m] = x[m], py[m] = y[m], pz[m] = z[m];
     }
     T* __restrict gx = grid.x + k, * __restrict gy = grid.y + k, * __restrict gz = grid.z + k;
     for (int m = 0; m < n; ++m) {
         if (!moved[m]) continue;
         const std::int64_t q = 5 * std::int64_t(m);
-        gx[q] = c.nx[m], gy[q] = c.ny[m], gz[q] = c.nz[m];
+        gx[q] = x[m], gy[q] = y[m], gz[q] = z[m];
     }
 }
 
-// One component of the inertia's gradient, g_m = inertia·(x − y) + drag·(x − x_n) for the
-// chunk's vertices m.
+// One component of the inertia's gradient, g_m = inertia·(d − ŷ) + drag·d for the chunk's
+// vertices m.
 template <typename T>
-void vbdInertiaLoop(T* __restrict g, const T* __restrict x, const T* __restrict y,
-                    const T* __restrict start, const T* __restrict mass, T h, T dampingRate,
-                    int n) {
+void vbdInertiaLoop(T* __restrict g, const T* __restrict d, const T* __restrict y,
+                    const T* __restrict mass, T h, T dampingRate, int n) {
     for (int m = 0; m < n; ++m)
-        g[m] = T(0) + vbdInertiaGradient(x[m], y[m], start[m], vbdInertiaWeight(mass[m], h),
+        g[m] = T(0) + vbdInertiaGradient(d[m], y[m], vbdInertiaWeight(mass[m], h),
                                          vbdDragWeight(mass[m], h, dampingRate));
 }
 
@@ -87,14 +87,14 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     VbdChunk<T> c;
     const std::int64_t a0 = r.at + m0;
     const T* __restrict px = r.px.x + a0, * __restrict py = r.px.y + a0, * __restrict pz = r.px.z + a0;
-    const T* __restrict nx = r.pxn.x + a0, * __restrict ny = r.pxn.y + a0, * __restrict nz = r.pxn.z + a0;
+    const T* __restrict dx = r.pd.x + a0, * __restrict dy = r.pd.y + a0, * __restrict dz = r.pd.z + a0;
     const T* __restrict inverseMass = r.inverseMass + a0;
     const T h = r.h, dampingRate = r.dampingRate, inverseH = T(1) / r.h;
     for (int m = 0; m < n; ++m) c.mass[m] = T(1) / inverseMass[m];
     // The inertia first, as addVbdInertia starts the sum from zero.
-    vbdInertiaLoop(c.gx, px, r.py.x + a0, nx, c.mass, h, dampingRate, n);
-    vbdInertiaLoop(c.gy, py, r.py.y + a0, ny, c.mass, h, dampingRate, n);
-    vbdInertiaLoop(c.gz, pz, r.py.z + a0, nz, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gx, dx, r.py.x + a0, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gy, dy, r.py.y + a0, c.mass, h, dampingRate, n);
+    vbdInertiaLoop(c.gz, dz, r.py.z + a0, c.mass, h, dampingRate, n);
     for (int m = 0; m < n; ++m) {
         const T mass = c.mass[m];
         const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
@@ -106,14 +106,13 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
         const T* __restrict qx = px + o, * __restrict qy = py + o, * __restrict qz = pz + o;
         const T K = r.stiffness[s], L = r.restLength[s], beta = r.damping[s];
         if (beta > 0) {
-            const T* __restrict qnx = nx + o, * __restrict qny = ny + o, * __restrict qnz = nz + o;
+            const T* __restrict qdx = dx + o, * __restrict qdy = dy + o, * __restrict qdz = dz + o;
             for (int m = 0; m < n; ++m) {
                 VbdLane<T> a = c.get(m);
-                vbdSpringLane(qx[m] - px[m], qy[m] - py[m], qz[m] - pz[m], K, L, a);
-                vbdSpringDampingLane(qnx[m] - nx[m], qny[m] - ny[m], qnz[m] - nz[m],
-                                     (qx[m] - qnx[m]) - (px[m] - nx[m]),
-                                     (qy[m] - qny[m]) - (py[m] - ny[m]),
-                                     (qz[m] - qnz[m]) - (pz[m] - nz[m]), beta, L, inverseH, a);
+                const T ex = qx[m] - px[m], ey = qy[m] - py[m], ez = qz[m] - pz[m];
+                const T wx = qdx[m] - dx[m], wy = qdy[m] - dy[m], wz = qdz[m] - dz[m];
+                vbdSpringLane(ex, ey, ez, K, L, a);
+                vbdSpringDampingLane(ex - wx, ey - wy, ez - wz, wx, wy, wz, beta, L, inverseH, a);
                 c.set(m, a);
             }
         } else {
@@ -149,8 +148,8 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
         const T* __restrict cz = r.contactNormal.z + a0;
         for (int m = 0; m < n; ++m) {
             VbdLane<T> a = c.get(m);
-            vbdFrictionLane((px[m] - nx[m]) - ux[m], (py[m] - ny[m]) - uy[m],
-                            (pz[m] - nz[m]) - uz[m], cx[m], cy[m], cz[m], w[m], r.epsilon, a);
+            vbdFrictionLane(dx[m] - ux[m], dy[m] - uy[m], dz[m] - uz[m], cx[m], cy[m], cz[m], w[m],
+                            r.epsilon, a);
             c.set(m, a);
         }
         T* const* out = r.hessian;
@@ -163,14 +162,17 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     std::uint8_t* __restrict moved = r.moved + m0;
     const std::int64_t k0 = r.first + 5 * std::int64_t(m0);
     for (int m = 0; m < n; ++m) {
-        T x = px[m], yk = py[m], z = pz[m];
-        const bool stepped = vbdNewtonLane(c.get(m), double(c.mass[m]) / (double(h) * h), x, yk, z);
-        c.nx[m] = x, c.ny[m] = yk, c.nz[m] = z;
+        T sx, sy, sz;
+        const bool stepped =
+            vbdNewtonLane(c.get(m), double(c.mass[m]) / (double(h) * h), sx, sy, sz);
+        c.nx[m] = px[m] + sx, c.ny[m] = py[m] + sy, c.nz[m] = pz[m] + sz;
+        c.dx[m] = dx[m] + sx, c.dy[m] = dy[m] + sy, c.dz[m] = dz[m] + sz;
         const bool free = pinned[m] == 0;  // read in every lane: no masked load
         const bool grabbed = k0 + 5 * std::int64_t(m) == r.skip;
         moved[m] = std::uint8_t(unsigned(stepped) & unsigned(free) & unsigned(!grabbed));
     }
-    vbdStore(r.px, r.x, c, moved, a0, k0, n);
+    vbdStore(r.px, r.x, c.nx, c.ny, c.nz, moved, a0, k0, n);
+    vbdStore(r.pd, r.d, c.dx, c.dy, c.dz, moved, a0, k0, n);
 }
 
 }  // namespace
