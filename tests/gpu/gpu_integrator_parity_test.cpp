@@ -18,15 +18,17 @@ constexpr long kSteps = 1000;
 // (docs/gpu.md, "Contacts"); seen: at most 8.4e-7.
 constexpr double kTolerance = 1e-5;
 // vbd solves each vertex's 3×3 system in float on the GPU, in double on the CPU (a stiff spring
-// beside a light vertex: model/vbd_local.h): 1.4e-6 of the extent apart before the contact
-// (7.9e-9 when vbd first ran on the GPU, before its adaptive guess and row kernel), the two then
-// part by the contacts' decisions; seen 1.2e-5 after 1000 steps (2026-11-30).
+// beside a light vertex: model/vbd_local.h): 5.8e-8 of the extent apart before the contact
+// since both iterate the displacement beside the position (1.4e-6 before; 7.9e-9 when vbd first
+// ran on the GPU, before its adaptive guess and row kernel), the two then part by the contacts'
+// decisions; seen 1.2e-5 after 1000 steps (2026-11-30).
 constexpr double kVbdContactTolerance = 5e-5;
 // With Chebyshev's extrapolation (ρ = 0.9, 20 sweeps) the contacts' decisions part the two more:
 // seen 2.0e-3 at step 400 and 7.0e-4 at 1000, where the CPU in double and in float differ by
 // 3.9e-4 and 4.8e-4; before the contact 1.9e-7. Since the projections take no friction term
 // (docs/integrators.md "vbd", contact and friction), which on these frictionless colliders still
-// left a rounding-level tangential change, rounded differently on the two: 1.1e-5 at 1000.
+// left a rounding-level tangential change, rounded differently on the two: 1.1e-5 at 1000;
+// iterating the displacement, 5.7e-8 before the contact and 4.6e-6 at 1000.
 constexpr double kVbdChebyshevContactTolerance = 5e-3;
 // implicit_euler's contacts are constraints of its solve (docs/integrators.md, "Contact in the
 // solve"), stopped at |r| ≤ 10⁻⁶ |b| on both: 1.3e-7 m apart at the first contact (step 240),
