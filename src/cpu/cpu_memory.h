@@ -18,12 +18,12 @@ namespace cloth {
 // adds x0, v0, ΣX, ΣV and implicit Euler its CG vectors dv, r, p, Ap (4 vec3 each; with the
 // block-Jacobi preconditioner z and the inverted diagonal block, a vec3 and 6 scalars; with
 // colliders its contacts in the solve, 12 scalars: n, z, hold, b, grip and two flags padded),
-// vbd the step's start, the inertial target and the previous velocity (Chebyshev's two iterates
-// and, with a material's bending, its Hessian diagonal, one scalar, are not counted), and the
-// inverse mass 1/m_k (one scalar per vertex), where a collider has friction its contacts (n,
-// h v_c, c_f λ: 7 scalars); with row kernels vbd keeps the copy its kernel
-// reads (cpu/cpu_vbd_phases.h: x, x_n, y, 1/m and the pin flag); the threads' scratch rows are
-// O(side), not counted, nor is the multigrid preconditioner's hierarchy.
+// vbd the step's displacement, the inertial target's and the previous velocity (Chebyshev's two
+// iterates and, with a material's bending, its Hessian diagonal, one scalar, are not counted),
+// and the inverse mass 1/m_k (one scalar per vertex), where a collider has friction its contacts
+// (n, h v_c, c_f λ: 7 scalars); with row kernels vbd keeps the copy its kernel reads
+// (cpu/cpu_vbd_phases.h: x, d, ŷ, 1/m and the pin flag); the threads' scratch rows are O(side), not
+// counted, nor is the multigrid preconditioner's hierarchy.
 inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
                                      Preconditioner preconditioner = Preconditioner::Jacobi,
                                      bool colliders = false, bool rowKernels = true,
@@ -31,7 +31,7 @@ inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
     std::size_t vectors = 4;
     if (method == Method::Rk4 || method == Method::ImplicitEuler) vectors += 4;
-    if (method == Method::Vbd) vectors += 2;  // x_n, y, v_{n−1} in place of the forces
+    if (method == Method::Vbd) vectors += 2;  // d, ŷ, v_{n−1} in place of the forces
     std::size_t scalars = vectors * 3 + 1;
     if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
     if (method == Method::ImplicitEuler && colliders) scalars += 12;

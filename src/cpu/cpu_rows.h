@@ -113,9 +113,10 @@ struct ContactRow {
 // colliders, with the Hessians the kernel leaves it).
 template <typename T>
 struct VbdRow {
-    // The iterate, positions x and displacements d = x − x_n, in the grid's order: written.
-    Row3<T> x{nullptr, nullptr, nullptr}, d{nullptr, nullptr, nullptr};
-    // In phases: the iterate (read, written), the inertial target's ŷ = y − x_n, 1/m [1/kg],
+    // The positions in the grid's order: written.
+    Row3<T> x{nullptr, nullptr, nullptr};
+    // In phases: the iterate, positions x and displacements d = x − x_n (read, written), the
+    // inertial target's ŷ = y − x_n, 1/m [1/kg],
     // W_kk (with bending), the pins.
     Row3<T> px{nullptr, nullptr, nullptr}, pd{nullptr, nullptr, nullptr};
     ConstRow3<T> py{nullptr, nullptr, nullptr};

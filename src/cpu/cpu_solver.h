@@ -150,6 +150,10 @@ private:
                        const T* const* hessian);
     void vbdProject(Vec3<T>& x, Vec3<T>& d) const;
     void vbdFillPhases(const Band& band);
+    // Vertex k's displacement d = x − x_n: kept in phases alone where the solver keeps phases.
+    Vec3<T> vbdDisplacement(std::int64_t k) const {
+        return phases_.active() ? phases_.d.get(phases_.at(k)) : displacement_.get(k);
+    }
     // Where vertex k's contact is kept (VbdContacts: in phases' order with phases).
     std::int64_t vbdContactAt(std::int64_t k) const { return phases_.active() ? phases_.at(k) : k; }
     void vbdAccelerate(const Band& band, double omega);
@@ -219,7 +223,9 @@ private:
     CycleThreads cycleThreads(const Band& band, const Team& team) const {
         return {int(&band - bands_.data()), int(bands_.size()), team.barrier};
     }
-    // vbd: the step's displacement d = x − x_n (the iterate with x_), the inertial target's
+    // vbd: the step's displacement d = x − x_n (the iterate with x_; at the step's start only
+    // where the solver keeps phases, whose copy the sweeps move: vbdDisplacement), the inertial
+    // target's
     // ŷ = y − x_n = h v_n + h² a_ext, the previous step's velocity v_{n−1} (the adaptive initial
     // guess), and with Chebyshev acceleration the displacements of iterates n − 1, n − 2.
     Soa3<T> displacement_;

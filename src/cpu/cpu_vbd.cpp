@@ -40,7 +40,7 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     const auto collide = [this](Vec3<T>& p, Vec3<T>& w) { colliders_.apply(p, w); };
     const auto surface = [this](const Vec3<T>& p) { return colliders_.surfaceVelocity(p); };
     for (std::int64_t k = band.begin; k < band.end; ++k) {
-        const Vec3<T> x = x_.get(k), d = displacement_.get(k), v = d / h;
+        const Vec3<T> x = x_.get(k), d = vbdDisplacement(k), v = d / h;
         const bool collides = !colliders_.empty() && !pinned_[k];  // (model/start_inside.h)
         if (!finishStep(band, k, x,
                         collides ? withoutStartCorrection(x - d, v, h, collide, surface) : v))
@@ -157,7 +157,6 @@ template <typename T>
 VbdRow<T> CpuSolver<T>::vbdRow() {
     VbdRow<T> r{};
     r.x = x_.row(0);
-    r.d = displacement_.row(0);
     r.px = phases_.x.row(0);
     r.pd = phases_.d.row(0);
     r.py = phases_.y.row(0);
@@ -201,8 +200,10 @@ void CpuSolver<T>::vbdRunOffsets(VbdRow<T>& r, int i) const {
 template <typename T>
 void CpuSolver<T>::vbdSet(std::int64_t k, const Vec3<T>& x, const Vec3<T>& d) {
     x_.set(k, x);
-    displacement_.set(k, d);
-    if (!phases_.active()) return;
+    if (!phases_.active()) {
+        displacement_.set(k, d);
+        return;
+    }
     const std::int64_t a = phases_.at(k);
     phases_.x.set(a, x);
     phases_.d.set(a, d);
@@ -214,12 +215,16 @@ void CpuSolver<T>::vbdSet(std::int64_t k, const Vec3<T>& x, const Vec3<T>& d) {
 template <typename T>
 void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
     const T h = dt_t_, mass = T(1) / inverseMass_[std::size_t(k)];
-    Vec3<T> x = x_.get(k), d = displacement_.get(k);
+    Vec3<T> x = x_.get(k), d = vbdDisplacement(k);
     VbdLocal<T> local;
     addVbdInertia(d, inertialStep_[k], mass, h, dampingRate_, local);
     const T bendDiagonal = bending_.active() ? bendingDiagonal_[std::size_t(k)] : T(0);
-    addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, bendDiagonal, x_, displacement_, h, k, i,
-                  j, local);
+    if (phases_.active())
+        addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, bendDiagonal, x_,
+                      PhasedDisplacements<T>{phases_}, h, k, i, j, local);
+    else
+        addVbdStencil(grid_.nu, grid_.nv, springs_, bending_, bendDiagonal, x_, displacement_, h, k,
+                      i, j, local);
     if (grab_ && grab_->vertex == k) addVbdGrab(x, grab_->target, grab_->stiffness, local);
     const std::int64_t c = vbdContactAt(k);
     if (vbdContacts_.active())
@@ -290,7 +295,6 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
         const Vec3<T> d = phases_.d.get(at + m) + (pushed - old);
         x_.set(k, pushed);
         phases_.x.set(at + m, pushed);
-        displacement_.set(k, d);
         phases_.d.set(at + m, d);
     }
 }
@@ -313,26 +317,25 @@ template <typename T>
 void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
     const T w = T(omega);
     const bool extrapolate = omega > 1;
-    // Vertex k's extrapolated iterate (x, d).
-    auto extrapolated = [&](std::int64_t k, Vec3<T>& x, Vec3<T>& d) {
-        const Vec3<T> now = displacement_.get(k);
+    // Vertex k's extrapolated iterate (x, d) from its displacement now.
+    auto extrapolated = [&](std::int64_t k, const Vec3<T>& now, Vec3<T>& x, Vec3<T>& d) {
         d = w * (now - dBeforeLast_[k]) + dBeforeLast_[k];
         x = x_.get(k) + (d - now);
     };
-    auto shift = [&](std::int64_t k) {
+    auto shift = [&](std::int64_t k, const Vec3<T>& d) {
         dBeforeLast_[k] = dBefore_[k];
-        dBefore_[k] = displacement_.get(k);
+        dBefore_[k] = d;
     };
     if (!phases_.active() || !extrapolate) {
         for (std::int64_t k = band.begin; k < band.end; ++k) {
             if (pinned_[k]) continue;
+            Vec3<T> x, d = vbdDisplacement(k);
             if (extrapolate) {
-                Vec3<T> x, d;
-                extrapolated(k, x, d);
+                extrapolated(k, Vec3<T>(d), x, d);
                 vbdProject(x, d);
                 vbdSet(k, x, d);
             }
-            shift(k);
+            shift(k, d);
         }
         return;
     }
@@ -352,15 +355,15 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
                     moved[m] = !pinned_[k];
                     if (!moved[m]) continue;
                     Vec3<T> x, d;
-                    extrapolated(k, x, d);
+                    extrapolated(k, phases_.d.get(at + m), x, d);
                     x_.set(k, x);
-                    displacement_.set(k, d);
                     phases_.x.set(at + m, x);
                     phases_.d.set(at + m, d);
                 }
                 if (!colliders_.empty()) vbdCollideRun(first, at, moved, n, nullptr);
                 for (int m = 0; m < n; ++m)
-                    if (moved[m]) shift(first + std::int64_t(kVbdColours) * m);
+                    if (moved[m])
+                        shift(first + std::int64_t(kVbdColours) * m, phases_.d.get(at + m));
             }
         }
 }

@@ -7,8 +7,9 @@
 //
 // so a run of one colour's vertices, and the same run shifted by any stencil offset (di, dj), is
 // contiguous. Phase p of a row starts at start[p] (the phases before it hold ⌈(nu − q)/5⌉ columns
-// each): no padding, nu · nv entries. The solver keeps this copy of the iterate beside its own
-// (both written on every move, cpu_vbd.cpp vbdSet) and fills the rest once a step (vbdStart).
+// each): no padding, nu · nv entries. The solver keeps this copy of the positions beside its own
+// (both written on every move, cpu_vbd.cpp vbdSet), the displacements only here during the
+// sweeps, and fills the rest once a step (vbdStart).
 #pragma once
 
 #include <algorithm>
@@ -45,6 +46,16 @@ struct VbdPhases {
     // How far (i + di, j + dj) lies from (i, j) here: the same for every i of one phase.
     std::int64_t offset(int i, int di, int dj) const { return at(i + di, dj + 2) - at(i, 2); }
 };
+
+// The displacements in phases, read by the grid's index k (positionAt, for addVbdStencil).
+template <typename T>
+struct PhasedDisplacements {
+    const VbdPhases<T>& phases;
+};
+template <typename T>
+Vec3<T> positionAt(const PhasedDisplacements<T>& d, std::int64_t k) {
+    return d.phases.d.get(d.phases.at(k));
+}
 
 // vbd's contacts (docs/integrators.md "vbd", contact and friction), kept from sweep to sweep and
 // step to step, one per vertex in phases' order where the solver keeps phases (the row kernel

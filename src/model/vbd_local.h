@@ -106,10 +106,10 @@ void addVbdGrab(const Vec3<T>& x, const Vec3<T>& target, T stiffness, VbdLocal<T
 // stencil (with their damping when modelled) and the bending energy, whose Hessian block
 // bendDiagonal·I (bendingDiagonal, constant: the caller keeps it) is added. x: the current
 // positions, d: the step's displacements, both anything positionAt(x, k) reads.
-template <typename T, typename Positions>
+template <typename T, typename Positions, typename Displacements>
 void addVbdStencil(int nu, int nv, const std::vector<StencilSpring<T>>& springs,
                    const BendingWeights& bending, T bendDiagonal, const Positions& x,
-                   const Positions& d, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
+                   const Displacements& d, T h, std::int64_t k, int i, int j, VbdLocal<T>& local) {
     const bool interior = i >= 2 && i < nu - 2 && j >= 2 && j < nv - 2;
     const Vec3<T> pk = positionAt(x, k), dk = positionAt(d, k);
     const T inverseH = T(1) / h;

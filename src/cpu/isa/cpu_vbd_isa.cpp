@@ -38,22 +38,34 @@ struct VbdChunk {
     }
 };
 
-// The chunk's new positions and displacements, where the vertex moved, into the iterate in
-// phases (contiguous, from a) and in the grid's order (five apart, from k); in its own function:
-// the steps above read the iterate through restrict pointers.
+// The chunk's new positions, where the vertex moved, into the iterate in phases (contiguous,
+// from a) and in the grid's order (five apart, from k); in its own function: the steps above read
+// the iterate through restrict pointers.
 template <typename T>
-void vbdStore(Row3<T> phases, Row3<T> grid, const T* x, const T* y, const T* z,
+void vbdStore(Row3<T> phases, Row3<T> grid, const VbdChunk<T>& c,
               const std::uint8_t* __restrict moved, std::int64_t a, std::int64_t k, int n) {
     T* __restrict px = phases.x + a, * __restrict py = phases.y + a, * __restrict pz = phases.z + a;
     for (int m = 0; m < n; ++m) {
         if (!moved[m]) continue;
-        px[m] = x[m], py[m] = y[m], pz[m] = z[m];
+        px[m] = c.nx[m], py[m] = c.ny[m], pz[m] = c.nz[m];
     }
     T* __restrict gx = grid.x + k, * __restrict gy = grid.y + k, * __restrict gz = grid.z + k;
     for (int m = 0; m < n; ++m) {
         if (!moved[m]) continue;
         const std::int64_t q = 5 * std::int64_t(m);
-        gx[q] = x[m], gy[q] = y[m], gz[q] = z[m];
+        gx[q] = c.nx[m], gy[q] = c.ny[m], gz[q] = c.nz[m];
+    }
+}
+
+// The chunk's new displacements, where the vertex moved, into phases (the only copy the sweeps
+// keep).
+template <typename T>
+void vbdStoreDisplacements(Row3<T> phases, const VbdChunk<T>& c,
+                           const std::uint8_t* __restrict moved, std::int64_t a, int n) {
+    T* __restrict px = phases.x + a, * __restrict py = phases.y + a, * __restrict pz = phases.z + a;
+    for (int m = 0; m < n; ++m) {
+        if (!moved[m]) continue;
+        px[m] = c.dx[m], py[m] = c.dy[m], pz[m] = c.dz[m];
     }
 }
 
@@ -171,8 +183,8 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
         const bool grabbed = k0 + 5 * std::int64_t(m) == r.skip;
         moved[m] = std::uint8_t(unsigned(stepped) & unsigned(free) & unsigned(!grabbed));
     }
-    vbdStore(r.px, r.x, c.nx, c.ny, c.nz, moved, a0, k0, n);
-    vbdStore(r.pd, r.d, c.dx, c.dy, c.dz, moved, a0, k0, n);
+    vbdStore(r.px, r.x, c, moved, a0, k0, n);
+    vbdStoreDisplacements(r.pd, c, moved, a0, n);
 }
 
 }  // namespace
