@@ -137,9 +137,15 @@ layout(std430, binding = 11) buffer VbdBefore {
 layout(std430, binding = 12) buffer VbdBeforeLast {
     vec4 vbdBeforeLast[];
 };
+// The translation's step (vbd_translation_*.comp): [0] = (t [m], 1 where taken), then three vec4
+// per work group of the grid dispatch: (g, Σ m/h²), (H_xx, H_yy, H_zz, 0), (H_xy, H_xz, H_yz, 0).
+layout(std430, binding = 14) buffer VbdTranslation {
+    vec4 vbdTranslation[];
+};
 #ifdef HAS_COLLIDERS
 // With colliders, vbd's contacts (src/cpu/cpu_vbd_phases.h VbdContacts), two vec4 per vertex:
-// [2k] = (unit normal n, w = c_f λ [N]), [2k + 1] = (h v_c [m], 0); w = 0: no contact.
+// [2k] = (unit normal n, w = c_f λ [N]), [2k + 1] = (h v_c [m], 1 where the last Newton step's
+// projection pushed along n, else 0); w = 0: no contact.
 layout(std430, binding = 13) buffer VbdContacts {
     vec4 vbdContacts[];
 };

@@ -22,6 +22,7 @@ float workGroupSum(float value) {
     return groupSums[0];
 }
 
+#ifdef INTEGRATOR_IMPLICIT_EULER
 // The work group's Σ value into its slot of cgPartials.
 void storeGroupSum(float value) {
     float sum = workGroupSum(value);
@@ -38,3 +39,4 @@ void storeGroupSums(float first, float second) {
         cgPartials[gl_NumWorkGroups.x * gl_NumWorkGroups.y + gl_WorkGroupID.y * gl_NumWorkGroups.x +
                    gl_WorkGroupID.x] = sum;
 }
+#endif

@@ -70,9 +70,10 @@ void main() {
     if (pushed > 0.0) {  // the contact for the next sweep (vbdTouch): n, c_f λ, h v_c
         vbdContacts[2u * k] = vec4(push / pushed,
                                    friction * (pushed * vbdNormalStiffness(l, push / pushed)));
-        vbdContacts[2u * k + 1u] = vec4(h * vc, 0.0);
+        vbdContacts[2u * k + 1u] = vec4(h * vc, 1.0);
     } else {
         vbdContacts[2u * k].w = 0.0;
+        vbdContacts[2u * k + 1u].w = 0.0;
     }
     d += push;
     x = p;

@@ -13,10 +13,11 @@ namespace cloth {
 std::unique_ptr<Solver> makeCpuSolver(const Scene& scene, const CpuOptions& options) {
     // The integrator's arrays, refused before any is allocated where they exceed the memory.
     const double vertices = double(scene.cloth.nu) * double(scene.cloth.nv);
-    const double need = vertices * double(cpuBytesPerVertex(
-                                       options.precision, scene.integrator.method,
-                                       scene.integrator.preconditioner, !scene.colliders.empty(),
-                                       true, scene.anyFriction())),
+    const double need =
+                     vertices * double(cpuBytesPerVertex(
+                                    options.precision, scene.integrator.method,
+                                    scene.integrator.preconditioner, !scene.colliders.empty(), true,
+                                    scene.anyFriction(), scene.integrator.translationSweeps > 0)),
                  have = physicalMemoryBytes();
     if (need > have) {
         char buf[240];

@@ -21,13 +21,14 @@ namespace cloth {
 // vbd the step's displacement, the inertial target's and the previous velocity (Chebyshev's two
 // iterates and, with a material's bending, its Hessian diagonal, one scalar, are not counted),
 // and the inverse mass 1/m_k (one scalar per vertex), where a collider has friction its contacts
-// (n, h v_c, c_f λ: 7 scalars); with row kernels vbd keeps the copy its kernel reads
+// (n, h v_c, c_f λ: 7 scalars), with colliders and translation sweeps the last pushes (3); with
+// row kernels vbd keeps the copy its kernel reads
 // (cpu/cpu_vbd_phases.h: x, d, ŷ, 1/m and the pin flag); the threads' scratch rows are O(side), not
 // counted, nor is the multigrid preconditioner's hierarchy.
 inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
                                      Preconditioner preconditioner = Preconditioner::Jacobi,
                                      bool colliders = false, bool rowKernels = true,
-                                     bool friction = false) {
+                                     bool friction = false, bool translation = false) {
     const std::size_t scalar = precision == Precision::Double ? sizeof(double) : sizeof(float);
     std::size_t vectors = 4;
     if (method == Method::Rk4 || method == Method::ImplicitEuler) vectors += 4;
@@ -36,6 +37,7 @@ inline std::size_t cpuBytesPerVertex(Precision precision, Method method,
     if (method == Method::ImplicitEuler && preconditioner == Preconditioner::Jacobi) scalars += 9;
     if (method == Method::ImplicitEuler && colliders) scalars += 12;
     if (method == Method::Vbd && friction) scalars += 7;
+    if (method == Method::Vbd && colliders && translation) scalars += 3;
     const bool phases = method == Method::Vbd && rowKernels;
     if (phases) scalars += 3 * 3 + 1;
     return scalars * scalar + (phases ? 2 : 1);

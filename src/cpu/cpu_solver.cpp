@@ -137,10 +137,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     }
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;
-    vbdIterations_ = scene.integrator.iterations;
-    chebyshevRho_ = scene.integrator.chebyshevRho;
-    if (method_ == Method::Vbd && chebyshevRho_ > 0 && dBefore_.empty())
-        for (auto* a : {&dBefore_, &dBeforeLast_}) a->assign(std::size_t(x_.size()), Vec3<T>(0));
+    if (method_ == Method::Vbd) vbdTakeParameters(scene);
     forcesValid_ = false;
     // The masses of the scene as given: a new mass (the viewer's) rescales every vertex's.
     inverseMass_.resize(std::size_t(grid_.count()));
@@ -363,8 +360,8 @@ SimState CpuSolver<T>::read() const {
 template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
-    for (const Soa3<T>* a :
-         {&x_, &v_, &f_, &xNext_, &vNext_, &displacement_, &phases_.x, &phases_.d, &phases_.y})
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_, &displacement_, &pushNormal_,
+                             &phases_.x, &phases_.d, &phases_.y})
         vectors += std::size_t(a->size());
     for (const auto* a : {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_,
                           &ap_, &z_, &inertialStep_, &vPrevious_, &dBefore_, &dBeforeLast_})

@@ -154,9 +154,20 @@ private:
     Vec3<T> vbdDisplacement(std::int64_t k) const {
         return phases_.active() ? phases_.d.get(phases_.at(k)) : displacement_.get(k);
     }
+    // The unit push p − x of a Newton step's projection at contact slot c (0: none).
+    void vbdPushed(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p) {
+        const Vec3<T> push = p - x;
+        const T length = glm::length(push);
+        pushNormal_.set(c, length > T(0) ? push / length : Vec3<T>(0));
+    }
     // Where vertex k's contact is kept (VbdContacts: in phases' order with phases).
     std::int64_t vbdContactAt(std::int64_t k) const { return phases_.active() ? phases_.at(k) : k; }
     void vbdAccelerate(const Band& band, double omega);
+    // The translation's Newton step (cpu_vbd_translation.cpp): its sums over row j into out
+    // (gradient 3, Hessian 6, Σ m/h²), then the step on every free vertex.
+    void vbdTranslationRow(int j, double* out) const;
+    void vbdTranslate(const Band& band, const Team& team);
+    void vbdTakeParameters(const Scene& scene);  // sweeps, ρ, their storage
     // The end of every step: pins, colliders in scene order, then the instability check.
     bool finishStep(Band& band, std::int64_t k, Vec3<T> p, Vec3<T> v);
     void applyPin(std::int64_t k, Vec3<T>& p, Vec3<T>& v) const;
@@ -235,6 +246,11 @@ private:
     VbdContacts<T> vbdContacts_;      // with colliders
     int vbdIterations_ = 0;
     double chebyshevRho_ = 0;
+    int translationSweeps_ = 0;
+    std::vector<double> translationRows_;  // per row, vbdTranslationRow's 10 sums
+    // With colliders and translation sweeps: the unit push of each vertex's last Newton step's
+    // projection (0: none), where its contact is kept (vbdContactAt).
+    Soa3<T> pushNormal_;
     long vbdHistoryFrom_ = 2;          // the first step whose v_{n−1} is in vPrevious_ (1-based)
     std::vector<double> partials_[2];  // per chunk and sum, for reduce()
     std::int64_t chunk_ = kChunk;      // vertices per chunk: whole rows

@@ -17,8 +17,9 @@
 
 namespace cloth {
 
-// One step: the start (ŷ, the initial guess), `iterations` sweeps over the five colours (each
-// followed, with ρ > 0, by the Chebyshev extrapolation), then v_{n+1} = d/h and
+// One step: the start (ŷ, the initial guess), `iterations` sweeps over the five colours (the
+// first translation_sweeps followed by the translation's step, each with ρ > 0 by the Chebyshev
+// extrapolation), then v_{n+1} = d/h and
 // finishStep's pins, colliders and check; a vertex that started inside a collider keeps none of
 // the correction that put it out as velocity (model/start_inside.h).
 template <typename T>
@@ -30,6 +31,7 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
             vbdSweep(band, colour);
             team.sync();  // the next colour reads this one's new positions
         }
+        if (n <= translationSweeps_) vbdTranslate(band, team);  // (cpu_vbd_translation.cpp)
         if (chebyshevRho_ > 0) {
             omega = chebyshevOmega(n, chebyshevRho_, omega);
             vbdAccelerate(band, omega);
@@ -238,6 +240,7 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
         Vec3<T> p = x;
         const auto surface = colliders_.project(p);
         if (vbdContacts_.active()) vbdTouch(c, x, p, surface, vbdLane(local));
+        if (pushNormal_.size() > 0) vbdPushed(c, x, p);
         d += p - x;
         x = p;
     }
@@ -290,6 +293,7 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
                 pushed != old ? colliders_.surfaceAt(old) : typename CpuColliders<T>::Surface{},
                 {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m], hessian[4][m],
                  hessian[5][m]});
+        if (hessian && pushNormal_.size() > 0) vbdPushed(at + m, old, pushed);
         if (pushed == old) continue;
         const std::int64_t k = first + std::int64_t(kVbdColours) * m;
         const Vec3<T> d = phases_.d.get(at + m) + (pushed - old);

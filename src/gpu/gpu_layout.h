@@ -42,7 +42,8 @@ enum Binding : unsigned {
     kVbdPrevious = 10,
     kVbdBefore = 11,
     kVbdBeforeLast = 12,
-    kVbdContacts = 13,  // with colliders: (n, c_f λ), (h v_c, 0) per vertex
+    kVbdContacts = 13,     // with colliders: (n, c_f λ), (h v_c, pushed) per vertex
+    kVbdTranslation = 14,  // the translation's step t, then 3 vec4 per work group
     // Self-collision (self_contact.glsl): seven vec4 per vertex, and its integers (the hash, the
     // fixed-point sums, the header); any integrator's scene may declare it.
     kSelfVectors = 15,

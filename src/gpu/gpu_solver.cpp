@@ -82,6 +82,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       maxIterations_(scene.integrator.maxIterations),
       vbdIterations_(scene.integrator.iterations),
       chebyshevRho_(scene.integrator.chebyshevRho),
+      translationSweeps_(scene.integrator.translationSweeps),
       forces_(options.forces),
       nu_(scene.cloth.nu),
       nv_(scene.cloth.nv),
@@ -131,8 +132,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
     if (features_.selfCollision) allocateSelfCollision(scene);
     if (features_.stepControl) allocateStepCheck();
     setGrabUniforms(std::nullopt);
-    // llvmpipe's GL_TIME_ELAPSED reads (near) 0 for compute work: time software renderers by
-    // the wall clock.
+    // llvmpipe's GL_TIME_ELAPSED reads ~0 for compute work: time software renderers by clock.
     if (info.timerQueries && !info.software) glGenQueries(1, &timer_);
     name_ = "gpu float (" + info.renderer.substr(0, info.renderer.find(" (")) + ", work groups " +
             std::to_string(workGroup_.x) + "x" + std::to_string(workGroup_.y) + ", " +

@@ -158,6 +158,7 @@ private:
     // vbd: sweeps per step, Chebyshev's ρ, and the first step whose v_{n−1} is in kVbdPrevious.
     int vbdIterations_;
     double chebyshevRho_;
+    int translationSweeps_;  // vbd: the sweeps followed by the translation's step
     long vbdHistoryFrom_ = 2;
     // verlet: the forces buffer holds F(x_n) of the coming step (F(x_{n+1}) of the last one).
     // Anything that changes the state or the forces from outside discards it.

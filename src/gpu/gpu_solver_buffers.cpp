@@ -22,6 +22,7 @@ enum class Contents {
     TwoPerVertex,    // two vec4 per vertex (the block-Jacobi inverses, vbd's contacts)
     ThreePerVertex,  // three vec4 per vertex (the contacts in the solve)
     Partials,        // two floats per work group of the grid dispatch, in whole vec4s
+    Translation,     // one vec4, then three per work group of the grid dispatch
     CgState,         // one gpu::CgState
 };
 struct IntegratorBuffer {
@@ -51,11 +52,10 @@ std::vector<IntegratorBuffer> integratorBuffers(Method m, Preconditioner p, bool
             return cg;
         }
         case Method::Vbd: {
-            std::vector<IntegratorBuffer> vbd = {{gpu::kVbdDisplacement},
-                                                 {gpu::kVbdInertial},
-                                                 {gpu::kVbdPrevious},
-                                                 {gpu::kVbdBefore},
-                                                 {gpu::kVbdBeforeLast}};
+            std::vector<IntegratorBuffer> vbd = {
+                {gpu::kVbdDisplacement}, {gpu::kVbdInertial},
+                {gpu::kVbdPrevious},     {gpu::kVbdBefore},
+                {gpu::kVbdBeforeLast},   {gpu::kVbdTranslation, Contents::Translation}};
             if (contacts) vbd.push_back({gpu::kVbdContacts, Contents::TwoPerVertex});
             return vbd;
         }
@@ -91,6 +91,11 @@ void GpuSolver::allocateIntegratorBuffers() {
             case Contents::Partials: {
                 const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
                 bufferData(buffer, nullptr, (2 * groups + 3) / 4 * kVec4);
+                break;
+            }
+            case Contents::Translation: {
+                const std::size_t groups = std::size_t(groupsX_) * std::size_t(groupsY_);
+                bufferData(buffer, nullptr, (1 + 3 * groups) * kVec4);
                 break;
             }
             case Contents::CgState: {

@@ -156,6 +156,7 @@ void GpuSolver::setParameters(const Scene& scene) {
     maxIterations_ = scene.integrator.maxIterations;
     vbdIterations_ = scene.integrator.iterations;
     chebyshevRho_ = scene.integrator.chebyshevRho;
+    translationSweeps_ = scene.integrator.translationSweeps;
     forcesKept_ = false;
     uploadParams(scene);
     setSelfUniforms(scene);

@@ -140,8 +140,9 @@ void GpuSolver::stepImplicit(long stepNumber) {
 }
 
 // vbd (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp stepVbd, pass for pass): the start and
-// the initial guess, `iterations` sweeps of one dispatch per colour (each followed, with ρ > 0,
-// by the Chebyshev extrapolation), then the end of the step.
+// the initial guess, `iterations` sweeps of one dispatch per colour (the first
+// translation_sweeps followed by the translation's step, each with ρ > 0 by the Chebyshev
+// extrapolation), then the end of the step.
 void GpuSolver::stepVbd(long stepNumber) const {
     runPass(Kernel::VbdStart);
     glProgramUniform1i(programs_[int(Kernel::VbdGuess)], gpu::kVbdLocation,
@@ -152,6 +153,13 @@ void GpuSolver::stepVbd(long stepNumber) const {
         for (int colour = 0; colour < kVbdColours; ++colour) {
             glProgramUniform1i(programs_[int(Kernel::VbdSweep)], gpu::kVbdLocation, colour);
             runStepPass(Kernel::VbdSweep, stepNumber, vbdGroupsX_);  // the colour's columns
+        }
+        if (n <= translationSweeps_) {
+            runStepPass(Kernel::VbdTranslationSum, stepNumber);
+            glUseProgram(programs_[int(Kernel::VbdTranslationSolve)]);
+            glDispatchCompute(1, 1, 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+            runStepPass(Kernel::VbdTranslationApply, stepNumber);
         }
         if (chebyshevRho_ > 0) {
             omega = chebyshevOmega(n, chebyshevRho_, omega);

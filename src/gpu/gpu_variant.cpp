@@ -270,7 +270,10 @@ const char* kernelFile(Kernel k) {
                                                          "compute/self_finish.comp",
                                                          "compute/cg_contact_start.comp",
                                                          "compute/cg_grip.comp",
-                                                         "compute/step_check.comp"};
+                                                         "compute/step_check.comp",
+                                                         "compute/vbd_translation_sum.comp",
+                                                         "compute/vbd_translation_solve.comp",
+                                                         "compute/vbd_translation_apply.comp"};
     return kFiles[int(k)];
 }
 
@@ -307,8 +310,14 @@ std::vector<Kernel> kernelsOf(Method m, Preconditioner p, bool contacts) {
                     Kernel::CgStart,  Kernel::CgProduct,       Kernel::CgReduce,
                     Kernel::CgUpdate, Kernel::CgDirection,     Kernel::ImplicitFinish};
         case Method::Vbd:
-            return {Kernel::VbdStart, Kernel::VbdGuess, Kernel::VbdSweep, Kernel::VbdAccelerate,
-                    Kernel::VbdFinish};
+            return {Kernel::VbdStart,
+                    Kernel::VbdGuess,
+                    Kernel::VbdSweep,
+                    Kernel::VbdAccelerate,
+                    Kernel::VbdFinish,
+                    Kernel::VbdTranslationSum,
+                    Kernel::VbdTranslationSolve,
+                    Kernel::VbdTranslationApply};
     }
     return {};
 }

@@ -52,11 +52,11 @@ enum class Kernel {
     CgUpdate,         // implicit_euler: Δv, r
     CgDirection,      // implicit_euler: p
     ImplicitFinish,   // implicit_euler: v, x, pins, colliders, check
-    VbdStart,         // vbd: x_n, the inertial target y
+    VbdStart,         // vbd: the inertial target's ŷ = y − x_n, the normals
     VbdGuess,         // vbd: the initial guess, pins
     VbdSweep,         // vbd: one colour's Newton steps and contact
     VbdAccelerate,    // vbd: the Chebyshev extrapolation
-    VbdFinish,        // vbd: v = (x − x_n)/h, pins, colliders, check
+    VbdFinish,        // vbd: v = d/h, pins, colliders, check
     ManySteps,        // explicit/symplectic Euler, small grids: many steps in one work group
     // implicit_euler with the multigrid preconditioner (multigrid.glsl, gpu/gpu_multigrid.h):
     CgPreconditioned,      // z of the V-cycle into the CG, r·r and r·z (p = z at the start)
@@ -89,8 +89,12 @@ enum class Kernel {
     CgGrip,          // after the solve: each contact's grip for the next step
     // Step control (solver/step_check.h), when the scene declares it:
     StepCheck,  // each work group's largest growth of a structural spring's stretch
+    // vbd's translation step (integrator.translation_sweeps):
+    VbdTranslationSum,    // each work group's part of its gradient and Hessian
+    VbdTranslationSolve,  // their sum, the step t
+    VbdTranslationApply,  // t on every free vertex, the colliders
 };
-inline constexpr int kKernelCount = int(Kernel::StepCheck) + 1;
+inline constexpr int kKernelCount = int(Kernel::VbdTranslationApply) + 1;
 // The self-collision kernels, in the order above.
 std::vector<Kernel> selfCollisionKernels();
 

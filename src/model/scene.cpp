@@ -94,6 +94,8 @@ std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& in) {
             unused("iterations", std::to_string(in.iterations), "vbd", instead);
         std::snprintf(value, sizeof value, "%g", in.chebyshevRho);
         if (in.chebyshevRho != defaults.chebyshevRho) unused("chebyshev_rho", value, "vbd", "");
+        if (in.translationSweeps != defaults.translationSweeps)
+            unused("translation_sweeps", std::to_string(in.translationSweeps), "vbd", "");
     }
     return lines;
 }

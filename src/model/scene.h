@@ -84,6 +84,9 @@ struct IntegratorSpec {
     // ρ, the spectral radius estimate of the Chebyshev acceleration; 0 = no acceleration.
     int iterations = 10;
     double chebyshevRho = 0;
+    // vbd only: after each of the first translationSweeps sweeps, the Newton step of G on the
+    // rigid translation of the free vertices (the mode the sweeps barely move); 0 = none.
+    int translationSweeps = 0;
     // Step control (docs/integrators.md "Step control"), any method: a step that stretches a
     // structural spring by more than this fraction of its rest length is redone from its start
     // as two steps of half the Δt, each checked again; 0 = every step is taken as it comes.
@@ -91,8 +94,9 @@ struct IntegratorSpec {
 };
 
 // The integrator keys set away from their defaults that the scene's method does not use
-// (implicit_euler's tolerance, max_iterations and preconditioner; vbd's iterations and
-// chebyshev_rho), one line each naming the key, its value and whose it is; empty when none.
+// (implicit_euler's tolerance, max_iterations and preconditioner; vbd's iterations,
+// chebyshev_rho and translation_sweeps), one line each naming the key, its value and whose it
+// is; empty when none.
 std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& integrator);
 
 struct Plane {

@@ -114,6 +114,14 @@ constexpr ParamSpec kParams[] = {
                                                    : std::nullopt;
      },
      [](Scene& s, double v) { s.integrator.chebyshevRho = v; }},
+    {"integrator.translation_sweeps", "", 0, 100000, false, true, 0, false,
+     "vbd: after each of the first N sweeps of a step, the Newton step on the rigid translation "
+     "of the free vertices; 0 = none", kHidden,
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::Vbd
+                    ? std::optional<double>(s.integrator.translationSweeps) : std::nullopt;
+     },
+     [](Scene& s, double v) { s.integrator.translationSweeps = int(std::lround(v)); }},
     {"integrator.max_step_strain", "", 0, 10, false, false, 0, false,
      "a step that stretches a structural spring by more than this fraction of its rest length "
      "is redone as two of half the Δt, down to Δt/16; 0 = off", kHidden,

@@ -115,6 +115,7 @@ std::string sceneToJson(const Scene& s) {
     if (s.integrator.method == Method::Vbd) {
         j["integrator"]["iterations"] = s.integrator.iterations;
         j["integrator"]["chebyshev_rho"] = s.integrator.chebyshevRho;
+        j["integrator"]["translation_sweeps"] = s.integrator.translationSweeps;
     }
     if (s.integrator.maxStepStrain > 0)
         j["integrator"]["max_step_strain"] = s.integrator.maxStepStrain;

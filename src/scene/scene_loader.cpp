@@ -195,7 +195,7 @@ Material SceneReader::readMaterial(const Json& j) const {
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
     expectObject(j, "integrator",
                  {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner",
-                  "iterations", "chebyshev_rho", "max_step_strain"});
+                  "iterations", "chebyshev_rho", "translation_sweeps", "max_step_strain"});
     if (j.contains("method")) {
         const Json& m = j["method"];
         if (!m.is_string()) fail("integrator.method", "expected a string, got " + describe(m));
@@ -225,6 +225,8 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
         int(param(j, "iterations", "integrator.iterations", "integrator.iterations"));
     integrator.chebyshevRho =
         param(j, "chebyshev_rho", "integrator.chebyshev_rho", "integrator.chebyshev_rho");
+    integrator.translationSweeps = int(param(
+        j, "translation_sweeps", "integrator.translation_sweeps", "integrator.translation_sweeps"));
     integrator.maxStepStrain =
         param(j, "max_step_strain", "integrator.max_step_strain", "integrator.max_step_strain");
 }

@@ -206,29 +206,33 @@ TEST(RowBands, ThreadCountsOneTwoThreeGiveTheSameBits) {
 }
 
 // bench speed reports app::cpuBytesPerVertex as the CPU's memory: it must be what the solver
-// holds, for every integrator and precision, with frictionless colliders and with friction; the
-// threads' scratch rows stay O(side).
+// holds, for every integrator and precision, with frictionless colliders and with friction, and
+// with vbd's translation sweeps; the threads' scratch rows stay O(side).
 TEST(CpuMemory, BytesPerVertexOfTheBenchModelAreWhatTheSolverAllocates) {
     for (Method m : kMethods)
-        for (double rub : {0.0, 0.5}) {
-            Scene scene = sized(m, 64, 40, false);
-            ASSERT_FALSE(scene.colliders.empty());
-            scene.colliders[0].friction = rub;
-            CpuSolver<float> f(scene, 2);
-            CpuSolver<double> d(scene, 2);
-            const Preconditioner p = scene.integrator.preconditioner;
-            const bool colliders = !scene.colliders.empty(), friction = scene.anyFriction();
-            const bool kernels = f.isa() != CpuIsa::Scalar;
-            EXPECT_EQ(f.allocatedBytes(), 64 * 40 *
-                                              app::cpuBytesPerVertex(Precision::Float, m, p,
-                                                                     colliders, kernels, friction))
-                << methodName(m);
-            EXPECT_EQ(d.allocatedBytes(), 64 * 40 *
-                                              app::cpuBytesPerVertex(Precision::Double, m, p,
-                                                                     colliders, kernels, friction))
-                << methodName(m);
-            EXPECT_LE(d.scratchBytes(), 2 * (3 * 6 + 3) * 64 * sizeof(double)) << methodName(m);
-        }
+        for (double rub : {0.0, 0.5})
+            for (int sweeps : {0, 2}) {
+                Scene scene = sized(m, 64, 40, false);
+                ASSERT_FALSE(scene.colliders.empty());
+                scene.colliders[0].friction = rub;
+                scene.integrator.translationSweeps = sweeps;
+                CpuSolver<float> f(scene, 2);
+                CpuSolver<double> d(scene, 2);
+                const Preconditioner p = scene.integrator.preconditioner;
+                const bool colliders = !scene.colliders.empty(), friction = scene.anyFriction();
+                const bool kernels = f.isa() != CpuIsa::Scalar, translation = sweeps > 0;
+                EXPECT_EQ(f.allocatedBytes(),
+                          64 * 40 *
+                              app::cpuBytesPerVertex(Precision::Float, m, p, colliders, kernels,
+                                                     friction, translation))
+                    << methodName(m) << " " << sweeps;
+                EXPECT_EQ(d.allocatedBytes(),
+                          64 * 40 *
+                              app::cpuBytesPerVertex(Precision::Double, m, p, colliders, kernels,
+                                                     friction, translation))
+                    << methodName(m) << " " << sweeps;
+                EXPECT_LE(d.scratchBytes(), 2 * (3 * 6 + 3) * 64 * sizeof(double)) << methodName(m);
+            }
 }
 
 TEST(CpuIsaChoice, AutoIsTheWidestSupportedAndAnUnknownNameIsNone) {

@@ -1,0 +1,75 @@
+// vbd, the translation's sums (docs/integrators.md "vbd", few sweeps; src/cpu/
+// cpu_vbd_translation.cpp vbdTranslationRow): each invocation's part of the gradient and Hessian
+// of G on the rigid translation of the free vertices — a free vertex's inertia, drag, friction
+// and contact hold (10⁴ m/h² along the push of its last Newton step's projection), a pinned
+// vertex's springs to free neighbours, the grabbed vertex's grab — summed over the work group
+// into its three vec4 of vbdTranslation.
+#include "layout.glsl"
+#include "common.glsl"
+#include "springs.glsl"
+#include "grab.glsl"
+#include "step_end.glsl"
+#ifdef HAS_BENDING
+#define BENDING_FIELD(q) positions[vertexIndex(q)].xyz
+#include "bending.glsl"
+#endif
+#include "vbd_local.glsl"
+
+layout(local_size_x = WX, local_size_y = WY) in;
+
+#include "reduction.glsl"
+
+const float kContactStiffness = 1e4;  // × m/h²
+
+VbdLocal translationTerms(ivec2 ij, out float inertia) {
+    VbdLocal l = vbdLocalZero();
+    inertia = 0.0;
+    uint k = vertexIndex(ij);
+    vec4 x4 = positions[k];
+    if (x4.w == 0.0) {  // pinned: its springs to free vertices, seen from them
+#if NUM_SPRING_OFFSETS > 0
+        for (int o = 0; o < NUM_SPRING_OFFSETS; ++o) {
+            ivec4 s = kSpringOffsets[o];
+            ivec2 q = ij + s.xy;
+            if (!insideGrid(q)) continue;
+            vec4 xq = positions[vertexIndex(q)];
+            if (xq.w == 0.0) continue;
+            addVbdSpring(l, xq.xyz, x4.xyz, springStiffnessAt(s, ij), springRestLength(s));
+        }
+#endif
+        return l;
+    }
+    float h = params.dt, mass = 1.0 / x4.w;
+    vec3 d = vbdDisplacement[k].xyz;
+    addVbdInertia(l, d, vbdInertial[k].xyz, mass, h, params.dampingRate);
+    inertia = mass / (h * h);
+#ifdef HAS_COLLIDERS
+    vec4 contact = vbdContacts[2u * k], slide = vbdContacts[2u * k + 1u];
+    addVbdFriction(l, d - slide.xyz, contact.xyz, contact.w, h * VBD_STICK_SPEED);
+    if (slide.w > 0.0) addOuter(l, kContactStiffness * inertia, contact.xyz);
+#endif
+    if (grabbed(k)) {
+        l.gradient -= grabForce(x4.xyz, uGrab.xyz, uGrab.w);
+        addDiagonal(l, uGrab.w);
+    }
+    return l;
+}
+
+void main() {
+    ivec2 ij = ivec2(gl_GlobalInvocationID.xy);
+    VbdLocal l = vbdLocalZero();
+    float inertia = 0.0;
+    if (ij.x < gridU() && ij.y < gridV() && !frozen(uStep)) l = translationTerms(ij, inertia);
+    float sums[10] = float[10](l.gradient.x, l.gradient.y, l.gradient.z, inertia, l.diagonal.x,
+                               l.diagonal.y, l.diagonal.z, l.offDiagonal.x, l.offDiagonal.y,
+                               l.offDiagonal.z);
+    for (int e = 0; e < 10; ++e) {
+        sums[e] = workGroupSum(sums[e]);
+        barrier();  // groupSums is reused
+    }
+    if (gl_LocalInvocationIndex != 0u) return;
+    uint at = 1u + 3u * (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x);
+    vbdTranslation[at] = vec4(sums[0], sums[1], sums[2], sums[3]);
+    vbdTranslation[at + 1u] = vec4(sums[4], sums[5], sums[6], 0.0);
+    vbdTranslation[at + 2u] = vec4(sums[7], sums[8], sums[9], 0.0);
+}
