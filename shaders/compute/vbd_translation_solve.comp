@@ -10,22 +10,29 @@
 #endif
 #include "vbd_local.glsl"
 
-layout(local_size_x = 256) in;
+layout(local_size_x = 256) in;  // kGroup
 
-#include "reduction.glsl"
+const uint kGroup = 256u;
+shared vec4 groupSums3[3][kGroup];
 
 void main() {
     uint groups = uint((gridU() + WX - 1) / WX) * uint((gridV() + WY - 1) / WY);
+    uint t = gl_LocalInvocationIndex;
     vec4 s[3] = vec4[3](vec4(0.0), vec4(0.0), vec4(0.0));
-    for (uint g = gl_LocalInvocationIndex; g < groups; g += gl_WorkGroupSize.x)
+    for (uint g = t; g < groups; g += kGroup)
         for (uint e = 0u; e < 3u; ++e) s[e] += vbdTranslation[1u + 3u * g + e];
-    for (int e = 0; e < 12; ++e) {
-        s[e / 4][e % 4] = workGroupSum(s[e / 4][e % 4]);
-        barrier();  // groupSums is reused
+    for (uint e = 0u; e < 3u; ++e) groupSums3[e][t] = s[e];
+    memoryBarrierShared();
+    barrier();
+    for (uint stride = kGroup / 2u; stride > 0u; stride >>= 1) {
+        if (t < stride)
+            for (uint e = 0u; e < 3u; ++e) groupSums3[e][t] += groupSums3[e][t + stride];
+        memoryBarrierShared();
+        barrier();
     }
-    if (gl_LocalInvocationIndex != 0u) return;
-    VbdLocal l = VbdLocal(s[0].xyz, s[1].xyz, s[2].xyz);
-    vec3 t;
-    bool step = vbdNewtonStep(l, s[0].w, t);
-    vbdTranslation[0] = step ? vec4(t, 1.0) : vec4(0.0);
+    if (t != 0u) return;
+    VbdLocal l = VbdLocal(groupSums3[0][0].xyz, groupSums3[1][0].xyz, groupSums3[2][0].xyz);
+    vec3 step;
+    bool taken = vbdNewtonStep(l, groupSums3[0][0].w, step);
+    vbdTranslation[0] = taken ? vec4(step, 1.0) : vec4(0.0);
 }

@@ -17,7 +17,8 @@
 
 layout(local_size_x = WX, local_size_y = WY) in;
 
-#include "reduction.glsl"
+// The three vec4 of sums, reduced together: one tree in shared memory for all ten.
+shared vec4 groupSums3[3][WX * WY];
 
 const float kContactStiffness = 1e4;  // × m/h²
 
@@ -60,16 +61,21 @@ void main() {
     VbdLocal l = vbdLocalZero();
     float inertia = 0.0;
     if (ij.x < gridU() && ij.y < gridV() && !frozen(uStep)) l = translationTerms(ij, inertia);
-    float sums[10] = float[10](l.gradient.x, l.gradient.y, l.gradient.z, inertia, l.diagonal.x,
-                               l.diagonal.y, l.diagonal.z, l.offDiagonal.x, l.offDiagonal.y,
-                               l.offDiagonal.z);
-    for (int e = 0; e < 10; ++e) {
-        sums[e] = workGroupSum(sums[e]);
-        barrier();  // groupSums is reused
+    uint t = gl_LocalInvocationIndex, n = uint(WX * WY);
+    groupSums3[0][t] = vec4(l.gradient, inertia);
+    groupSums3[1][t] = vec4(l.diagonal, 0.0);
+    groupSums3[2][t] = vec4(l.offDiagonal, 0.0);
+    memoryBarrierShared();
+    barrier();
+    uint stride = 1u;
+    while (2u * stride < n) stride *= 2u;
+    for (; stride > 0u; stride >>= 1) {
+        if (t < stride && t + stride < n)
+            for (int e = 0; e < 3; ++e) groupSums3[e][t] += groupSums3[e][t + stride];
+        memoryBarrierShared();
+        barrier();
     }
-    if (gl_LocalInvocationIndex != 0u) return;
+    if (t != 0u) return;
     uint at = 1u + 3u * (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x);
-    vbdTranslation[at] = vec4(sums[0], sums[1], sums[2], sums[3]);
-    vbdTranslation[at + 1u] = vec4(sums[4], sums[5], sums[6], 0.0);
-    vbdTranslation[at + 2u] = vec4(sums[7], sums[8], sums[9], 0.0);
+    for (uint e = 0u; e < 3u; ++e) vbdTranslation[at + e] = groupSums3[e][0];
 }

@@ -58,24 +58,30 @@ InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
     const IntegratorSpec& in = scene.integrator;
     const double rate = vbdSweepsPerSecond(scene), needed = vbdHoldingSweepsPerSecond(scene);
     const double dt = in.iterations / needed;
-    char buf[800];
+    // The translation's step carries the sheet's weight to its pins and contacts at once.
+    const std::string translation =
+        in.translationSweeps < in.iterations
+            ? ", or set integrator.translation_sweeps = " + std::to_string(in.iterations) +
+                  " (the translation's step after every sweep, docs/integrators.md)"
+            : "";
+    char buf[1000];
     if (dt < in.dt) {
         std::snprintf(buf, sizeof buf,
                       "vbd's %d sweeps a step did not carry the tension across the sheet: it ran "
                       "%.0f sweeps a simulated second (iterations / dt), and dropped sheets of %d "
                       "vertices a side held with %.0f x %d = %.0f (docs/performance.md); lower "
                       "integrator.dt to %.2g s or raise integrator.iterations (with "
-                      "integrator.chebyshev_rho = 0.9); %s",
+                      "integrator.chebyshev_rho = 0.9)%s; %s",
                       in.iterations, rate, n, kVbdSweepsPerSecondPerVertex, n, needed, dt,
-                      tooSoft(scene).c_str());
+                      translation.c_str(), tooSoft(scene).c_str());
         return {buf, dt};
     }
     std::snprintf(buf, sizeof buf,
                   "vbd's %d sweeps a step did not carry the tension across the sheet, although "
                   "%.0f sweeps a simulated second for %d vertices a side held a dropped cotton "
                   "sheet (docs/performance.md): a stiffer or more loaded cloth needs more; raise "
-                  "integrator.iterations or lower integrator.dt; %s",
-                  in.iterations, rate, n, tooSoft(scene).c_str());
+                  "integrator.iterations or lower integrator.dt%s; %s",
+                  in.iterations, rate, n, translation.c_str(), tooSoft(scene).c_str());
     return {buf, std::nullopt};
 }
 

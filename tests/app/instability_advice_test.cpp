@@ -51,10 +51,14 @@ TEST(InstabilityAdvice, VbdAsksForTheSweepsASecondThatHeldADroppedSheet) {
     ASSERT_TRUE(a.dt.has_value()) << a.text;
     EXPECT_DOUBLE_EQ(vbdHoldingSweepsPerSecond(s), 13 * 128);  // a second, per vertex a side
     EXPECT_DOUBLE_EQ(*a.dt, 10.0 / (13 * 128));
-    for (const char* word :
-         {"600 sweeps a simulated second", "128 vertices a side", "1664",
-          "integrator.dt to 0.006 s", "integrator.iterations", "chebyshev_rho", "material.stretch"})
+    for (const char* word : {"600 sweeps a simulated second", "128 vertices a side", "1664",
+                             "integrator.dt to 0.006 s", "integrator.iterations", "chebyshev_rho",
+                             "integrator.translation_sweeps = 10", "material.stretch"})
         EXPECT_TRUE(has(a.text, word)) << word << ": " << a.text;
+    // With the translation's step after every sweep, it is not asked for again.
+    Scene stepped = s;
+    stepped.integrator.translationSweeps = 10;
+    EXPECT_FALSE(has(instabilityAdvice(stepped, strainBreach()).text, "translation_sweeps"));
 
     // Already at that rate, a smaller step is not what the advice can promise.
     const Scene fine = drape(128, {{"method", "vbd"}, {"dt", 1e-3}, {"iterations", 10}});
