@@ -116,7 +116,8 @@ constexpr ParamSpec kParams[] = {
      [](Scene& s, double v) { s.integrator.chebyshevRho = v; }},
     {"integrator.translation_sweeps", "", 0, 100000, false, true, 0, false,
      "vbd: after each of the first N sweeps of a step, the Newton step on the rigid translation "
-     "of the free vertices; 0 = none", kHidden,
+     "of the free vertices; 0 = none",
+     {PanelSection::TimeStep, SliderScale::Linear, 0, 20, "vbd translation sweeps", "%d"},
      [](const Scene& s) -> std::optional<double> {
          return s.integrator.method == Method::Vbd
                     ? std::optional<double>(s.integrator.translationSweeps) : std::nullopt;
