@@ -7,9 +7,11 @@
 // that push with a stiff spring (10⁴ m/h²), so the translation keeps off every contact normal.
 // Sums per row in double, then over the rows in order: every band takes the same step, and the
 // result has the same bits for any number of threads and any instruction set.
+#include <algorithm>
 #include <cstdint>
 
 #include "cpu/cpu_solver.h"
+#include "model/vbd_colouring.h"
 #include "model/vbd_lane.h"
 
 namespace cloth {
@@ -65,22 +67,24 @@ void CpuSolver<T>::vbdTranslationRow(int j, double* out) const {
         }
         const double m = 1.0 / double(inverseMass_[std::size_t(k)]);
         const double inertia = m / (h * h), drag = m * c / h;
-        const glm::dvec3 d(vbdDisplacement(k)), y(inertialStep_[std::size_t(k)]);
+        const std::int64_t at = phases_.active() ? phases_.at(i, j) : k;  // (vbdContactAt)
+        const glm::dvec3 d(phases_.active() ? phases_.d.get(at) : displacement_.get(k));
+        const glm::dvec3 y(inertialStep_[std::size_t(k)]);
         VbdLane<double> a{};
         a.gx = inertia * (d.x - y.x) + drag * d.x;
         a.gy = inertia * (d.y - y.y) + drag * d.y;
         a.gz = inertia * (d.z - y.z) + drag * d.z;
         vbdAddDiagonal(inertia + drag, a);
-        const std::int64_t at = vbdContactAt(k);
-        if (vbdContacts_.active()) {
+        // Contact terms only where there is a contact: elsewhere they add zeros.
+        if (vbdContacts_.active() && vbdContacts_.weight[at] != T(0)) {
             const glm::dvec3 u = d - glm::dvec3(vbdContacts_.slide.get(at));
             const glm::dvec3 n(vbdContacts_.normal.get(at));
             vbdFrictionLane(u.x, u.y, u.z, n.x, n.y, n.z, double(vbdContacts_.weight[at]),
                             h * kVbdStickSpeed, a);
         }
-        if (pushNormal_.size() > 0) {
+        if (pushNormal_.size() > 0 && pushNormal_.get(at) != Vec3<T>(0)) {
             const glm::dvec3 n(pushNormal_.get(at));
-            vbdAddOuter(kContactStiffness * inertia, n.x, n.y, n.z, a);  // 0 where none
+            vbdAddOuter(kContactStiffness * inertia, n.x, n.y, n.z, a);
         }
         addLane(a, out);
         out[9] += inertia;
@@ -110,12 +114,41 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
     team.sync();  // every band has read the rows
     if (!step) return;
     const Vec3<T> t{T(tx), T(ty), T(tz)};
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        if (pinned_[k]) continue;
-        Vec3<T> x = x_.get(k) + t, d = vbdDisplacement(k) + t;
-        if (!colliders_.empty()) vbdProject(x, d);
-        vbdSet(k, x, d);
+    if (!phases_.active()) {
+        for (std::int64_t k = band.begin; k < band.end; ++k) {
+            if (pinned_[k]) continue;
+            Vec3<T> x = x_.get(k) + t, d = displacement_.get(k) + t;
+            if (!colliders_.empty()) vbdProject(x, d);
+            vbdSet(k, x, d);
+        }
+        team.sync();
+        return;
     }
+    // With the copy in phases, by runs of one phase of a row, so that the colliders run on whole
+    // runs (vbdCollideRun: the same bits as vbdProject, vertex by vertex).
+    const int nu = grid_.nu;
+    constexpr int kRun = 64;
+    std::uint8_t moved[kRun];
+    for (int j = band.rowBegin; j < band.rowEnd; ++j)
+        for (int p = 0; p < kVbdColours && p < nu; ++p) {
+            const int count = (nu - p + kVbdColours - 1) / kVbdColours;
+            for (int m0 = 0; m0 < count; m0 += kRun) {
+                const int n = std::min(kRun, count - m0);
+                const std::int64_t first =
+                    std::int64_t(j) * nu + p + std::int64_t(kVbdColours) * m0;
+                const std::int64_t at = phases_.at(p, j) + m0;
+                for (int m = 0; m < n; ++m) {
+                    const std::int64_t k = first + std::int64_t(kVbdColours) * m;
+                    moved[m] = !pinned_[k];
+                    if (!moved[m]) continue;
+                    const Vec3<T> x = x_.get(k) + t;
+                    x_.set(k, x);
+                    phases_.x.set(at + m, x);
+                    phases_.d.set(at + m, phases_.d.get(at + m) + t);
+                }
+                if (!colliders_.empty()) vbdCollideRun(first, at, moved, n, nullptr);
+            }
+        }
     team.sync();
 }
 
