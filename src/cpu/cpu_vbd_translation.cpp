@@ -7,11 +7,9 @@
 // that push with a stiff spring (10⁴ m/h²), so the translation keeps off every contact normal.
 // Sums per row in double, then over the rows in order: every band takes the same step, and the
 // result has the same bits for any number of threads and any instruction set.
-#include <algorithm>
 #include <cstdint>
 
 #include "cpu/cpu_solver.h"
-#include "model/vbd_colouring.h"
 #include "model/vbd_lane.h"
 
 namespace cloth {
@@ -114,41 +112,12 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
     team.sync();  // every band has read the rows
     if (!step) return;
     const Vec3<T> t{T(tx), T(ty), T(tz)};
-    if (!phases_.active()) {
-        for (std::int64_t k = band.begin; k < band.end; ++k) {
-            if (pinned_[k]) continue;
-            Vec3<T> x = x_.get(k) + t, d = displacement_.get(k) + t;
-            if (!colliders_.empty()) vbdProject(x, d);
-            vbdSet(k, x, d);
-        }
-        team.sync();
-        return;
+    for (std::int64_t k = band.begin; k < band.end; ++k) {
+        if (pinned_[k]) continue;
+        Vec3<T> x = x_.get(k) + t, d = vbdDisplacement(k) + t;
+        if (!colliders_.empty()) vbdProject(x, d);
+        vbdSet(k, x, d);
     }
-    // With the copy in phases, by runs of one phase of a row, so that the colliders run on whole
-    // runs (vbdCollideRun: the same bits as vbdProject, vertex by vertex).
-    const int nu = grid_.nu;
-    constexpr int kRun = 64;
-    std::uint8_t moved[kRun];
-    for (int j = band.rowBegin; j < band.rowEnd; ++j)
-        for (int p = 0; p < kVbdColours && p < nu; ++p) {
-            const int count = (nu - p + kVbdColours - 1) / kVbdColours;
-            for (int m0 = 0; m0 < count; m0 += kRun) {
-                const int n = std::min(kRun, count - m0);
-                const std::int64_t first =
-                    std::int64_t(j) * nu + p + std::int64_t(kVbdColours) * m0;
-                const std::int64_t at = phases_.at(p, j) + m0;
-                for (int m = 0; m < n; ++m) {
-                    const std::int64_t k = first + std::int64_t(kVbdColours) * m;
-                    moved[m] = !pinned_[k];
-                    if (!moved[m]) continue;
-                    const Vec3<T> x = x_.get(k) + t;
-                    x_.set(k, x);
-                    phases_.x.set(at + m, x);
-                    phases_.d.set(at + m, phases_.d.get(at + m) + t);
-                }
-                if (!colliders_.empty()) vbdCollideRun(first, at, moved, n, nullptr);
-            }
-        }
     team.sync();
 }
 
