@@ -33,7 +33,7 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
         }
         if (n <= translationSweeps_) vbdTranslate(band, team);  // (cpu_vbd_translation.cpp)
         if (chebyshevRho_ > 0) {
-            omega = chebyshevOmega(n, chebyshevRho_, omega);
+            omega = vbdChebyshevOmega(n, translationSweeps_, chebyshevRho_, omega);
             vbdAccelerate(band, omega);
             team.sync();
         }

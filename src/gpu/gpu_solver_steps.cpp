@@ -162,7 +162,7 @@ void GpuSolver::stepVbd(long stepNumber) const {
             runStepPass(Kernel::VbdTranslationApply, stepNumber);
         }
         if (chebyshevRho_ > 0) {
-            omega = chebyshevOmega(n, chebyshevRho_, omega);
+            omega = vbdChebyshevOmega(n, translationSweeps_, chebyshevRho_, omega);
             glProgramUniform1f(programs_[int(Kernel::VbdAccelerate)], gpu::kVbdLocation,
                                float(omega));
             runStepPass(Kernel::VbdAccelerate, stepNumber);

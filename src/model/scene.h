@@ -85,8 +85,9 @@ struct IntegratorSpec {
     int iterations = 10;
     double chebyshevRho = 0;
     // vbd only: after each of the first translationSweeps sweeps, the Newton step of G on the
-    // rigid translation of the free vertices (the mode the sweeps barely move); 0 = none.
-    int translationSweeps = 0;
+    // rigid translation of the free vertices (the mode the sweeps barely move); 0 = none. Once a
+    // step by default: docs/integrators.md "vbd", why one.
+    int translationSweeps = 1;
     // Step control (docs/integrators.md "Step control"), any method: a step that stretches a
     // structural spring by more than this fraction of its rest length is redone from its start
     // as two steps of half the Δt, each checked again; 0 = every step is taken as it comes.

@@ -190,4 +190,12 @@ inline double chebyshevOmega(int n, double rho, double previous) {
     return 4 / (4 - rho * rho * previous);
 }
 
+// ω after sweep n of a vbd step whose first `translationSweeps` sweeps end with the translation's
+// step: the semi-iteration assumes one fixed map from sweep to sweep, which a sweep followed by
+// the translation's step is not, so its sequence starts from the iterate after the last
+// translation step (sweep n is its iteration n − translationSweeps; docs/integrators.md "vbd").
+inline double vbdChebyshevOmega(int n, int translationSweeps, double rho, double previous) {
+    return chebyshevOmega(n - std::max(translationSweeps, 0), rho, previous);
+}
+
 }  // namespace cloth

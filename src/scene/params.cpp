@@ -114,7 +114,7 @@ constexpr ParamSpec kParams[] = {
                                                    : std::nullopt;
      },
      [](Scene& s, double v) { s.integrator.chebyshevRho = v; }},
-    {"integrator.translation_sweeps", "", 0, 100000, false, true, 0, false,
+    {"integrator.translation_sweeps", "", 0, 100000, false, true, 1, false,
      "vbd: after each of the first N sweeps of a step, the Newton step on the rigid translation "
      "of the free vertices; 0 = none",
      {PanelSection::TimeStep, SliderScale::Linear, 0, 20, "vbd translation sweeps", "%d"},
