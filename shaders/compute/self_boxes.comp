@@ -8,7 +8,10 @@ layout(local_size_x = 256) in;
 
 void main() {
     uint k = selfInvocation();
-    if (k == 0u) selfInts[7] = 0;  // the iteration's contacts
+    if (k == 0u) {
+        selfInts[7] = 0;           // the iteration's contacts
+        selfInts[8] = 2147483647;  // no crowded vertex yet
+    }
     for (uint b = 4u * k; b < 4u * k + 4u; ++b) {  // B + 1 ≤ 4N
         if (b <= selfBuckets()) selfInts[selfStarts() + b] = 0;
         if (b < selfBuckets()) selfInts[selfCursors() + b] = 0;

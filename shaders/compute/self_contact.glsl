@@ -23,8 +23,10 @@ layout(std430, binding = 16) buffer SelfInts {
 };
 // Header: [0..2] the motions' lower corner and [3..5] upper corner as ordered uints
 // (orderedBits), [6] the longest owned edge's squared length (float bits), [7] the contacts of
-// the iteration.
+// the iteration, [8] its lowest vertex in more than kSelfMostTouches contacts (INT_MAX: none).
 const uint kSelfHeader = 16u;
+// The contacts one vertex's fixed-point sums hold (model/self_contact.h kSelfMostTouches).
+const int kSelfMostTouches = 64;
 
 layout(location = 20) uniform float uThickness;  // h [m]
 layout(location = 21) uniform float uFriction;   // μ

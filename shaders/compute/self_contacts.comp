@@ -31,7 +31,9 @@ void addContact(ContactGeometry g, uint v[4]) {
         uint at = selfSums() + 4u * v[j];
         for (int c = 0; c < 3; ++c)
             atomicAdd(selfInts[at + uint(c)], int(round(clamp(dx[c], -limit, limit) * uFixedScale)));
-        atomicAdd(selfInts[at + 3u], 1);
+        // The contact that takes a vertex past what its sums hold names it (the lowest).
+        if (atomicAdd(selfInts[at + 3u], 1) == kSelfMostTouches)
+            atomicMin(selfInts[8], int(v[j]));
     }
 }
 

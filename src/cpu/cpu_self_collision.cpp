@@ -48,7 +48,8 @@ template <typename T>
 void CpuSelfCollision<T>::setParameters(const SelfCollision& spec) {
     thickness_ = T(spec.thickness);
     friction_ = T(spec.friction);
-    // The fixed point's unit: a power of two such that 64 contacts of ±4h each fit in 31 bits
+    // The fixed point's unit: a power of two such that 64 contacts (kMostTouches) of ±4h each
+    // fit in 31 bits
     // (1 nm at h = 4 mm, below a float position's rounding at 1 m).
     fixedScale_ = T(std::exp2(std::floor(std::log2(double(1u << 31) / (256.0 * spec.thickness)))));
 }
@@ -89,9 +90,8 @@ void CpuSelfCollision<T>::buildCells() {
     for (std::int64_t k = 0; k < n; ++k) {  // count
         const Vec3<T> c = glm::floor(y_[std::size_t(k)] / cell_);
         // A non-finite position lands in cell 0; the step's instability check reports it.
-        const glm::ivec3 cell = glm::all(glm::lessThan(glm::abs(c), Vec3<T>(1e9)))
-                                    ? glm::ivec3(c)
-                                    : glm::ivec3(0);
+        const glm::ivec3 cell =
+            glm::all(glm::lessThan(glm::abs(c), Vec3<T>(1e9))) ? glm::ivec3(c) : glm::ivec3(0);
         cellOf_[std::size_t(k)] = cell;
         bucketOf_[std::size_t(k)] = hashCell(cell, mask_);
         ++bucketStart_[bucketOf_[std::size_t(k)] + 1];
@@ -221,7 +221,19 @@ int CpuSelfCollision<T>::correct(int t, int threads, const std::function<void()>
                 }
     }
     std::atomic_ref<int>(contacts_).fetch_add(contacts, std::memory_order_relaxed);
+    std::int64_t crowded = -1;
+    for (std::int64_t k = begin; k < end && crowded < 0; ++k)
+        if (touches_[std::size_t(k)] > kMostTouches) crowded = k;
+    crowdedBy_[std::size_t(t)] = crowded;
     sync();
+    for (const std::int64_t c : crowdedBy_) {  // the lowest: threads take ranges in order
+        if (c < 0) continue;
+        if (t == 0) {
+            crowded_ = c;
+            crowdedTouches_ = touches_[std::size_t(c)];
+        }
+        return -1;  // its sums may have overflowed: nothing of them is applied
+    }
     // Jacobi with averaging: each vertex takes the mean of its contacts' corrections.
     for (std::int64_t k = begin; k < end; ++k) {
         const std::size_t i = std::size_t(k);
@@ -237,17 +249,19 @@ int CpuSelfCollision<T>::correct(int t, int threads, const std::function<void()>
 }
 
 template <typename T>
-void CpuSelfCollision<T>::resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v,
+bool CpuSelfCollision<T>::resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v,
                                   const AlignedVector<T>& inverseMass,
                                   const std::vector<std::uint8_t>& pinned, T dt,
-                                  const std::function<void(Vec3<T>&)>& collide, int t,
-                                  int threads, const std::function<void()>& sync) {
+                                  const std::function<void(Vec3<T>&)>& collide, int t, int threads,
+                                  const std::function<void()>& sync) {
     const std::int64_t n = std::int64_t(y_.size());
     const std::int64_t begin = n * t / threads, end = n * (t + 1) / threads;
     if (t == 0) {
         inverseMass_ = &inverseMass;
         pinned_ = &pinned;
         collide_ = &collide;
+        crowdedBy_.assign(std::size_t(threads), -1);
+        crowded_ = -1;
         chooseSubsteps(start, x);
     }
     sync();
@@ -268,6 +282,7 @@ void CpuSelfCollision<T>::resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v,
         sync();
         for (int it = 0; it < kIterations; ++it) {
             const int found = correct(t, threads, sync);
+            if (found < 0) return false;  // every thread saw the same crowded vertex
             if (t == 0) {
                 ++stats_.iterations;
                 stats_.contacts += found;
@@ -284,6 +299,7 @@ void CpuSelfCollision<T>::resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v,
         v.set(k, v.get(k) + rate * change);
     }
     sync();
+    return true;
 }
 
 // The substeps (docs/physics.md "Self-collision", the step bound): every vertex's motion lies
@@ -300,12 +316,17 @@ void CpuSelfCollision<T>::chooseSubsteps(const Soa3<T>& start, const Soa3<T>& x)
     }
     const double radius = 0.5 * double(glm::length(high - low));
     const double needed = std::ceil(4.0 * radius / double(thickness_));
-    substeps_ = std::isfinite(needed) ? int(std::clamp(needed, 1.0, double(kMaxSubsteps)))
-                                      : kMaxSubsteps;
+    substeps_ =
+        std::isfinite(needed) ? int(std::clamp(needed, 1.0, double(kMaxSubsteps))) : kMaxSubsteps;
     ++stats_.steps;
     stats_.stepsOverBound += !(needed <= double(kMaxSubsteps));
     stats_.substeps += substeps_;
     stats_.mostSubsteps = std::max(stats_.mostSubsteps, substeps_);
+}
+
+template <typename T>
+std::string CpuSelfCollision<T>::crowdedReason() const {
+    return selfCollapseReason(int(crowded_ % nu_), int(crowded_ / nu_), crowdedTouches_);
 }
 
 template class CpuSelfCollision<float>;

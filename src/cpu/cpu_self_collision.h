@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "cpu/cpu_soa.h"
@@ -27,6 +28,9 @@ public:
     // A step is replayed in at most this many substeps; one that needs more is counted in
     // SelfCollisionStats::stepsOverBound.
     static constexpr int kMaxSubsteps = 256;
+    // The fixed point holds the sum of this many contacts a vertex (setParameters); with more,
+    // resolve() stops and names the vertex (crowded(); model/self_contact.h).
+    static constexpr int kMostTouches = kSelfMostTouches;
 
     CpuSelfCollision() = default;
     CpuSelfCollision(const Grid& grid, const SelfCollision& spec);
@@ -37,19 +41,26 @@ public:
     // applied): x moves out of contact and v by the same change over dt. collide(p): the
     // colliders' position projection, applied to the moved vertices. Called by each of
     // `threads` threads (t = 0 … threads − 1) at once, sync() a barrier between them; the
-    // result has the same bits for any number of threads.
-    void resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v, const AlignedVector<T>& inverseMass,
+    // result has the same bits for any number of threads. False where a vertex was in more than
+    // kMostTouches contacts at once: x and v are left as the integrator left them.
+    bool resolve(const Soa3<T>& start, Soa3<T>& x, Soa3<T>& v, const AlignedVector<T>& inverseMass,
                  const std::vector<std::uint8_t>& pinned, T dt,
                  const std::function<void(Vec3<T>&)>& collide, int t, int threads,
                  const std::function<void()>& sync);
     const SelfCollisionStats& stats() const { return stats_; }
     // 1 for the vertices in a contact in the last step's corrections.
     const std::vector<std::uint8_t>& inContact() const { return inContact_; }
+    // After resolve() returned false: the lowest vertex in too many contacts, and how many.
+    std::int64_t crowded() const { return crowded_; }
+    int crowdedTouches() const { return crowdedTouches_; }
+    // The reason a run reports for it (docs/physics.md "Self-collision").
+    std::string crowdedReason() const;
 
 private:
     void buildCells();  // the spatial hash of y_
     void chooseSubsteps(const Soa3<T>& start, const Soa3<T>& x);
-    // One Jacobi iteration over y_, thread t's share; the contacts all threads corrected.
+    // One Jacobi iteration over y_, thread t's share; the contacts all threads corrected, or −1
+    // (every thread) where a vertex is in more than kMostTouches.
     int correct(int t, int threads, const std::function<void()>& sync);
     void visitOwners(std::int64_t p, std::int64_t q, int& contacts);
     void pointAgainstTriangles(std::int64_t p, std::int64_t q, int& contacts);
@@ -68,6 +79,9 @@ private:
     T fixedScale_ = 0;
     int substeps_ = 1;
     int contacts_ = 0;  // an iteration's contacts, summed over the threads (atomic_ref)
+    std::vector<std::int64_t> crowdedBy_;  // per thread: its first crowded vertex, or −1
+    std::int64_t crowded_ = -1;
+    int crowdedTouches_ = 0;
     std::vector<std::uint8_t> inContact_;
     // The spatial hash: cell of each vertex, its bucket, the buckets' starts (counting sort)
     // and the vertices sorted by bucket.

@@ -177,15 +177,18 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
     }
 }
 
-// Self-collision after a step (cpu/cpu_self_collision.h), from the step's start in selfStart_,
-// which then becomes the next step's start.
+// Self-collision after a step (cpu/cpu_self_collision.h) from its start in selfStart_; false
+// where the cloth lies collapsed onto itself, named as the first band's bad vertex.
 template <typename T>
-void CpuSolver<T>::resolveSelfContacts(int t, int threads, const std::function<void()>& sync) {
+bool CpuSolver<T>::resolveSelfContacts(int t, int threads, const std::function<void()>& sync) {
     const std::function<void(Vec3<T>&)> collide = [this](Vec3<T>& p) {
         Vec3<T> v(0);
         colliders_.apply(p, v);
     };
-    self_.resolve(selfStart_, x_, v_, inverseMass_, pinned_, dt_t_, collide, t, threads, sync);
+    if (self_.resolve(selfStart_, x_, v_, inverseMass_, pinned_, dt_t_, collide, t, threads, sync))
+        return true;
+    if (t == 0) bands_[0].fail(self_.crowded(), self_.crowdedReason());
+    return false;
 }
 
 template <typename T>
@@ -252,8 +255,7 @@ void CpuSolver<T>::reportBad(Band& band, std::int64_t k, const Vec3<T>& p, T spe
     else
         std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
                       double(std::sqrt(speed2)), maxSpeed_, i, j);
-    band.badVertex = k;
-    band.reason = buf;
+    band.fail(k, buf);
 }
 
 template <typename T>
@@ -268,10 +270,8 @@ StepResult CpuSolver<T>::step(long n) {
             const bool ok = advance(band, Team{}, steps_ + s + 1, haveForces);
             if (fused()) swapFused();  // the fused sweep always completes its step
             if (!ok) break;
-            if (self_.active()) {
-                resolveSelfContacts(0, 1, [] {});
-                selfStart_ = x_;
-            }
+            if (self_.active() && !resolveSelfContacts(0, 1, [] {})) break;
+            if (self_.active()) selfStart_ = x_;
         }
     } else {
         result = stepThreaded(n);
@@ -311,7 +311,8 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
         if (fused()) swapFused();
         if (!self) poseColliders(++posed);
     };
-    auto selfDone = [this, &posed]() noexcept {
+    auto selfDone = [this, &posed, &stop]() noexcept {
+        stop = self_.crowded() >= 0;  // resolve() stopped: the cloth lies collapsed on itself
         selfStart_ = x_;
         poseColliders(++posed);
     };
@@ -333,6 +334,7 @@ StepResult CpuSolver<T>::stepThreaded(long n) {
             if (self) {
                 resolveSelfContacts(t, int(bands_.size()), selfSync);
                 selfEnd.arrive_and_wait();
+                if (stop) break;
             }
         }
         if (t == 0) taken = s;

@@ -79,6 +79,10 @@ private:
         int rowBegin = 0, rowEnd = 0;
         std::int64_t badVertex = -1;
         std::string reason;
+        void fail(std::int64_t k, std::string why) {
+            badVertex = k;
+            reason = std::move(why);
+        }
         int reductions = 0;  // dot products taken so far: picks the partial-sum slot
         // Spring coefficients of the last 3 rows (row j in slot j % 3), one array of nu per
         // upward spring: each spring's sqrt and division are done once for its two ends.
@@ -281,7 +285,7 @@ private:
     CpuSelfCollision<T> self_;
     Soa3<T> selfStart_;
     // Thread t of `threads` (sync: their barrier).
-    void resolveSelfContacts(int t, int threads, const std::function<void()>& sync);
+    bool resolveSelfContacts(int t, int threads, const std::function<void()>& sync);
     double maxSpeed_;
     std::optional<GrabT> grab_;
     std::vector<Band> bands_;

@@ -13,6 +13,7 @@
 #include "gpu/gpu_buffers.h"
 #include "gpu/gpu_solver.h"
 #include "model/errors.h"
+#include "model/self_contact.h"
 
 namespace cloth {
 namespace {
@@ -114,6 +115,7 @@ void GpuSolver::runSelfPass(Kernel k, std::size_t invocations) const {
 }
 
 void GpuSolver::resolveSelfContacts(long stepNumber) {
+    if (selfCollapse_) return;  // the state stays frozen where the cloth collapsed
     const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
     const std::size_t scanned = selfBuckets_ + 1;  // the bucket starts
     for (Kernel k : {Kernel::SelfApply, Kernel::SelfFinish})
@@ -149,8 +151,10 @@ void GpuSolver::resolveSelfContacts(long stepNumber) {
             runSelfPass(Kernel::SelfScanAdd, scanned);
             runSelfPass(Kernel::SelfScatter, n);
             runSelfPass(Kernel::SelfContacts, n);
-            std::int32_t found = 0;
-            readInts(buffers_[gpu::kSelfInts], 7, 1, &found);
+            std::int32_t ends[2];  // the iteration's contacts; its lowest crowded vertex
+            readInts(buffers_[gpu::kSelfInts], 7, 2, ends);
+            if (ends[1] != INT_MAX) return stopCollapsed(stepNumber, unsigned(ends[1]));
+            const std::int32_t found = ends[0];
             ++selfStats_.iterations;
             selfStats_.contacts += found;
             if (it == 0 && s == substeps) selfStats_.lastContacts = found;
@@ -159,6 +163,30 @@ void GpuSolver::resolveSelfContacts(long stepNumber) {
         }
     }
     runSelfPass(Kernel::SelfFinish, n);
+}
+
+// A vertex in more contacts than its fixed-point sums hold (model/self_contact.h): the sums may
+// have overflowed, so none is applied. The step is marked bad at that vertex, unless the
+// integrator marked it already, which leaves the state as the integrator left it, frozen.
+void GpuSolver::stopCollapsed(long stepNumber, unsigned vertex) {
+    const std::size_t n = std::size_t(nu_) * std::size_t(nv_);
+    std::int32_t touches = 0;  // the sums: after the header, the cells (4n) and the sorted (n)
+    readInts(buffers_[gpu::kSelfInts], gpu::kSelfHeaderInts + 5 * n + 4 * vertex + 3, 1, &touches);
+    selfCollapse_ = SelfCollapse{stepNumber, vertex, touches};
+    if (readStatus().firstBadStep > std::uint32_t(stepNumber)) {
+        const gpu::Status status{std::uint32_t(stepNumber), vertex};
+        gpu::subData(buffers_[gpu::kStatus], 0, &status, sizeof status);
+    }
+    runSelfPass(Kernel::SelfApply, n);  // empties the sums; its y is never finished
+}
+
+std::optional<std::string> GpuSolver::selfCollapseReport(const gpu::Status& status) const {
+    if (!selfCollapse_ || long(status.firstBadStep) != selfCollapse_->step ||
+        status.badVertex != selfCollapse_->vertex)
+        return std::nullopt;
+    const unsigned k = selfCollapse_->vertex;
+    return selfCollapseReason(int(k % unsigned(nu_)), int(k / unsigned(nu_)),
+                              selfCollapse_->touches);
 }
 
 std::vector<std::int64_t> GpuSolver::selfContactVertices() const {

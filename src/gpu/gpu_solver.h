@@ -145,7 +145,18 @@ private:
     void storeSelfStart() const;  // the positions as the next step's start
     void resolveSelfContacts(long stepNumber);
     void runSelfPass(Kernel k, std::size_t invocations) const;
+    void stopCollapsed(long stepNumber, unsigned vertex);
+    // The reason for an instability at `status` that self-collision recorded, if it did.
+    std::optional<std::string> selfCollapseReport(const gpu::Status& status) const;
     SelfCollisionStats selfStats_;
+    // Where a vertex was in more contacts than its fixed-point sums hold (the cloth collapsed
+    // onto itself): the step stopped there, as CpuSelfCollision::resolve stops it.
+    struct SelfCollapse {
+        long step;
+        unsigned vertex;
+        int touches;
+    };
+    std::optional<SelfCollapse> selfCollapse_;
     std::size_t selfBuckets_ = 0;
 
     const GlContext& context_;

@@ -63,6 +63,7 @@ void GpuSolver::startAfresh(double time) {
     // A written state starts afresh: an earlier instability no longer freezes the kernels.
     const gpu::Status status = gpu::kStable;
     subData(buffers_[gpu::kStatus], 0, &status, sizeof status);
+    selfCollapse_.reset();
     forcesKept_ = false;
     computeNormals();
 }

@@ -7,8 +7,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <string>
+#include <utility>
 
 #include "gpu/egl_context.h"
+#include "gpu/gpu_buffers.h"
 #include "gpu/gpu_solver.h"
 #include "model/vbd_colouring.h"
 #include "model/vbd_local.h"
@@ -229,6 +233,44 @@ void GpuSolver::recordSolve(long stepNumber, const gpu::CgState& cg) {
     const double residual = cg.bb > 0 ? std::sqrt(double(cg.rr) / double(cg.bb)) : 0.0;
     solveStats_.record(stepNumber, int(cg.iterations), residual, cg.done == gpu::kCgConverged,
                        cg.done == gpu::kCgStopped);
+}
+
+// The shader recorded the exact first bad step and the lowest vertex bad at it (atomicMin), and
+// froze the state after that step, so the range is that one step although the host looked only
+// every checkEvery steps, and the vertex is the one the CPU names. Its kind and speed are read
+// from that state as the shader tested them; or self-collision stopped the step (the host knows).
+StepResult GpuSolver::reportUnstable(const gpu::Status& status, long stepsBefore) {
+    StepResult r;
+    r.unstable = true;
+    forcesKept_ = false;
+    r.firstBadStep = r.lastBadStep = long(status.firstBadStep);
+    steps_ = long(status.firstBadStep);
+    r.stepsTaken = std::max(0L, steps_ - stepsBefore);
+    if (std::optional<std::string> self = selfCollapseReport(status)) {  // self-collision's
+        r.reason = *self;
+        return r;
+    }
+    const unsigned k = status.badVertex;
+    if (k >= unsigned(nu_) * unsigned(nv_)) {  // every report pairs the step with a vertex
+        r.reason =
+            "unstable at step " + std::to_string(status.firstBadStep) + " (no vertex recorded)";
+        return r;
+    }
+    glm::vec4 p, v;
+    for (auto [binding, to] : {std::pair{gpu::kPositions, &p}, std::pair{gpu::kVelocities, &v}}) {
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffers_[binding]);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, GLintptr(k * gpu::kVec4), gpu::kVec4, to);
+    }
+    const float speed2 = glm::dot(glm::vec3(v), glm::vec3(v));
+    const int i = int(k % unsigned(nu_)), j = int(k / unsigned(nu_));
+    char buf[160];
+    if (!std::isfinite(p.x + p.y + p.z) || !std::isfinite(speed2))
+        std::snprintf(buf, sizeof buf, "non-finite position or velocity at vertex (%d, %d)", i, j);
+    else
+        std::snprintf(buf, sizeof buf, "speed %.3g m/s > max_speed %g m/s at vertex (%d, %d)",
+                      double(std::sqrt(speed2)), maxSpeed_, i, j);
+    r.reason = buf;
+    return r;
 }
 
 }  // namespace cloth

@@ -7,9 +7,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <cstddef>
+#include <string>
 
 #include "model/grid.h"
 
@@ -100,8 +101,7 @@ inline bool pointTriangle(const Vec3<T>& p, const Vec3<T>& a, const Vec3<T>& b, 
 
 // The side of a point against a triangle: the sign of its offset along the triangle's normal.
 template <typename T>
-inline T pointTriangleSide(const Vec3<T>& p, const Vec3<T>& a, const Vec3<T>& b,
-                           const Vec3<T>& c) {
+inline T pointTriangleSide(const Vec3<T>& p, const Vec3<T>& a, const Vec3<T>& b, const Vec3<T>& c) {
     return sideOf(glm::dot(glm::cross(b - a, c - a), p - a));
 }
 
@@ -150,6 +150,17 @@ inline bool contactCorrection(const ContactGeometry<T>& g, const std::array<T, 4
     }
     for (int j = 0; j < count; ++j) dx[j] = (g.alpha[j] * inverseMass[j] / weight) * change;
     return true;
+}
+
+// The contacts one vertex's corrections can be summed over in fixed point (each clamped to ±4h,
+// in units that fit this many in 31 bits). A vertex in more at once lies in a cloth collapsed
+// onto itself, which the thickness, kept from a state that had it, cannot give: both backends
+// stop the step there with this reason (vertex (i, j), its `touches` contacts).
+inline constexpr int kSelfMostTouches = 64;
+inline std::string selfCollapseReason(int i, int j, int touches, int most = kSelfMostTouches) {
+    return "self-collision: vertex (" + std::to_string(i) + ", " + std::to_string(j) + ") is in " +
+           std::to_string(touches) + " contacts at once, more than the " + std::to_string(most) +
+           " one vertex's sums hold: the cloth lies collapsed onto itself";
 }
 
 }  // namespace cloth

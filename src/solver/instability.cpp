@@ -127,6 +127,12 @@ std::string breakdownRemedy(const Scene& scene, const Solver& solver) {
 }
 
 InstabilityAdvice instabilityAdvice(const Scene& scene, const StepResult& r) {
+    if (r.reason.rfind("self-collision", 0) == 0)  // (model/self_contact.h selfCollapseReason)
+        return {
+            "no step of a cloth kept self_collision.thickness apart leads there: start from a "
+            "state whose elements that share no vertex are at least that far apart (a "
+            "written or dragged state, or a scene whose sheet starts folded onto itself)",
+            std::nullopt};
     const bool strain = r.reason.rfind("strain", 0) == 0;
     if (strain && scene.integrator.method == Method::Vbd) return vbdStrainAdvice(scene);
     if (strain && scene.integrator.method == Method::ImplicitEuler)

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "model/self_contact.h"
 #include "model/stability.h"
 #include "scene/scene_loader.h"
 #include "solver/instability.h"
@@ -102,6 +103,17 @@ TEST(InstabilityAdvice, OtherReasonsKeepTheStabilityAdvice) {
     const InstabilityAdvice a = instabilityAdvice(s, r);
     EXPECT_FALSE(has(a.text, "sweeps")) << a.text;
     EXPECT_TRUE(has(a.text, "stable at any dt")) << a.text;
+}
+
+// A cloth collapsed onto itself (model/self_contact.h): no step size is the cure, the state is.
+TEST(InstabilityAdvice, ACollapsedClothIsToldToStartApart) {
+    StepResult r = strainBreach();
+    r.reason = selfCollapseReason(3, 4, 143);
+    const InstabilityAdvice a =
+        instabilityAdvice(drape(16, {{"method", "symplectic_euler"}, {"dt", 1e-4}}), r);
+    EXPECT_FALSE(a.dt.has_value()) << a.text;
+    EXPECT_TRUE(has(a.text, "self_collision.thickness")) << a.text;
+    EXPECT_FALSE(has(a.text, "integrator.dt")) << a.text;
 }
 
 // A state that left finite numbers at a step already within half the predicted bound: a smaller

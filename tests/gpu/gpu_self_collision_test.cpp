@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "gpu_test_support.h"
+#include "support/collapsed_cloth.h"
 #include "support/self_collision_check.h"
 
 namespace cloth::test {
@@ -54,8 +55,8 @@ TEST_F(GpuSelfCollision, TheFirstContactsAreTheCpusContacts) {
         cpuAll.insert(c.begin(), c.end());
         ++compared;
     }
-    std::printf("contact sets compared at %ld steps, equal at %ld; %zu vertices in all\n",
-                compared, equal, cpuAll.size());
+    std::printf("contact sets compared at %ld steps, equal at %ld; %zu vertices in all\n", compared,
+                equal, cpuAll.size());
     EXPECT_GE(compared, 10) << "too few contact steps compared: the test would show nothing";
     EXPECT_GE(equal, compared - 2);
     EXPECT_EQ(gpuAll, cpuAll);
@@ -69,10 +70,11 @@ TEST_F(GpuSelfCollision, ThePileNeverCrossesItselfAndCrossesWithoutIt) {
     const double h = scene.selfCollision->thickness;
     auto on = makeGpuSolver(scene, {});
     const SelfCheck o = runAndCheck(*on, 900, 50, h);
-    std::printf("gpu pile: %ld crossings at worst, closest %.3g m (h = %g m), %.2f substeps a "
-                "step, %.1f contacts an iteration\n",
-                o.worstCrossings, o.closest, h, double(o.stats.substeps) / double(o.stats.steps),
-                double(o.stats.contacts) / double(std::max(1L, o.stats.iterations)));
+    std::printf(
+        "gpu pile: %ld crossings at worst, closest %.3g m (h = %g m), %.2f substeps a "
+        "step, %.1f contacts an iteration\n",
+        o.worstCrossings, o.closest, h, double(o.stats.substeps) / double(o.stats.steps),
+        double(o.stats.contacts) / double(std::max(1L, o.stats.iterations)));
     EXPECT_EQ(o.worstCrossings, 0);
     EXPECT_GE(o.closest, 0.5 * h);
     EXPECT_GT(o.stats.contacts, 0);
@@ -81,6 +83,35 @@ TEST_F(GpuSelfCollision, ThePileNeverCrossesItselfAndCrossesWithoutIt) {
     std::printf("gpu pile without self-collision: %ld frames crossed, %ld crossings at worst\n",
                 x.crossedFrames, x.worstCrossings);
     EXPECT_GT(x.worstCrossings, 0);
+}
+
+// As on the CPU (SelfCollision.ACollapsedClothStopsAtOnceNamingACrowdedVertex): a cloth
+// collapsed onto itself stops at its first step with the same reason, frozen where the
+// integrator left it, and stays stopped; a fresh state runs on.
+TEST_F(GpuSelfCollision, ACollapsedClothStopsAtOnceNamingACrowdedVertex) {
+    const Scene scene = coarsePile();
+    auto plain = makeGpuSolver(withoutSelfCollision(scene), {});
+    const SimState start = plain->read();
+    const SimState collapsed = collapsedCloth(start, {0, 0.5, 0}, 0.01);
+    plain->write(collapsed);
+    ASSERT_FALSE(plain->step(1).unstable);
+    auto gpu = makeGpuSolver(scene, {});
+    gpu->write(collapsed);
+    const StepResult r = gpu->step(5);
+    std::printf("gpu: %s\n", r.reason.c_str());
+    ASSERT_TRUE(r.unstable);
+    EXPECT_EQ(r.firstBadStep, 1);
+    EXPECT_EQ(r.stepsTaken, 1);
+    EXPECT_EQ(r.reason.rfind("self-collision: vertex (", 0), 0u) << r.reason;
+    EXPECT_NE(r.reason.find("collapsed onto itself"), std::string::npos) << r.reason;
+    EXPECT_EQ(gpu->selfCollisionStats().iterations, 0);
+    const SimState s = gpu->read(), p = plain->read();
+    for (std::size_t k = 0; k < s.positions.size(); ++k)
+        ASSERT_EQ(s.positions[k], p.positions[k]) << "vertex " << k;
+    EXPECT_TRUE(gpu->step(1).unstable);  // still frozen
+    gpu->write(start);
+    EXPECT_FALSE(gpu->step(20).unstable);
+    EXPECT_GT(gpu->selfCollisionStats().iterations, 0);
 }
 
 }  // namespace
