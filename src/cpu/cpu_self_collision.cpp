@@ -49,8 +49,7 @@ void CpuSelfCollision<T>::setParameters(const SelfCollision& spec) {
     thickness_ = T(spec.thickness);
     friction_ = T(spec.friction);
     // The fixed point's unit: a power of two such that 64 contacts (kMostTouches) of ±4h each
-    // fit in 31 bits
-    // (1 nm at h = 4 mm, below a float position's rounding at 1 m).
+    // fit in 31 bits (1 nm at h = 4 mm, below a float position's rounding at 1 m).
     fixedScale_ = T(std::exp2(std::floor(std::log2(double(1u << 31) / (256.0 * spec.thickness)))));
 }
 
