@@ -153,9 +153,10 @@ TEST(Vbd, AtRestItIsTheStaticEquilibrium) {
 // one). With the translation's step once a step (the default) the energy of silk and cotton (no
 // wind, damped) never rises above where it started, at 10 sweeps as at 100, in float and double:
 // the step carries the sheet's weight to its pins, which the sweeps reach one vertex a sweep.
-// Without it (translation_sweeps 0, printed) 10 sweeps gain 9–20 times the start's energy, and
-// only 100 sweeps of silk and cotton gain none. Denim (in double none, in float +34% at 10 sweeps)
-// and a stretch of 1e6 still gain: printed, and discussed in docs/stability.md "vbd".
+// Without it (translation_sweeps 0, printed at 10 sweeps) 10 sweeps gain 9–21 times the start's
+// energy; only 100 sweeps of silk and cotton gained none (measured once for docs/stability.md,
+// not run here: they doubled the test's time). Denim (in double none, in float +34% at 10
+// sweeps) and a stretch of 1e6 still gain: printed, and discussed in docs/stability.md "vbd".
 TEST(Vbd, StableFromSilkToAStretchOfOneMillionAtASixtiethOfASecond) {
     struct Case {
         const char* name;
@@ -182,7 +183,8 @@ TEST(Vbd, StableFromSilkToAStretchOfOneMillionAtASixtiethOfASecond) {
             for (Precision precision : {Precision::Double, Precision::Float}) {
                 for (int sweeps : {translation, 0}) {
                     if (iterations == 100 && precision == Precision::Float) continue;
-                    if (sweeps == 0 && precision == Precision::Float) continue;
+                    if (sweeps == 0 && (precision == Precision::Float || iterations == 100))
+                        continue;
                     scene.integrator.translationSweeps = sweeps;
                     std::unique_ptr<Solver> solver = cpu(scene, precision, 2);
                     const SimState start = solver->read();
