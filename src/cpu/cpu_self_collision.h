@@ -50,9 +50,8 @@ public:
     const SelfCollisionStats& stats() const { return stats_; }
     // 1 for the vertices in a contact in the last step's corrections.
     const std::vector<std::uint8_t>& inContact() const { return inContact_; }
-    // After resolve() returned false: the lowest vertex in too many contacts, and how many.
+    // After resolve() returned false: the lowest vertex in too many contacts (else −1).
     std::int64_t crowded() const { return crowded_; }
-    int crowdedTouches() const { return crowdedTouches_; }
     // The reason a run reports for it (docs/physics.md "Self-collision").
     std::string crowdedReason() const;
 

@@ -157,9 +157,10 @@ inline bool contactCorrection(const ContactGeometry<T>& g, const std::array<T, 4
 // onto itself, which the thickness, kept from a state that had it, cannot give: both backends
 // stop the step there with this reason (vertex (i, j), its `touches` contacts).
 inline constexpr int kSelfMostTouches = 64;
-inline std::string selfCollapseReason(int i, int j, int touches, int most = kSelfMostTouches) {
+inline std::string selfCollapseReason(int i, int j, int touches) {
     return "self-collision: vertex (" + std::to_string(i) + ", " + std::to_string(j) + ") is in " +
-           std::to_string(touches) + " contacts at once, more than the " + std::to_string(most) +
+           std::to_string(touches) + " contacts at once, more than the " +
+           std::to_string(kSelfMostTouches) +
            " one vertex's sums hold: the cloth lies collapsed onto itself";
 }
 
