@@ -23,11 +23,12 @@ sphere of radius 0.25 m resting on the ground plane y = 0, no pins.
 Time step: explicit methods (explicit and symplectic Euler, Verlet, RK4) take 0.9 x their tight
 predicted bound at that N (power iteration at the rest state, model/stability.h), implicit Euler
 and vbd one 1/60 s frame; at most one frame either way, steps per frame = ceil((1/60 s) / dt). A run that
-turns unstable (or ends past max_strain) is retried at half the dt, up to 4 times; each row says
-how often. A trial steps against the steady clock in calls of one step, then twice as many while
-a call takes under 5 ms, up to a frame (the GPU finishes its work before the call returns),
-after one warm-up step whose state is discarded, and is cut off once its wall time passes 1.5 x
-the simulated time + 50 ms. A run that is too slow or cut off is run
+turns unstable (or has a spring past max_strain at the end of any frame) is retried at half the
+dt, up to 4 times; each row says how often. A trial steps against the steady clock in calls of
+one step, then twice as many while a call takes under 5 ms, up to a frame, none across the end
+of a frame (the GPU finishes its work before the call returns), after one warm-up step whose
+state is discarded, and is cut off once its wall time passes 1.5 x the simulated time + 50 ms;
+the strain check of each frame is off the clock. A run that is too slow or cut off is run
 once more and the faster kept (the machine may be shared: contention only slows a run down).
 
 Search: N = 8, 16, 32, ... while real time, then bisection between the last N that was and the

@@ -14,8 +14,9 @@ inline constexpr double kFrame = 1.0 / 60;  // one displayed frame [s]
 double firstDt(Method method, double tightDt, double safety);
 
 // Steps `scene` (its integrator and Δt = kFrame / stepsPerFrame set) on `choice` for `time`
-// simulated seconds, in calls of step(n) of at most a frame each, timed by the steady clock (a
-// GPU solver's step(n) returns when the device has finished: it waits with glFinish). One warm-up
+// simulated seconds, in calls of step(n) within one frame each, timed by the steady clock (a
+// GPU solver's step(n) returns when the device has finished: it waits with glFinish). The state
+// at the end of every frame is checked against the scene's max_strain, off the clock. One warm-up
 // step first, then the initial state written back: shader compilation, thread start and first
 // touch of the arrays are set-up, not frames. Stopped as soon as the wall time passes
 // kCutOffFactor × the simulated time + kCutOffSlack (CutOff), or at an instability; a completed
