@@ -20,7 +20,7 @@ layout(local_size_x = WX, local_size_y = WY) in;
 // The three vec4 of sums, reduced together: one tree in shared memory for all ten.
 shared vec4 groupSums3[3][WX * WY];
 
-const float kContactStiffness = 1e4;  // × m/h²
+#include "vbd_translation.glsl"
 
 VbdLocal translationTerms(ivec2 ij, out float inertia) {
     VbdLocal l = vbdLocalZero();
@@ -40,19 +40,7 @@ VbdLocal translationTerms(ivec2 ij, out float inertia) {
 #endif
         return l;
     }
-    float h = params.dt, mass = 1.0 / x4.w;
-    vec3 d = vbdDisplacement[k].xyz;
-    addVbdInertia(l, d, vbdInertial[k].xyz, mass, h, params.dampingRate);
-    inertia = mass / (h * h);
-#ifdef HAS_COLLIDERS
-    vec4 contact = vbdContacts[2u * k], slide = vbdContacts[2u * k + 1u];
-    addVbdFriction(l, d - slide.xyz, contact.xyz, contact.w, h * VBD_STICK_SPEED);
-    if (slide.w > 0.0) addOuter(l, kContactStiffness * inertia, contact.xyz);
-#endif
-    if (grabbed(k)) {
-        l.gradient -= grabForce(x4.xyz, uGrab.xyz, uGrab.w);
-        addDiagonal(l, uGrab.w);
-    }
+    inertia = addVbdTranslationTerms(l, k, x4);
     return l;
 }
 

@@ -88,10 +88,10 @@ SpeedRow timeTarget(const Scene& scene, int side, const BenchTarget& t, const Ba
     // The GPU's own allocation (every buffer it made, bufferBytes()); the CPU's by its model.
     r.bytesPerVertex =
         onGpu ? double(device.bytes) / double(r.vertices)
-              : double(cpuBytesPerVertex(
-                    t.precision, m, scene.integrator.preconditioner, !scene.colliders.empty(),
-                    resolveCpuIsa(choice.isa) != CpuIsa::Scalar, scene.anyFriction(),
-                    scene.integrator.translationSweeps > 0));
+              : double(cpuBytesPerVertex(t.precision, m, scene.integrator.preconditioner,
+                                         !scene.colliders.empty(),
+                                         resolveCpuIsa(choice.isa) != CpuIsa::Scalar,
+                                         scene.anyFriction(), scene.integrator.vbdTranslates()));
     if (!onGpu) return r;
     // The variant as asked (one curve per variant in the plot), the dispatch as run.
     r.variant = device.variant + "/" + stepDispatchName(choice.gpu.dispatch);

@@ -17,7 +17,7 @@ std::unique_ptr<Solver> makeCpuSolver(const Scene& scene, const CpuOptions& opti
                      vertices * double(cpuBytesPerVertex(
                                     options.precision, scene.integrator.method,
                                     scene.integrator.preconditioner, !scene.colliders.empty(), true,
-                                    scene.anyFriction(), scene.integrator.translationSweeps > 0)),
+                                    scene.anyFriction(), scene.integrator.vbdTranslates())),
                  have = physicalMemoryBytes();
     if (need > have) {
         char buf[240];

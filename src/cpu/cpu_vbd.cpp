@@ -25,6 +25,7 @@ namespace cloth {
 template <typename T>
 bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     vbdStart(band, team, stepNumber);
+    if (translationLevels_ > 0) vbdTranslateLevels(band, team);  // (cpu_vbd_translation.cpp)
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
         for (int colour = 0; colour < kVbdColours; ++colour) {

@@ -7,10 +7,15 @@
 // that push with a stiff spring (10⁴ m/h²), so the translation keeps off every contact normal.
 // Sums per row in double, then over the rows in order: every band takes the same step, and the
 // result has the same bits for any number of threads and any instruction set.
+//
+// The translation's levels do the same for each block of the sheet cut into 2^l × 2^l equal
+// parts, where the springs that leave the block join the pins'.
+#include <algorithm>
 #include <cstdint>
 
 #include "cpu/cpu_solver.h"
 #include "model/vbd_lane.h"
+#include "model/vbd_local.h"
 
 namespace cloth {
 
@@ -31,22 +36,62 @@ void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
     vbdIterations_ = scene.integrator.iterations;
     chebyshevRho_ = scene.integrator.chebyshevRho;
     translationSweeps_ = scene.integrator.translationSweeps;
+    translationLevels_ = scene.integrator.translationLevels;
     const std::size_t n = std::size_t(x_.size());
     if (chebyshevRho_ > 0 && dBefore_.empty())
         for (auto* a : {&dBefore_, &dBeforeLast_}) a->assign(n, Vec3<T>(0));
     if (translationSweeps_ > 0 && translationRows_.empty())
         translationRows_.assign(std::size_t(grid_.nv) * kSums, 0.0);
-    if (translationSweeps_ > 0 && !scene.colliders.empty() && pushNormal_.size() == 0)
+    const int parts = vbdLevelParts(translationLevels_, grid_.nu, grid_.nv);
+    const std::size_t blockSums = std::size_t(grid_.nv) * std::size_t(parts) * kSums;
+    if (blockRows_.size() < blockSums) blockRows_.assign(blockSums, 0.0);
+    const bool translates = translationSweeps_ > 0 || translationLevels_ > 0;
+    if (translates && !scene.colliders.empty() && pushNormal_.size() == 0)
         pushNormal_.assign(std::int64_t(n), Vec3<T>(0));
 }
 
-// Row j's part of the translation's problem: its free vertices' inertia, drag, friction and
-// contacts, the springs from its pinned vertices to free ones, and the grab if it is here.
+// Free vertex k = (i, j)'s own terms of the translation's problem: its inertia, drag, friction
+// and contact hold, and the grab if it is here, added to `a`; returns its m/h².
+template <typename T>
+double CpuSolver<T>::vbdTranslationTerms(int i, int j, std::int64_t k, VbdLane<double>& a) const {
+    const double h = double(dt_t_), c = double(dampingRate_);
+    const double m = 1.0 / double(inverseMass_[std::size_t(k)]);
+    const double inertia = m / (h * h), drag = m * c / h;
+    const std::int64_t at = phases_.active() ? phases_.at(i, j) : k;  // (vbdContactAt)
+    const glm::dvec3 d(phases_.active() ? phases_.d.get(at) : displacement_.get(k));
+    const glm::dvec3 y(inertialStep_[std::size_t(k)]);
+    a.gx += inertia * (d.x - y.x) + drag * d.x;
+    a.gy += inertia * (d.y - y.y) + drag * d.y;
+    a.gz += inertia * (d.z - y.z) + drag * d.z;
+    vbdAddDiagonal(inertia + drag, a);
+    // Contact terms only where there is a contact: elsewhere they add zeros.
+    if (vbdContacts_.active() && vbdContacts_.weight[at] != T(0)) {
+        const glm::dvec3 u = d - glm::dvec3(vbdContacts_.slide.get(at));
+        const glm::dvec3 n(vbdContacts_.normal.get(at));
+        vbdFrictionLane(u.x, u.y, u.z, n.x, n.y, n.z, double(vbdContacts_.weight[at]),
+                        h * kVbdStickSpeed, a);
+    }
+    if (pushNormal_.size() > 0 && pushNormal_.get(at) != Vec3<T>(0)) {
+        const glm::dvec3 n(pushNormal_.get(at));
+        vbdAddOuter(kContactStiffness * inertia, n.x, n.y, n.z, a);
+    }
+    if (grab_ && grab_->vertex == k) {
+        const glm::dvec3 g =
+            double(grab_->stiffness) * (glm::dvec3(x_.get(k)) - glm::dvec3(grab_->target));
+        a.gx += g.x;
+        a.gy += g.y;
+        a.gz += g.z;
+        vbdAddDiagonal(double(grab_->stiffness), a);
+    }
+    return inertia;
+}
+
+// Row j's part of the translation's problem: its free vertices' own terms (vbdTranslationTerms)
+// and the springs from its pinned vertices to free ones.
 template <typename T>
 void CpuSolver<T>::vbdTranslationRow(int j, double* out) const {
     for (int e = 0; e < kSums; ++e) out[e] = 0;
     const int nu = grid_.nu, nv = grid_.nv;
-    const double h = double(dt_t_), c = double(dampingRate_);
     for (int i = 0; i < nu; ++i) {
         const std::int64_t k = std::int64_t(j) * nu + i;
         if (pinned_[k]) {
@@ -63,35 +108,8 @@ void CpuSolver<T>::vbdTranslationRow(int j, double* out) const {
             }
             continue;
         }
-        const double m = 1.0 / double(inverseMass_[std::size_t(k)]);
-        const double inertia = m / (h * h), drag = m * c / h;
-        const std::int64_t at = phases_.active() ? phases_.at(i, j) : k;  // (vbdContactAt)
-        const glm::dvec3 d(phases_.active() ? phases_.d.get(at) : displacement_.get(k));
-        const glm::dvec3 y(inertialStep_[std::size_t(k)]);
         VbdLane<double> a{};
-        a.gx = inertia * (d.x - y.x) + drag * d.x;
-        a.gy = inertia * (d.y - y.y) + drag * d.y;
-        a.gz = inertia * (d.z - y.z) + drag * d.z;
-        vbdAddDiagonal(inertia + drag, a);
-        // Contact terms only where there is a contact: elsewhere they add zeros.
-        if (vbdContacts_.active() && vbdContacts_.weight[at] != T(0)) {
-            const glm::dvec3 u = d - glm::dvec3(vbdContacts_.slide.get(at));
-            const glm::dvec3 n(vbdContacts_.normal.get(at));
-            vbdFrictionLane(u.x, u.y, u.z, n.x, n.y, n.z, double(vbdContacts_.weight[at]),
-                            h * kVbdStickSpeed, a);
-        }
-        if (pushNormal_.size() > 0 && pushNormal_.get(at) != Vec3<T>(0)) {
-            const glm::dvec3 n(pushNormal_.get(at));
-            vbdAddOuter(kContactStiffness * inertia, n.x, n.y, n.z, a);
-        }
-        addLane(a, out);
-        out[9] += inertia;
-    }
-    if (grab_ && grab_->vertex / nu == j && !pinned_[grab_->vertex]) {
-        const glm::dvec3 g = double(grab_->stiffness) *
-                             (glm::dvec3(x_.get(grab_->vertex)) - glm::dvec3(grab_->target));
-        VbdLane<double> a{g.x, g.y, g.z, 0, 0, 0, 0, 0, 0};
-        vbdAddDiagonal(double(grab_->stiffness), a);
+        out[9] += vbdTranslationTerms(i, j, k, a);
         addLane(a, out);
     }
 }
@@ -121,12 +139,87 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
     team.sync();
 }
 
+// Row j's part of the block [i0, i1) × [j0, j1)'s problem: its free vertices' own terms and their
+// springs to vertices outside the block or pinned (seen from the free vertex; those inside cancel).
+template <typename T>
+void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, double* out) const {
+    for (int e = 0; e < kSums; ++e) out[e] = 0;
+    const int nu = grid_.nu, nv = grid_.nv;
+    for (int i = i0; i < i1; ++i) {
+        const std::int64_t k = std::int64_t(j) * nu + i;
+        if (pinned_[k]) continue;
+        VbdLane<double> a{};
+        out[9] += vbdTranslationTerms(i, j, k, a);
+        const glm::dvec3 xk(x_.get(k));
+        for (const StencilSpring<T>& s : springs_) {
+            const int qi = i + s.di, qj = j + s.dj;
+            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
+            const std::int64_t q = std::int64_t(qj) * nu + qi;
+            if (qi >= i0 && qi < i1 && qj >= j0 && qj < j1 && !pinned_[q]) continue;
+            const glm::dvec3 e = glm::dvec3(x_.get(q)) - xk;
+            vbdSpringLane(e.x, e.y, e.z, double(stiffnessAt(s, i, j, nu, nv)), double(s.restLength),
+                          a);
+        }
+        addLane(a, out);
+    }
+}
+
+// The translation's levels, before the first sweep: for each level, coarse to fine, and each of
+// its four colours of blocks (no two blocks of a colour side by side), every band sums its rows
+// of each block of the colour, then takes each block's Newton step from all of that block's rows,
+// in order, and applies it to its own rows (vbdTranslate's, per block).
+template <typename T>
+void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
+    const int nu = grid_.nu, nv = grid_.nv, finest = vbdLevelParts(translationLevels_, nu, nv);
+    for (int parts = 2; parts <= finest; parts *= 2)
+        for (int colour = 0; colour < 4; ++colour) {
+            const auto rows = [&](int b) { return b * nv / parts; };
+            const auto columns = [&](int b) { return b * nu / parts; };
+            for (int bj = colour / 2; bj < parts; bj += 2)
+                for (int j = std::max(rows(bj), band.rowBegin);
+                     j < std::min(rows(bj + 1), band.rowEnd); ++j)
+                    for (int bi = colour % 2; bi < parts; bi += 2)
+                        vbdBlockRow(j, columns(bi), columns(bi + 1), rows(bj), rows(bj + 1),
+                                    blockRows_.data() + (std::size_t(j) * parts + bi) * kSums);
+            team.sync();
+            for (int bj = colour / 2; bj < parts; bj += 2) {
+                const int j0 = std::max(rows(bj), band.rowBegin);
+                const int j1 = std::min(rows(bj + 1), band.rowEnd);
+                if (j0 >= j1) continue;
+                for (int bi = colour % 2; bi < parts; bi += 2) {
+                    double sum[kSums] = {};
+                    for (int j = rows(bj); j < rows(bj + 1); ++j)
+                        for (int e = 0; e < kSums; ++e)
+                            sum[e] += blockRows_[(std::size_t(j) * parts + bi) * kSums + e];
+                    const VbdLane<double> a{sum[0], sum[1], sum[2], sum[3], sum[4],
+                                            sum[5], sum[6], sum[7], sum[8]};
+                    double tx, ty, tz;
+                    if (!(sum[9] > 0) || !vbdNewtonLane(a, sum[9], tx, ty, tz)) continue;
+                    const Vec3<T> t{T(tx), T(ty), T(tz)};
+                    for (int j = j0; j < j1; ++j)
+                        for (int i = columns(bi); i < columns(bi + 1); ++i) {
+                            const std::int64_t k = std::int64_t(j) * nu + i;
+                            if (pinned_[k]) continue;
+                            Vec3<T> x = x_.get(k) + t, d = vbdDisplacement(k) + t;
+                            if (!colliders_.empty()) vbdProject(x, d);
+                            vbdSet(k, x, d);
+                        }
+                }
+            }
+            team.sync();
+        }
+}
+
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
-#define CLOTH_INSTANTIATE(T)                                           \
-    template void CpuSolver<T>::vbdTakeParameters(const Scene&);       \
-    template void CpuSolver<T>::vbdTranslationRow(int, double*) const; \
-    template void CpuSolver<T>::vbdTranslate(const Band&, const Team&);
+#define CLOTH_INSTANTIATE(T)                                                                    \
+    template void CpuSolver<T>::vbdTakeParameters(const Scene&);                                \
+    template void CpuSolver<T>::vbdTranslationRow(int, double*) const;                          \
+    template void CpuSolver<T>::vbdTranslate(const Band&, const Team&);                         \
+    template void CpuSolver<T>::vbdTranslateLevels(const Band&, const Team&);                   \
+    template void CpuSolver<T>::vbdBlockRow(int, int, int, int, int, double*) const;            \
+    template double CpuSolver<T>::vbdTranslationTerms(int, int, std::int64_t, VbdLane<double>&) \
+        const;
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)
 #undef CLOTH_INSTANTIATE

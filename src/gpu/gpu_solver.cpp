@@ -83,6 +83,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       vbdIterations_(scene.integrator.iterations),
       chebyshevRho_(scene.integrator.chebyshevRho),
       translationSweeps_(scene.integrator.translationSweeps),
+      translationLevels_(scene.integrator.translationLevels),
       forces_(options.forces),
       nu_(scene.cloth.nu),
       nv_(scene.cloth.nv),

@@ -158,6 +158,7 @@ void GpuSolver::setParameters(const Scene& scene) {
     vbdIterations_ = scene.integrator.iterations;
     chebyshevRho_ = scene.integrator.chebyshevRho;
     translationSweeps_ = scene.integrator.translationSweeps;
+    translationLevels_ = scene.integrator.translationLevels;
     forcesKept_ = false;
     uploadParams(scene);
     setSelfUniforms(scene);

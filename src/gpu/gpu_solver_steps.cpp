@@ -152,6 +152,17 @@ void GpuSolver::stepVbd(long stepNumber) const {
     glProgramUniform1i(programs_[int(Kernel::VbdGuess)], gpu::kVbdLocation,
                        stepNumber >= vbdHistoryFrom_ ? 1 : 0);
     runStepPass(Kernel::VbdGuess, stepNumber);
+    // The translation's levels (vbd_blocks.comp): one dispatch a colour of a level, a work group
+    // a block of it.
+    const unsigned blocks = programs_[int(Kernel::VbdBlocks)];
+    glProgramUniform1ui(blocks, gpu::kStepLocation, GLuint(stepNumber));
+    for (int parts = 2; parts <= vbdLevelParts(translationLevels_, nu_, nv_); parts *= 2)
+        for (int colour = 0; colour < 4; ++colour) {
+            glProgramUniform2i(blocks, gpu::kVbdLocation, parts, colour);
+            glUseProgram(blocks);
+            glDispatchCompute(GLuint(parts / 2), GLuint(parts / 2), 1);
+            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+        }
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
         for (int colour = 0; colour < kVbdColours; ++colour) {

@@ -273,7 +273,8 @@ const char* kernelFile(Kernel k) {
                                                          "compute/step_check.comp",
                                                          "compute/vbd_translation_sum.comp",
                                                          "compute/vbd_translation_solve.comp",
-                                                         "compute/vbd_translation_apply.comp"};
+                                                         "compute/vbd_translation_apply.comp",
+                                                         "compute/vbd_blocks.comp"};
     return kFiles[int(k)];
 }
 
@@ -317,7 +318,8 @@ std::vector<Kernel> kernelsOf(Method m, Preconditioner p, bool contacts) {
                     Kernel::VbdFinish,
                     Kernel::VbdTranslationSum,
                     Kernel::VbdTranslationSolve,
-                    Kernel::VbdTranslationApply};
+                    Kernel::VbdTranslationApply,
+                    Kernel::VbdBlocks};
     }
     return {};
 }

@@ -93,8 +93,10 @@ enum class Kernel {
     VbdTranslationSum,    // each work group's part of its gradient and Hessian
     VbdTranslationSolve,  // their sum, the step t
     VbdTranslationApply,  // t on every free vertex, the colliders
+    // vbd's translation levels (integrator.translation_levels):
+    VbdBlocks,  // one colour of one level's blocks: the sums, the step, the step applied
 };
-inline constexpr int kKernelCount = int(Kernel::VbdTranslationApply) + 1;
+inline constexpr int kKernelCount = int(Kernel::VbdBlocks) + 1;
 // The self-collision kernels, in the order above.
 std::vector<Kernel> selfCollisionKernels();
 

@@ -96,6 +96,8 @@ std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& in) {
         if (in.chebyshevRho != defaults.chebyshevRho) unused("chebyshev_rho", value, "vbd", "");
         if (in.translationSweeps != defaults.translationSweeps)
             unused("translation_sweeps", std::to_string(in.translationSweeps), "vbd", "");
+        if (in.translationLevels != defaults.translationLevels)
+            unused("translation_levels", std::to_string(in.translationLevels), "vbd", "");
     }
     return lines;
 }

@@ -88,6 +88,13 @@ struct IntegratorSpec {
     // rigid translation of the free vertices (the mode the sweeps barely move); 0 = none. Once a
     // step by default: docs/integrators.md "vbd", why one.
     int translationSweeps = 1;
+    // vbd only: before the first sweep, the same Newton step on the translation of each block of
+    // the sheet cut into 2 × 2, then 4 × 4, … 2^L × 2^L equal parts (L = translationLevels; the
+    // blocks of a level in four colours): the landing's tension carried across the sheet within
+    // the step (docs/integrators.md "vbd", the translation's levels); 0 = none.
+    int translationLevels = 0;
+    // Whether a vbd step takes any translation step (what the CPU keeps the pushes for).
+    bool vbdTranslates() const { return translationSweeps > 0 || translationLevels > 0; }
     // Step control (docs/integrators.md "Step control"), any method: a step that stretches a
     // structural spring by more than this fraction of its rest length is redone from its start
     // as two steps of half the Δt, each checked again; 0 = every step is taken as it comes.
@@ -96,8 +103,8 @@ struct IntegratorSpec {
 
 // The integrator keys set away from their defaults that the scene's method does not use
 // (implicit_euler's tolerance, max_iterations and preconditioner; vbd's iterations,
-// chebyshev_rho and translation_sweeps), one line each naming the key, its value and whose it
-// is; empty when none.
+// chebyshev_rho, translation_sweeps and translation_levels), one line each naming the key, its
+// value and whose it is; empty when none.
 std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& integrator);
 
 struct Plane {

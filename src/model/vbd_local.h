@@ -198,4 +198,13 @@ inline double vbdChebyshevOmega(int n, int translationSweeps, double rho, double
     return chebyshevOmega(n - std::max(translationSweeps, 0), rho, previous);
 }
 
+// The parts a side of the finest of the translation's `levels` (level l cuts an nu × nv grid
+// into 2^l × 2^l blocks) that runs: 2^levels, or fewer where a block would be narrower than 2
+// vertices; 1 where no level runs.
+inline int vbdLevelParts(int levels, int nu, int nv) {
+    int parts = 1;
+    for (int l = 1; l <= levels && 4 * parts <= std::min(nu, nv); ++l) parts *= 2;
+    return parts;
+}
+
 }  // namespace cloth

@@ -123,6 +123,15 @@ constexpr ParamSpec kParams[] = {
                     ? std::optional<double>(s.integrator.translationSweeps) : std::nullopt;
      },
      [](Scene& s, double v) { s.integrator.translationSweeps = int(std::lround(v)); }},
+    {"integrator.translation_levels", "", 0, 16, false, true, 0, false,
+     "vbd: before the first sweep of a step, the same Newton step on the translation of each "
+     "block of the sheet cut into 2 × 2, 4 × 4, … 2^N × 2^N parts; 0 = none",
+     {PanelSection::TimeStep, SliderScale::Linear, 0, 8, "vbd translation levels", "%d"},
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::Vbd
+                    ? std::optional<double>(s.integrator.translationLevels) : std::nullopt;
+     },
+     [](Scene& s, double v) { s.integrator.translationLevels = int(std::lround(v)); }},
     {"integrator.max_step_strain", "", 0, 10, false, false, 0, false,
      "a step that stretches a structural spring by more than this fraction of its rest length "
      "is redone as two of half the Δt, down to Δt/16; 0 = off", kHidden,

@@ -116,6 +116,7 @@ std::string sceneToJson(const Scene& s) {
         j["integrator"]["iterations"] = s.integrator.iterations;
         j["integrator"]["chebyshev_rho"] = s.integrator.chebyshevRho;
         j["integrator"]["translation_sweeps"] = s.integrator.translationSweeps;
+        j["integrator"]["translation_levels"] = s.integrator.translationLevels;
     }
     if (s.integrator.maxStepStrain > 0)
         j["integrator"]["max_step_strain"] = s.integrator.maxStepStrain;

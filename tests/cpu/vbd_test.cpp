@@ -84,8 +84,9 @@ TEST(Vbd, ConvergedItIsBackwardEulerSolvedByNewton) {
 // 48×80 vertices are 4 chunks of rows, which 3 threads split: bands read each other's border
 // rows between colours. With the grab (inside the sheet, where the row kernel would take it), a
 // sphere with friction, spring damping and Chebyshev's extrapolation too, with and without the
-// translation's step (summed by rows in a fixed order). The row kernels of every
-// instruction set step the interior vertices in the scalar path's operations: the same bits.
+// translation's step and its levels (summed by rows in a fixed order; the levels' 8 × 8 blocks
+// straddle the bands). The row kernels of every instruction set step the interior vertices in
+// the scalar path's operations: the same bits.
 TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
     Scene scene = materialScene(Method::Vbd, kFrame);
     scene.cloth.nu = 48;
@@ -98,9 +99,10 @@ TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
     scene.colliders.back().thickness = 0.005;
     scene.integrator.chebyshevRho = 0.5;
     const Grab grab{2000, scene.cloth.origin + glm::dvec3(0.3, 0.2, 0.1), 5};
-    for (int translation : {0, 2})  // the translation's step after the first two sweeps
+    for (int translation : {0, 2})  // the step after the first two sweeps, 3 levels before
         for (Precision precision : {Precision::Double, Precision::Float}) {
             scene.integrator.translationSweeps = translation;
+            scene.integrator.translationLevels = translation > 0 ? 3 : 0;
             auto run = [&](CpuIsa isa, int threads) {
                 std::unique_ptr<Solver> solver = makeCpuSolver(scene, {precision, threads, isa});
                 solver->setGrab(grab);
