@@ -174,7 +174,7 @@ private:
     double vbdTranslationTerms(int i, int j, std::int64_t k, VbdLane<double>& a) const;
     // The translation's levels (integrator.translation_levels): a block's sums over row j, and
     // the steps of every level before the first sweep.
-    void vbdBlockRow(int j, int i0, int i1, int j0, int j1, double* out) const;
+    void vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsNear, double* out) const;
     void vbdTranslateLevels(const Band& band, const Team& team);
     void vbdTakeParameters(const Scene& scene);  // sweeps, ρ, their storage
     // The end of every step: pins, colliders in scene order, then the instability check.
@@ -258,7 +258,8 @@ private:
     int translationSweeps_ = 0;
     std::vector<double> translationRows_;  // per row, vbdTranslationRow's 10 sums
     int translationLevels_ = 0;
-    std::vector<double> blockRows_;  // per row and block column, vbdBlockRow's 10 sums
+    std::vector<double> blockRows_;        // per row and block column, vbdBlockRow's 10 sums
+    std::vector<std::uint8_t> rowPinned_;  // per row: whether it holds a pin (the levels')
     // With colliders and translation sweeps: the unit push of each vertex's last Newton step's
     // projection (0: none), where its contact is kept (vbdContactAt).
     Soa3<T> pushNormal_;

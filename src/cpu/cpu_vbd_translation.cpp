@@ -45,6 +45,7 @@ void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
     const int parts = vbdLevelParts(translationLevels_, grid_.nu, grid_.nv);
     const std::size_t blockSums = std::size_t(grid_.nv) * std::size_t(parts) * kSums;
     if (blockRows_.size() < blockSums) blockRows_.assign(blockSums, 0.0);
+    if (translationLevels_ > 0) rowPinned_.assign(std::size_t(grid_.nv), 0);
     const bool translates = translationSweeps_ > 0 || translationLevels_ > 0;
     if (translates && !scene.colliders.empty() && pushNormal_.size() == 0)
         pushNormal_.assign(std::int64_t(n), Vec3<T>(0));
@@ -141,13 +142,36 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
 
 // Row j's part of the block [i0, i1) × [j0, j1)'s problem: its free vertices' own terms and their
 // springs to vertices outside the block or pinned (seen from the free vertex; those inside cancel).
+// A spring reaches two cells: a vertex two or more from the block's edges, with no pin within two
+// rows (`pinsNear` false), has none.
 template <typename T>
-void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, double* out) const {
+void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsNear,
+                               double* out) const {
     for (int e = 0; e < kSums; ++e) out[e] = 0;
     const int nu = grid_.nu, nv = grid_.nv;
+    const bool edgeRow = pinsNear || j - j0 < 2 || j1 - 1 - j < 2;
+    const double h = double(dt_t_), perH2 = 1 / (h * h), dragPerMass = double(dampingRate_) / h;
+    const std::int64_t grabbed = grab_ ? grab_->vertex : -1;
+    double gx = 0, gy = 0, gz = 0, diagonal = 0, inertiaSum = 0;  // the plain vertices'
     for (int i = i0; i < i1; ++i) {
         const std::int64_t k = std::int64_t(j) * nu + i;
         if (pinned_[k]) continue;
+        const std::int64_t at = phases_.active() ? phases_.at(i, j) : k;
+        const bool plain = !edgeRow && i - i0 >= 2 && i1 - 1 - i >= 2 && k != grabbed &&
+                           !(vbdContacts_.active() && vbdContacts_.weight[at] != T(0)) &&
+                           !(pushNormal_.size() > 0 && pushNormal_.get(at) != Vec3<T>(0));
+        if (plain) {  // inertia and drag alone (vbdTranslationTerms' first terms)
+            const double m = 1.0 / double(inverseMass_[std::size_t(k)]);
+            const double inertia = m * perH2, drag = m * dragPerMass;
+            const Vec3<T> d = phases_.active() ? phases_.d.get(at) : displacement_.get(k);
+            const Vec3<T>& y = inertialStep_[std::size_t(k)];
+            gx += inertia * (double(d.x) - double(y.x)) + drag * double(d.x);
+            gy += inertia * (double(d.y) - double(y.y)) + drag * double(d.y);
+            gz += inertia * (double(d.z) - double(y.z)) + drag * double(d.z);
+            diagonal += inertia + drag;
+            inertiaSum += inertia;
+            continue;
+        }
         VbdLane<double> a{};
         out[9] += vbdTranslationTerms(i, j, k, a);
         const glm::dvec3 xk(x_.get(k));
@@ -162,6 +186,11 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, double* ou
         }
         addLane(a, out);
     }
+    out[0] += gx;
+    out[1] += gy;
+    out[2] += gz;
+    for (int e = 3; e < 6; ++e) out[e] += diagonal;
+    out[9] += inertiaSum;
 }
 
 // The translation's levels, before the first sweep: for each level, coarse to fine, and each of
@@ -171,6 +200,16 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, double* ou
 template <typename T>
 void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
     const int nu = grid_.nu, nv = grid_.nv, finest = vbdLevelParts(translationLevels_, nu, nv);
+    for (int j = band.rowBegin; j < band.rowEnd; ++j) {
+        const auto row = pinned_.begin() + std::int64_t(j) * nu;
+        rowPinned_[std::size_t(j)] = std::find(row, row + nu, std::uint8_t(1)) != row + nu;
+    }
+    team.sync();
+    const auto pinsNear = [&](int j) {
+        for (int r = std::max(0, j - 2); r <= std::min(nv - 1, j + 2); ++r)
+            if (rowPinned_[std::size_t(r)]) return true;
+        return false;
+    };
     for (int parts = 2; parts <= finest; parts *= 2)
         for (int colour = 0; colour < 4; ++colour) {
             const auto rows = [&](int b) { return b * nv / parts; };
@@ -180,6 +219,7 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
                      j < std::min(rows(bj + 1), band.rowEnd); ++j)
                     for (int bi = colour % 2; bi < parts; bi += 2)
                         vbdBlockRow(j, columns(bi), columns(bi + 1), rows(bj), rows(bj + 1),
+                                    pinsNear(j),
                                     blockRows_.data() + (std::size_t(j) * parts + bi) * kSums);
             team.sync();
             for (int bj = colour / 2; bj < parts; bj += 2) {
@@ -217,7 +257,7 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
     template void CpuSolver<T>::vbdTranslationRow(int, double*) const;                          \
     template void CpuSolver<T>::vbdTranslate(const Band&, const Team&);                         \
     template void CpuSolver<T>::vbdTranslateLevels(const Band&, const Team&);                   \
-    template void CpuSolver<T>::vbdBlockRow(int, int, int, int, int, double*) const;            \
+    template void CpuSolver<T>::vbdBlockRow(int, int, int, int, int, bool, double*) const;      \
     template double CpuSolver<T>::vbdTranslationTerms(int, int, std::int64_t, VbdLane<double>&) \
         const;
 CLOTH_INSTANTIATE(float)

@@ -65,24 +65,33 @@ InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
             ? ", or set integrator.translation_sweeps = " + std::to_string(in.iterations) +
                   " (the translation's step after every sweep, docs/integrators.md)"
             : "";
-    char buf[1000];
+    // The translation's levels carry a landing's tension across the sheet within the step: the
+    // sweeps a second the rule asks for no longer grow with N (docs/integrators.md).
+    const std::string levels =
+        in.translationLevels == 0
+            ? ", or set integrator.translation_levels = 4 (the translation's step on blocks of "
+              "the sheet before the sweeps: with it 10 sweeps at 1/60 s hold a dropped sheet of "
+              "192 vertices a side, docs/integrators.md)"
+            : "";
+    char buf[1600];
     if (dt < in.dt) {
         std::snprintf(buf, sizeof buf,
                       "vbd's %d sweeps a step did not carry the tension across the sheet: it ran "
                       "%.0f sweeps a simulated second (iterations / dt), and dropped sheets of %d "
                       "vertices a side held with %.0f x %d = %.0f (docs/performance.md); lower "
                       "integrator.dt to %.2g s or raise integrator.iterations (with "
-                      "integrator.chebyshev_rho = 0.9)%s; %s",
+                      "integrator.chebyshev_rho = 0.9)%s%s; %s",
                       in.iterations, rate, n, kVbdSweepsPerSecondPerVertex, n, needed, dt,
-                      translation.c_str(), tooSoft(scene).c_str());
+                      levels.c_str(), translation.c_str(), tooSoft(scene).c_str());
         return {buf, dt};
     }
     std::snprintf(buf, sizeof buf,
                   "vbd's %d sweeps a step did not carry the tension across the sheet, although "
                   "%.0f sweeps a simulated second for %d vertices a side held a dropped cotton "
                   "sheet (docs/performance.md): a stiffer or more loaded cloth needs more; raise "
-                  "integrator.iterations or lower integrator.dt%s; %s",
-                  in.iterations, rate, n, translation.c_str(), tooSoft(scene).c_str());
+                  "integrator.iterations or lower integrator.dt%s%s; %s",
+                  in.iterations, rate, n, levels.c_str(), translation.c_str(),
+                  tooSoft(scene).c_str());
     return {buf, std::nullopt};
 }
 

@@ -52,10 +52,15 @@ TEST(InstabilityAdvice, VbdAsksForTheSweepsASecondThatHeldADroppedSheet) {
     ASSERT_TRUE(a.dt.has_value()) << a.text;
     EXPECT_DOUBLE_EQ(vbdHoldingSweepsPerSecond(s), 13 * 128);  // a second, per vertex a side
     EXPECT_DOUBLE_EQ(*a.dt, 10.0 / (13 * 128));
-    for (const char* word : {"600 sweeps a simulated second", "128 vertices a side", "1664",
-                             "integrator.dt to 0.006 s", "integrator.iterations", "chebyshev_rho",
-                             "integrator.translation_sweeps = 10", "material.stretch"})
+    for (const char* word :
+         {"600 sweeps a simulated second", "128 vertices a side", "1664",
+          "integrator.dt to 0.006 s", "integrator.iterations", "chebyshev_rho",
+          "integrator.translation_sweeps = 10", "translation_levels = 4", "material.stretch"})
         EXPECT_TRUE(has(a.text, word)) << word << ": " << a.text;
+    // With the translation's levels, they are not asked for again.
+    Scene levelled = s;
+    levelled.integrator.translationLevels = 4;
+    EXPECT_FALSE(has(instabilityAdvice(levelled, strainBreach()).text, "translation_levels"));
     // With the translation's step after every sweep, it is not asked for again.
     Scene stepped = s;
     stepped.integrator.translationSweeps = 10;
