@@ -38,6 +38,16 @@ namespace {
 // 384) or 10 N (20 sweeps with chebyshev_rho = 0.9) where the sheets held; 13 N is what the
 // largest that held (384² at 1/480 s) took.
 constexpr double kVbdSweepsPerSecondPerVertex = 13;
+// With 4 or more translation levels: 10 sweeps at 1/60 s (600 a second) held every landing tried
+// up to 192² and tore one at 208² (docs/integrators.md "The translation's levels"): 3 N. Fewer
+// levels tore at 192²: the rule without them.
+constexpr double kVbdLevelsSweepsPerSecondPerVertex = 3;
+constexpr int kVbdRuleLevels = 4;
+
+double vbdHoldingFactor(const Scene& scene) {
+    return scene.integrator.translationLevels >= kVbdRuleLevels ? kVbdLevelsSweepsPerSecondPerVertex
+                                                                : kVbdSweepsPerSecondPerVertex;
+}
 
 // What to do about a cloth too soft for its load: its material's membrane or its springs.
 std::string stiffenOrRaise(const Scene& scene) {
@@ -81,7 +91,7 @@ InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
                       "vertices a side held with %.0f x %d = %.0f (docs/performance.md); lower "
                       "integrator.dt to %.2g s or raise integrator.iterations (with "
                       "integrator.chebyshev_rho = 0.9)%s%s; %s",
-                      in.iterations, rate, n, kVbdSweepsPerSecondPerVertex, n, needed, dt,
+                      in.iterations, rate, n, vbdHoldingFactor(scene), n, needed, dt,
                       levels.c_str(), translation.c_str(), tooSoft(scene).c_str());
         return {buf, dt};
     }
@@ -120,7 +130,7 @@ InstabilityAdvice implicitStrainAdvice(const Scene& scene) {
 
 double vbdHoldingSweepsPerSecond(const Scene& scene) {
     const Grid g = scene.grid();
-    return kVbdSweepsPerSecondPerVertex * std::max(g.nu, g.nv);
+    return vbdHoldingFactor(scene) * std::max(g.nu, g.nv);
 }
 
 double vbdSweepsPerSecond(const Scene& scene) {

@@ -43,7 +43,7 @@ std::string describeInstability(const Scene& scene, const StepResult& r);
 
 // vbd's measured rule (docs/performance.md "vbd: the step that holds the sheet at each N"): the
 // sweeps a simulated second, iterations / Δt, at which a sheet of the scene's N vertices a side
-// dropped onto a collider held, 13 N.
+// dropped onto a collider held, 13 N; 3 N with 4 or more translation levels.
 double vbdHoldingSweepsPerSecond(const Scene& scene);
 // The sweeps a simulated second the scene's vbd runs: iterations / Δt.
 double vbdSweepsPerSecond(const Scene& scene);

@@ -57,10 +57,14 @@ TEST(InstabilityAdvice, VbdAsksForTheSweepsASecondThatHeldADroppedSheet) {
           "integrator.dt to 0.006 s", "integrator.iterations", "chebyshev_rho",
           "integrator.translation_sweeps = 10", "translation_levels = 4", "material.stretch"})
         EXPECT_TRUE(has(a.text, word)) << word << ": " << a.text;
-    // With the translation's levels, they are not asked for again.
+    // With the translation's levels, they are not asked for again, and the rule is theirs: 10
+    // sweeps at 1/60 held every landing tried up to 192², 3 N a second.
     Scene levelled = s;
     levelled.integrator.translationLevels = 4;
     EXPECT_FALSE(has(instabilityAdvice(levelled, strainBreach()).text, "translation_levels"));
+    EXPECT_DOUBLE_EQ(vbdHoldingSweepsPerSecond(levelled), 3 * 128);
+    levelled.integrator.translationLevels = 3;  // tore at 192²: the rule without levels
+    EXPECT_DOUBLE_EQ(vbdHoldingSweepsPerSecond(levelled), 13 * 128);
     // With the translation's step after every sweep, it is not asked for again.
     Scene stepped = s;
     stepped.integrator.translationSweeps = 10;
