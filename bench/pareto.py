@@ -9,7 +9,8 @@ wall time per simulated second.
 Reference: implicit_euler at dt = 1/60 in double, its CG to |r| <= 1e-10 |b|. At dt = 1/60 the
 CG runs with exactly k iterations a step (tolerance 1e-14, max_iterations k) for k = 1 ... 128,
 without and with block-Jacobi; vbd with 1 ... 100 sweeps; the explicit methods at steps that
-keep them stable; vbd with its default translation step (once a step) and without it. Runs are CPU float on 2 threads (the real-time target); an unstable run is
+keep them stable; vbd with its default translation step (once a step), without it, and with 4
+translation levels. Runs are CPU float on 2 threads (the real-time target); an unstable run is
 recorded as such. Writes pareto_SCENE.csv and, with gnuplot, pareto_SCENE.png.
 """
 import csv
@@ -77,11 +78,15 @@ for preconditioner in ("none", "jacobi"):
         point(f"implicit_euler/{preconditioner}", "iterations", k,
               implicit + [f'integrator.preconditioner="{preconditioner}"',
                           "integrator.tolerance=1e-14", f"integrator.max_iterations={k}"], FRAME)
-for translation, name in ((1, "vbd"), (0, "vbd/translation_0")):  # the default, and without
+# The default, without its translation step, and with 4 translation levels (as many as the grid
+# holds: 3 at 24²).
+for translation, levels, name in ((1, 0, "vbd"), (0, 0, "vbd/translation_0"),
+                                  (1, 4, "vbd/levels_4")):
     for sweeps in (1, 2, 5, 10, 20, 50, 100):
         point(name, "sweeps", sweeps,
               ['integrator.method="vbd"', f"integrator.dt={FRAME!r}",
-               f"integrator.iterations={sweeps}", f"integrator.translation_sweeps={translation}"],
+               f"integrator.iterations={sweeps}", f"integrator.translation_sweeps={translation}",
+               f"integrator.translation_levels={levels}"],
               FRAME)
 for method, steps in (("symplectic_euler", (4e-4, 2e-4, 1e-4)), ("verlet", (4e-4, 2e-4)),
                       ("rk4", (8e-4, 4e-4))):
@@ -108,7 +113,7 @@ set title '{LABEL}: against backward Euler at 1/60 s converged to 1e-10' noenhan
 set key outside right noenhanced
 set grid
 set arrow from 1, graph 0 to 1, graph 1 nohead dt 2 lc rgb '#888888'
-plot for [s in 'implicit_euler/none implicit_euler/jacobi vbd vbd/translation_0 symplectic_euler verlet rk4'] \\
+plot for [s in 'implicit_euler/none implicit_euler/jacobi vbd vbd/translation_0 vbd/levels_4 symplectic_euler verlet rk4'] \\
     '{table}' using (strcol(1) eq s && $7 == 1 ? $5 : 1/0):6 with linespoints pt 7 title s
 """
 try:
