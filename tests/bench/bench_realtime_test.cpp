@@ -165,23 +165,6 @@ TEST(RealtimeTrial, ASlowTrialIsCutOffEarly) {
     EXPECT_EQ(t.attempts, 2);  // a slow run is retried once
 }
 
-// vbd with 10 sweeps at Δt = 1/60 stretches the 64² cotton sheet's springs at the sphere's apex
-// past max_strain 1 in frames 31 to 34 only (1.01 to 1.08; 0.92 at frame 30, 0.80 at 36), then
-// it hangs whole. A check every 0.1 s (frames 6, 12, ... 36) misses the tear, as the bench's did,
-// and so does the final state's. A viewer shows every frame: every frame is checked.
-TEST(RealtimeTrial, ASheetTornForAFewFramesIsUnstable) {
-    Scene s = drape(64, Method::Vbd);
-    s.integrator.dt = app::kFrame;
-    s.integrator.iterations = 10;
-    BackendChoice cpu;
-    cpu.precision = Precision::Float;
-    cpu.threads = 2;
-    const Trial t = app::timeTrial(s, cpu, 1, 1.0);
-    EXPECT_EQ(t.status, TrialStatus::Unstable) << t.reason;
-    EXPECT_NE(t.reason.find("> max_strain 1"), std::string::npos) << t.reason;
-    EXPECT_NEAR(t.simulated, 31 * app::kFrame, 0.5 * app::kFrame) << t.reason;
-}
-
 const std::vector<std::string> kFrontierColumns = {"method",
                                                    "target",
                                                    "backend",

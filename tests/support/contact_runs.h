@@ -37,6 +37,20 @@ inline Scene stiffSheetOnSlope(double degrees, double friction, int translationS
     return parseScene(j.dump(), "stiff sheet on a slope (test)");
 }
 
+// The largest distance between the same vertex of `a` and `b` after `steps` steps of each, on
+// the CPU in double on 1 thread [m]: two paths to the same converged step end together.
+inline double farthestApartAfter(const Scene& a, const Scene& b, long steps) {
+    auto x = makeCpuSolver(a, {Precision::Double, 1});
+    auto y = makeCpuSolver(b, {Precision::Double, 1});
+    EXPECT_FALSE(x->step(steps).unstable);
+    EXPECT_FALSE(y->step(steps).unstable);
+    const SimState p = x->read(), q = y->read();
+    double most = 0;
+    for (std::size_t k = 0; k < p.positions.size(); ++k)
+        most = std::max(most, glm::length(p.positions[k] - q.positions[k]));
+    return most;
+}
+
 // How far `solver`'s centre moves in 1 s of steps of dt [m].
 inline double slideInOneSecond(Solver& solver, double dt) {
     const glm::dvec3 start = meanOf(solver.read().positions);
