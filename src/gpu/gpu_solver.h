@@ -116,6 +116,7 @@ private:
     void stepRk4(long stepNumber) const;
     void stepImplicit(long stepNumber);
     void stepVbd(long stepNumber) const;
+    void runVbdLevels(long stepNumber) const;
     gpu::CgState solve() const;
     void iterate() const;
     // With the multigrid preconditioner: z = V r, then z into the CG with its sums (p = z at

@@ -152,17 +152,7 @@ void GpuSolver::stepVbd(long stepNumber) const {
     glProgramUniform1i(programs_[int(Kernel::VbdGuess)], gpu::kVbdLocation,
                        stepNumber >= vbdHistoryFrom_ ? 1 : 0);
     runStepPass(Kernel::VbdGuess, stepNumber);
-    // The translation's levels (vbd_blocks.comp): one dispatch a colour of a level, a work group
-    // a block of it.
-    const unsigned blocks = programs_[int(Kernel::VbdBlocks)];
-    glProgramUniform1ui(blocks, gpu::kStepLocation, GLuint(stepNumber));
-    for (int parts = 2; parts <= vbdLevelParts(translationLevels_, nu_, nv_); parts *= 2)
-        for (int colour = 0; colour < 4; ++colour) {
-            glProgramUniform2i(blocks, gpu::kVbdLocation, parts, colour);
-            glUseProgram(blocks);
-            glDispatchCompute(GLuint(parts / 2), GLuint(parts / 2), 1);
-            glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-        }
+    if (translationLevels_ > 0) runVbdLevels(stepNumber);
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
         for (int colour = 0; colour < kVbdColours; ++colour) {
@@ -184,6 +174,42 @@ void GpuSolver::stepVbd(long stepNumber) const {
         }
     }
     runStepPass(Kernel::VbdFinish, stepNumber);
+}
+
+// The translation's levels (vbd_blocks.comp), coarse to fine, a colour at a time. A level's
+// (parts/2)² blocks of a colour take one work group each; blocks of fewer than kLevelGroupBlock
+// vertices one invocation each; the first levels' large blocks are cut into chunks of at least
+// kLevelChunk vertices, up to kLevelGroups work groups a colour (and what vbdTranslation holds),
+// summed, solved and applied in three passes.
+void GpuSolver::runVbdLevels(long stepNumber) const {
+    constexpr int kLevelChunk = 1024, kLevelGroups = 128, kLevelGroupBlock = 256;
+    const unsigned program = programs_[int(Kernel::VbdBlocks)];
+    glProgramUniform1ui(program, gpu::kStepLocation, GLuint(stepNumber));
+    glUseProgram(program);
+    const int room = 3 * groupsX_ * groupsY_;  // vec4 after vbdTranslation[0]
+    const auto pass = [&](int parts, int colour, int chunks, int mode, int groups) {
+        glProgramUniform4i(program, gpu::kVbdLocation, parts, colour, chunks, mode);
+        glDispatchCompute(GLuint(groups), 1, 1);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    };
+    for (int parts = 2; parts <= vbdLevelParts(translationLevels_, nu_, nv_); parts *= 2) {
+        const int blocks = (parts / 2) * (parts / 2), count = (nu_ / parts) * (nv_ / parts);
+        const int chunks = std::max(1, std::min({kLevelGroups / blocks, count / kLevelChunk,
+                                                 (room - blocks) / (3 * blocks)}));
+        for (int colour = 0; colour < 4; ++colour) {
+            if (count < kLevelGroupBlock) {
+                pass(parts, colour, 1, 4, (blocks + 255) / 256);
+                continue;
+            }
+            if (chunks == 1) {
+                pass(parts, colour, 1, 0, blocks);
+                continue;
+            }
+            pass(parts, colour, chunks, 1, blocks * chunks);
+            pass(parts, colour, chunks, 2, blocks);
+            pass(parts, colour, chunks, 3, blocks * chunks);
+        }
+    }
 }
 
 // Iterations in chunks of kIterationsPerRead until the GPU says the solve is done (converged,

@@ -59,15 +59,18 @@ Scene landingDrape(int n) {
         "drape.json");
 }
 
-// Through the landing (20 steps; it lands at step 15) the GPU's blocks step the 64² sheet as the
-// CPU's in float do. Measured: 5.2e-4 m RMS apart, at most 6.2e-3 m, largest strain 0.2666 and
-// 0.2674 (without the levels: 2.4e-4 m, 1.1e-3 m; the sweeps' own float order).
+// Into the landing (17 steps; it touches the sphere at step 16) the GPU's blocks step the 96²
+// sheet as the CPU's in float do; the first level's blocks of 48² vertices are summed in two
+// chunks, the last two levels' small blocks one invocation each. Measured: 2.5e-4 m RMS apart, at
+// most 1.1e-3 m, largest strain 0.1209 and 0.1207 (8e-7
+// m at step 16; from step 18 on the landing amplifies the sums' float order, 7e-4 m at step 18,
+// as it parts the GPU's chunked and whole-block sums by then too).
 TEST_F(GpuVbdTranslation, ItsLevelsStepTheLandingAsOnTheCpu) {
-    const Scene s = landingDrape(64);
+    const Scene s = landingDrape(96);
     auto gpu = makeGpuSolver(s, {});
     auto cpu = makeCpuSolver(s, {Precision::Float, 2});
     double strain[2] = {0, 0};
-    for (int step = 0; step < 20; ++step) {
+    for (int step = 0; step < 17; ++step) {
         ASSERT_FALSE(gpu->step(1).unstable);
         ASSERT_FALSE(cpu->step(1).unstable);
         strain[0] = std::max(strain[0], largestStrain(s, gpu->read()).strain);
@@ -82,16 +85,16 @@ TEST_F(GpuVbdTranslation, ItsLevelsStepTheLandingAsOnTheCpu) {
     }
     const double rms = std::sqrt(sum / double(a.positions.size()));
     std::printf(
-        "gpu against cpu float, 20 steps with 4 levels: rms %.3g m, most %.3g m, "
+        "gpu against cpu float, 17 steps with 4 levels: rms %.3g m, most %.3g m, "
         "largest strain %.4f and %.4f\n",
         rms, most, strain[0], strain[1]);
-    EXPECT_LT(rms, 2e-3);
-    EXPECT_LT(most, 2e-2);
-    EXPECT_NEAR(strain[0], strain[1], 0.01);
+    EXPECT_LT(rms, 1e-3);
+    EXPECT_LT(most, 5e-3);
+    EXPECT_NEAR(strain[0], strain[1], 0.005);
 }
 
-// The whole second of the landing at 96², every frame measured: the CPU's 0.53 with 5 levels
-// (tests/cpu/vbd_levels_test.cpp), 2.1 without.
+// The whole second of the landing at 96², every frame measured (the first level in chunks): 0.61,
+// the CPU's 0.53 with 5 levels (tests/cpu/vbd_levels_test.cpp), 2.1 without.
 TEST_F(GpuVbdTranslation, ItsLevelsHoldTheLandingSheetInEveryFrame) {
     Scene s = landingDrape(96);
     s.integrator.translationLevels = 5;
