@@ -216,11 +216,12 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
             const auto columns = [&](int b) { return b * nu / parts; };
             for (int bj = colour / 2; bj < parts; bj += 2)
                 for (int j = std::max(rows(bj), band.rowBegin);
-                     j < std::min(rows(bj + 1), band.rowEnd); ++j)
+                     j < std::min(rows(bj + 1), band.rowEnd); ++j) {
+                    const bool near = pinsNear(j);  // once a row, not once a block of it
                     for (int bi = colour % 2; bi < parts; bi += 2)
-                        vbdBlockRow(j, columns(bi), columns(bi + 1), rows(bj), rows(bj + 1),
-                                    pinsNear(j),
+                        vbdBlockRow(j, columns(bi), columns(bi + 1), rows(bj), rows(bj + 1), near,
                                     blockRows_.data() + (std::size_t(j) * parts + bi) * kSums);
+                }
             team.sync();
             for (int bj = colour / 2; bj < parts; bj += 2) {
                 const int j0 = std::max(rows(bj), band.rowBegin);
