@@ -259,15 +259,22 @@ void viewUnderXvfb(const std::vector<std::string>& args, int offset, test::Proce
         if (test::gpuRequiredByEnvironment()) FAIL() << "CLOTH_REQUIRE_GPU=1 but no xvfb-run";
         GTEST_SKIP() << "xvfb-run not installed";
     }
+    // The X authority file is the test's own: without -f, xvfb-run makes a directory for it and
+    // exits 5 when removing that directory fails, whatever the viewer returned.
+    const fs::path auth =
+        fs::temp_directory_path() /
+        ("clothsim_xauth_" + std::to_string(getpid()) + "_" + std::to_string(offset));
     for (int attempt = 0; attempt < 3; ++attempt) {
         const int display = 100 + int(getpid() % 300) * 3 + attempt + offset;
-        std::vector<std::string> argv = {
-            xvfb,      "-a",  "-n", std::to_string(display), "-s", "-screen 0 1280x800x24",
-            CLOTH_EXE, "view"};
+        std::vector<std::string> argv = {xvfb,      "-a",          "-n", std::to_string(display),
+                                         "-f",      auth.string(), "-s", "-screen 0 1280x800x24",
+                                         CLOTH_EXE, "view"};
         argv.insert(argv.end(), args.begin(), args.end());
         r = test::runProcess(argv, 120);
         if (r.exitCode == 0 || r.err.find("Xvfb failed to start") == std::string::npos) break;
     }
+    std::error_code ignored;
+    fs::remove(auth, ignored);
 }
 
 void viewScreenshot(const std::string& backend, const fs::path& png,
