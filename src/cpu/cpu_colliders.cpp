@@ -187,6 +187,13 @@ ContactRow<T> contactRow(const CpuCollider<T>& c, Row3<T> x, Row3<T> v) {
 }
 
 template <typename T>
+bool CpuColliders<T>::mayTouchRow(ConstRow3<T> x, int n) const {
+    for (const CpuCollider<T>& c : posed_)
+        if (rowMayTouch(c, x, n)) return true;
+    return false;
+}
+
+template <typename T>
 void CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const {
     for (const CpuCollider<T>& c : posed_) {
         if (!rowMayTouch(c, ConstRow3<T>(x), n)) continue;

@@ -77,6 +77,9 @@ public:
     }
     Surface surfaceAt(Vec3<T> p) const { return project(p); }
     Vec3<T> surfaceVelocity(const Vec3<T>& p) const { return surfaceAt(p).velocity; }
+    // Whether any collider may touch one of the n positions of x (a conservative cull: false
+    // only where none touches).
+    bool mayTouchRow(ConstRow3<T> x, int n) const;
     // The same on the n vertices of a row of positions x and velocities v; planes and spheres
     // through the row kernels (the same bits, vectorised).
     void applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;

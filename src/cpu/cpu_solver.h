@@ -171,6 +171,7 @@ private:
     // (gradient 3, Hessian 6, Σ m/h²), then the step on every free vertex.
     void vbdTranslationRow(int j, double* out) const;
     void vbdTranslate(const Band& band, const Team& team);
+    void vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t);
     double vbdTranslationTerms(int i, int j, std::int64_t k, VbdLane<double>& a) const;
     // The translation's levels (integrator.translation_levels): a block's sums over row j, and
     // the steps of every level before the first sweep.

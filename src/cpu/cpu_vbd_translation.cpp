@@ -130,14 +130,40 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
     const bool step = vbdNewtonLane(a, sum[9], tx, ty, tz);
     team.sync();  // every band has read the rows
     if (!step) return;
-    const Vec3<T> t{T(tx), T(ty), T(tz)};
-    for (std::int64_t k = band.begin; k < band.end; ++k) {
-        if (pinned_[k]) continue;
-        Vec3<T> x = x_.get(k) + t, d = vbdDisplacement(k) + t;
-        if (!colliders_.empty()) vbdProject(x, d);
-        vbdSet(k, x, d);
-    }
+    for (int j = band.rowBegin; j < band.rowEnd; ++j)
+        vbdShiftRow(j, 0, grid_.nu, Vec3<T>{T(tx), T(ty), T(tz)});
     team.sync();
+}
+
+// Row j's free vertices in columns [i0, i1) moved by t, position and displacement, then the
+// colliders' projection where one may touch the row (CpuColliders::mayTouchRow, whose cull is
+// conservative: the same bits as projecting every vertex).
+template <typename T>
+void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t) {
+    const std::int64_t row = std::int64_t(j) * grid_.nu;
+    const bool phased = phases_.active();
+    for (int i = i0; i < i1; ++i) {
+        const std::int64_t k = row + i;
+        if (pinned_[k]) continue;
+        const Vec3<T> x = x_.get(k) + t;
+        x_.set(k, x);
+        if (!phased) {
+            displacement_.set(k, displacement_.get(k) + t);
+            continue;
+        }
+        const std::int64_t at = phases_.at(i, j);
+        phases_.x.set(at, x);
+        phases_.d.set(at, phases_.d.get(at) + t);
+    }
+    if (colliders_.empty() || !colliders_.mayTouchRow(x_.row(row + i0), i1 - i0)) return;
+    for (int i = i0; i < i1; ++i) {
+        const std::int64_t k = row + i;
+        if (pinned_[k]) continue;
+        Vec3<T> x = x_.get(k), d = phased ? phases_.d.get(phases_.at(i, j)) : displacement_.get(k);
+        const Vec3<T> before = x;
+        vbdProject(x, d);
+        if (x != before) vbdSet(k, x, d);
+    }
 }
 
 // Row j's part of the block [i0, i1) × [j0, j1)'s problem: its free vertices' own terms and their
@@ -157,9 +183,10 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsN
         const std::int64_t k = std::int64_t(j) * nu + i;
         if (pinned_[k]) continue;
         const std::int64_t at = phases_.active() ? phases_.at(i, j) : k;
-        const bool plain = !edgeRow && i - i0 >= 2 && i1 - 1 - i >= 2 && k != grabbed &&
+        const bool plain = k != grabbed &&
                            !(vbdContacts_.active() && vbdContacts_.weight[at] != T(0)) &&
                            !(pushNormal_.size() > 0 && pushNormal_.get(at) != Vec3<T>(0));
+        VbdLane<double> a{};
         if (plain) {  // inertia and drag alone (vbdTranslationTerms' first terms)
             const double m = 1.0 / double(inverseMass_[std::size_t(k)]);
             const double inertia = m * perH2, drag = m * dragPerMass;
@@ -170,10 +197,13 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsN
             gz += inertia * (double(d.z) - double(y.z)) + drag * double(d.z);
             diagonal += inertia + drag;
             inertiaSum += inertia;
+        } else {
+            out[9] += vbdTranslationTerms(i, j, k, a);
+        }
+        if (!edgeRow && i - i0 >= 2 && i1 - 1 - i >= 2) {  // no spring leaves the block
+            if (!plain) addLane(a, out);
             continue;
         }
-        VbdLane<double> a{};
-        out[9] += vbdTranslationTerms(i, j, k, a);
         const glm::dvec3 xk(x_.get(k));
         for (const StencilSpring<T>& s : springs_) {
             const int qi = i + s.di, qj = j + s.dj;
@@ -194,9 +224,10 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsN
 }
 
 // The translation's levels, before the first sweep: for each level, coarse to fine, and each of
-// its four colours of blocks (no two blocks of a colour side by side), every band sums its rows
-// of each block of the colour, then takes each block's Newton step from all of that block's rows,
-// in order, and applies it to its own rows (vbdTranslate's, per block).
+// its four colours of blocks (no two blocks of a colour side by side), the threads share the
+// colour's rows evenly (not by band: at the first level a colour's rows are half the sheet's),
+// sum each row's part of each block, then take each block's Newton step from all of that block's
+// rows, in order, and apply it to their own rows (vbdTranslate's, per block).
 template <typename T>
 void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
     const int nu = grid_.nu, nv = grid_.nv, finest = vbdLevelParts(translationLevels_, nu, nv);
@@ -210,23 +241,37 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
             if (rowPinned_[std::size_t(r)]) return true;
         return false;
     };
+    const int self = int(&band - bands_.data()), threads = int(bands_.size());
     for (int parts = 2; parts <= finest; parts *= 2)
         for (int colour = 0; colour < 4; ++colour) {
             const auto rows = [&](int b) { return b * nv / parts; };
             const auto columns = [&](int b) { return b * nu / parts; };
-            for (int bj = colour / 2; bj < parts; bj += 2)
-                for (int j = std::max(rows(bj), band.rowBegin);
-                     j < std::min(rows(bj + 1), band.rowEnd); ++j) {
+            // This thread's share [first, last) of the colour's rows, counted over its blocks.
+            int total = 0;
+            for (int bj = colour / 2; bj < parts; bj += 2) total += rows(bj + 1) - rows(bj);
+            const int first = int(std::int64_t(total) * self / threads);
+            const int last = int(std::int64_t(total) * (self + 1) / threads);
+            // f(bj, j0, j1) on each block row bj's part [j0, j1) of this thread's share.
+            const auto forShare = [&](auto&& f) {
+                int counted = 0;
+                for (int bj = colour / 2; bj < parts; bj += 2) {
+                    const int height = rows(bj + 1) - rows(bj);
+                    const int j0 = rows(bj) + std::max(0, first - counted);
+                    const int j1 = rows(bj) + std::min(height, last - counted);
+                    counted += height;
+                    if (j0 < j1) f(bj, j0, j1);
+                }
+            };
+            forShare([&](int bj, int j0, int j1) {
+                for (int j = j0; j < j1; ++j) {
                     const bool near = pinsNear(j);  // once a row, not once a block of it
                     for (int bi = colour % 2; bi < parts; bi += 2)
                         vbdBlockRow(j, columns(bi), columns(bi + 1), rows(bj), rows(bj + 1), near,
                                     blockRows_.data() + (std::size_t(j) * parts + bi) * kSums);
                 }
+            });
             team.sync();
-            for (int bj = colour / 2; bj < parts; bj += 2) {
-                const int j0 = std::max(rows(bj), band.rowBegin);
-                const int j1 = std::min(rows(bj + 1), band.rowEnd);
-                if (j0 >= j1) continue;
+            forShare([&](int bj, int j0, int j1) {
                 for (int bi = colour % 2; bi < parts; bi += 2) {
                     double sum[kSums] = {};
                     for (int j = rows(bj); j < rows(bj + 1); ++j)
@@ -236,17 +281,10 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
                                             sum[5], sum[6], sum[7], sum[8]};
                     double tx, ty, tz;
                     if (!(sum[9] > 0) || !vbdNewtonLane(a, sum[9], tx, ty, tz)) continue;
-                    const Vec3<T> t{T(tx), T(ty), T(tz)};
                     for (int j = j0; j < j1; ++j)
-                        for (int i = columns(bi); i < columns(bi + 1); ++i) {
-                            const std::int64_t k = std::int64_t(j) * nu + i;
-                            if (pinned_[k]) continue;
-                            Vec3<T> x = x_.get(k) + t, d = vbdDisplacement(k) + t;
-                            if (!colliders_.empty()) vbdProject(x, d);
-                            vbdSet(k, x, d);
-                        }
+                        vbdShiftRow(j, columns(bi), columns(bi + 1), Vec3<T>{T(tx), T(ty), T(tz)});
                 }
-            }
+            });
             team.sync();
         }
 }
@@ -258,6 +296,7 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
     template void CpuSolver<T>::vbdTranslationRow(int, double*) const;                          \
     template void CpuSolver<T>::vbdTranslate(const Band&, const Team&);                         \
     template void CpuSolver<T>::vbdTranslateLevels(const Band&, const Team&);                   \
+    template void CpuSolver<T>::vbdShiftRow(int, int, int, const Vec3<T>&);                     \
     template void CpuSolver<T>::vbdBlockRow(int, int, int, int, int, bool, double*) const;      \
     template double CpuSolver<T>::vbdTranslationTerms(int, int, std::int64_t, VbdLane<double>&) \
         const;
