@@ -194,9 +194,11 @@ bool CpuColliders<T>::mayTouchRow(ConstRow3<T> x, int n) const {
 }
 
 template <typename T>
-void CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const {
+bool CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const {
+    bool mayTouch = false;
     for (const CpuCollider<T>& c : posed_) {
         if (!rowMayTouch(c, ConstRow3<T>(x), n)) continue;
+        mayTouch = true;
         if (std::holds_alternative<PlaneT<T>>(c.shape)) {
             kernels.planeContact(contactRow(c, x, v), n);
             continue;
@@ -220,6 +222,7 @@ void CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>&
             },
             c.shape);
     }
+    return mayTouch;
 }
 
 template class CpuColliders<float>;

@@ -81,8 +81,9 @@ public:
     // only where none touches).
     bool mayTouchRow(ConstRow3<T> x, int n) const;
     // The same on the n vertices of a row of positions x and velocities v; planes and spheres
-    // through the row kernels (the same bits, vectorised).
-    void applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;
+    // through the row kernels (the same bits, vectorised). False where no collider could touch
+    // the row (x and v unchanged).
+    bool applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;
 
 private:
     struct Rest {

@@ -161,12 +161,12 @@ private:
     // The unit push p − x of a Newton step's projection at contact slot c (0: none).
     void vbdPushed(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p) {
         const Vec3<T> push = p - x;
-        const T length = glm::length(push);
+        const T length = push == Vec3<T>(0) ? T(0) : glm::length(push);
         pushNormal_.set(c, length > T(0) ? push / length : Vec3<T>(0));
     }
     // Where vertex k's contact is kept (VbdContacts: in phases' order with phases).
     std::int64_t vbdContactAt(std::int64_t k) const { return phases_.active() ? phases_.at(k) : k; }
-    void vbdAccelerate(const Band& band, double omega);
+    void vbdAccelerate(const Band& band, double omega);  // (cpu_vbd_chebyshev.cpp)
     // The translation's Newton step (cpu_vbd_translation.cpp): its sums over row j into out
     // (gradient 3, Hessian 6, Σ m/h²), then the step on every free vertex.
     void vbdTranslationRow(int j, double* out) const;
