@@ -261,6 +261,7 @@ private:
     int translationLevels_ = 0;
     std::vector<double> blockRows_;        // per row and block column, vbdBlockRow's 10 sums
     std::vector<std::uint8_t> rowPinned_;  // per row: whether it holds a pin (the levels')
+    int springReach_ = 2;  // the farthest a spring of the stencil reaches along u or v (1 or 2)
     // With colliders and translation sweeps: the unit push of each vertex's last Newton step's
     // projection (0: none), where its contact is kept (vbdContactAt).
     Soa3<T> pushNormal_;

@@ -46,6 +46,9 @@ void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
     const std::size_t blockSums = std::size_t(grid_.nv) * std::size_t(parts) * kSums;
     if (blockRows_.size() < blockSums) blockRows_.assign(blockSums, 0.0);
     if (translationLevels_ > 0) rowPinned_.assign(std::size_t(grid_.nv), 0);
+    springReach_ = 0;  // a material's: 1 (no bend springs)
+    for (const StencilSpring<T>& s : springs_)
+        springReach_ = std::max({springReach_, std::abs(s.di), std::abs(s.dj)});
     const bool translates = translationSweeps_ > 0 || translationLevels_ > 0;
     if (translates && !scene.colliders.empty() && pushNormal_.size() == 0)
         pushNormal_.assign(std::int64_t(n), Vec3<T>(0));
@@ -168,14 +171,15 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t) {
 
 // Row j's part of the block [i0, i1) × [j0, j1)'s problem: its free vertices' own terms and their
 // springs to vertices outside the block or pinned (seen from the free vertex; those inside cancel).
-// A spring reaches two cells: a vertex two or more from the block's edges, with no pin within two
-// rows (`pinsNear` false), has none.
+// A spring reaches r = springReach_ cells (2 with bend springs, 1 for a material): a vertex r or
+// more from the block's edges, with no pin within r rows (`pinsNear` false), has none.
 template <typename T>
 void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsNear,
                                double* out) const {
     for (int e = 0; e < kSums; ++e) out[e] = 0;
     const int nu = grid_.nu, nv = grid_.nv;
-    const bool edgeRow = pinsNear || j - j0 < 2 || j1 - 1 - j < 2;
+    const int reach = springReach_;
+    const bool edgeRow = pinsNear || j - j0 < reach || j1 - 1 - j < reach;
     const double h = double(dt_t_), perH2 = 1 / (h * h), dragPerMass = double(dampingRate_) / h;
     const std::int64_t grabbed = grab_ ? grab_->vertex : -1;
     double gx = 0, gy = 0, gz = 0, diagonal = 0, inertiaSum = 0;  // the plain vertices'
@@ -200,7 +204,7 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsN
         } else {
             out[9] += vbdTranslationTerms(i, j, k, a);
         }
-        if (!edgeRow && i - i0 >= 2 && i1 - 1 - i >= 2) {  // no spring leaves the block
+        if (!edgeRow && i - i0 >= reach && i1 - 1 - i >= reach) {  // no spring leaves the block
             if (!plain) addLane(a, out);
             continue;
         }
@@ -237,7 +241,7 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
     }
     team.sync();
     const auto pinsNear = [&](int j) {
-        for (int r = std::max(0, j - 2); r <= std::min(nv - 1, j + 2); ++r)
+        for (int r = std::max(0, j - springReach_); r <= std::min(nv - 1, j + springReach_); ++r)
             if (rowPinned_[std::size_t(r)]) return true;
         return false;
     };
