@@ -9,8 +9,8 @@ wall time per simulated second.
 Reference: implicit_euler at dt = 1/60 in double, its CG to |r| <= 1e-10 |b|. At dt = 1/60 the
 CG runs with exactly k iterations a step (tolerance 1e-14, max_iterations k) for k = 1 ... 128,
 without and with block-Jacobi; vbd with 1 ... 100 sweeps; the explicit methods at steps that
-keep them stable; vbd with its default translation step (once a step), without it, and with 4
-translation levels. Runs are CPU float on 2 threads (the real-time target); an unstable run is
+keep them stable; vbd with its translation step (once a step, the default) and no levels, without
+either, and with both and 4 translation levels (the default since the levels). Runs are CPU float on 2 threads (the real-time target); an unstable run is
 recorded as such. Writes pareto_SCENE.csv and, with gnuplot, pareto_SCENE.png.
 """
 import csv
@@ -78,8 +78,8 @@ for preconditioner in ("none", "jacobi"):
         point(f"implicit_euler/{preconditioner}", "iterations", k,
               implicit + [f'integrator.preconditioner="{preconditioner}"',
                           "integrator.tolerance=1e-14", f"integrator.max_iterations={k}"], FRAME)
-# The default, without its translation step, and with 4 translation levels (as many as the grid
-# holds: 3 at 24²).
+# The translation step without levels, neither, and both with 4 translation levels (the default;
+# as many as the grid holds: 3 at 24²).
 for translation, levels, name in ((1, 0, "vbd"), (0, 0, "vbd/translation_0"),
                                   (1, 4, "vbd/levels_4")):
     for sweeps in (1, 2, 5, 10, 20, 50, 100):

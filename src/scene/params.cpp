@@ -123,7 +123,7 @@ constexpr ParamSpec kParams[] = {
                     ? std::optional<double>(s.integrator.translationSweeps) : std::nullopt;
      },
      [](Scene& s, double v) { s.integrator.translationSweeps = int(std::lround(v)); }},
-    {"integrator.translation_levels", "", 0, 16, false, true, 0, false,
+    {"integrator.translation_levels", "", 0, 16, false, true, 4, false,
      "vbd: before the first sweep of a step, the same Newton step on the translation of each "
      "block of the sheet cut into 2 × 2, 4 × 4, … 2^N × 2^N parts; 0 = none",
      {PanelSection::TimeStep, SliderScale::Linear, 0, 8, "vbd translation levels", "%d"},

@@ -207,7 +207,7 @@ TEST(RowBands, ThreadCountsOneTwoThreeGiveTheSameBits) {
 
 // bench speed reports app::cpuBytesPerVertex as the CPU's memory: it must be what the solver
 // holds, for every integrator and precision, with frictionless colliders and with friction, and
-// with vbd's translation sweeps; the threads' scratch rows stay O(side).
+// with vbd's translation sweeps and levels; the threads' scratch rows stay O(side).
 TEST(CpuMemory, BytesPerVertexOfTheBenchModelAreWhatTheSolverAllocates) {
     for (Method m : kMethods)
         for (double rub : {0.0, 0.5})
@@ -216,11 +216,13 @@ TEST(CpuMemory, BytesPerVertexOfTheBenchModelAreWhatTheSolverAllocates) {
                 ASSERT_FALSE(scene.colliders.empty());
                 scene.colliders[0].friction = rub;
                 scene.integrator.translationSweeps = sweeps;
+                scene.integrator.translationLevels = sweeps > 0 ? 4 : 0;
                 CpuSolver<float> f(scene, 2);
                 CpuSolver<double> d(scene, 2);
                 const Preconditioner p = scene.integrator.preconditioner;
                 const bool colliders = !scene.colliders.empty(), friction = scene.anyFriction();
-                const bool kernels = f.isa() != CpuIsa::Scalar, translation = sweeps > 0;
+                const bool kernels = f.isa() != CpuIsa::Scalar;
+                const bool translation = scene.integrator.vbdTranslates();
                 EXPECT_EQ(f.allocatedBytes(),
                           64 * 40 *
                               app::cpuBytesPerVertex(Precision::Float, m, p, colliders, kernels,

@@ -5,7 +5,8 @@
 //   drape at 96² and 10 sweeps at Δt = 1/60 stays under max_strain in every frame, where the
 //   sweeps alone let the springs at the sphere's apex pass it;
 // - the levels change where the sweeps go, not where they converge: 300 sweeps give the same
-//   state with and without them.
+//   state with and without them;
+// - vbd's default (4 levels) holds the 128² landing that the sweeps alone tear.
 // (Bits across threads and instruction sets: Vbd.EveryInstructionSetAndThreadCount… .)
 #include <gtest/gtest.h>
 
@@ -23,16 +24,15 @@ namespace cloth {
 namespace {
 
 // The bench's drape (src/bench/bench_realtime_scene.cpp): 1 m of cotton falls 0.3 m onto a
-// sphere of 0.25 m on the ground, vbd at 10 sweeps and Δt = 1/60.
+// sphere of 0.25 m on the ground, vbd at 10 sweeps and Δt = 1/60; `levels` < 0: vbd's default.
 Scene drape(int n, int levels) {
     const std::string doc =
         R"({"name": "apex", "cloth": {"resolution": [)" + std::to_string(n) + ", " +
         std::to_string(n) +
         R"(], "size": [1, 1], "origin": [-0.5, 0.8, -0.5], "u_axis": [1, 0, 0], "v_axis": [0, 0, 1]},)"
         R"( "material": {"preset": "cotton"},)"
-        R"( "integrator": {"method": "vbd", "dt": 0.016666666666666666, "iterations": 10,)"
-        R"( "translation_levels": )" +
-        std::to_string(levels) +
+        R"( "integrator": {"method": "vbd", "dt": 0.016666666666666666, "iterations": 10)" +
+        (levels < 0 ? std::string() : ", \"translation_levels\": " + std::to_string(levels)) +
         R"(}, "colliders": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]},)"
         R"( {"type": "sphere", "center": [0, 0.25, 0], "radius": 0.25}], "max_strain": 100})";
     return parseScene(doc, "drape.json");
@@ -57,6 +57,19 @@ TEST(VbdLevels, ALandingSheetHoldsInEveryFrameAtTenSweeps) {
     std::printf("drape 96², 10 sweeps, 1/60: largest strain %.3g with 5 levels, %.3g without\n",
                 with, without);
     EXPECT_LT(with, 0.7);
+    EXPECT_GT(without, 1.0) << "the sweeps alone held it";
+}
+
+// vbd as a scene gets it, without naming the levels, holds the 128² landing (4 levels: 0.60 in
+// docs/integrators.md's table), which tears with the levels off (3.8).
+TEST(VbdLevels, TheDefaultHoldsTheLandingThatTearsWithoutThem) {
+    const Scene defaults = drape(128, -1);
+    EXPECT_EQ(defaults.integrator.translationLevels, 4);
+    const double with = largestStrainEveryFrame(defaults, 60);
+    const double without = largestStrainEveryFrame(drape(128, 0), 60);
+    std::printf("drape 128², vbd's defaults at 1/60: largest strain %.3g, %.3g without levels\n",
+                with, without);
+    EXPECT_LT(with, 0.8);
     EXPECT_GT(without, 1.0) << "the sweeps alone held it";
 }
 
