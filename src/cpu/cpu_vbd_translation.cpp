@@ -12,6 +12,7 @@
 // parts, where the springs that leave the block join the pins'.
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 
 #include "cpu/cpu_solver.h"
 #include "model/vbd_lane.h"
@@ -159,13 +160,36 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t) {
         phases_.d.set(at, phases_.d.get(at) + t);
     }
     if (colliders_.empty() || !colliders_.mayTouchRow(x_.row(row + i0), i1 - i0)) return;
-    for (int i = i0; i < i1; ++i) {
-        const std::int64_t k = row + i;
-        if (pinned_[k]) continue;
-        Vec3<T> x = x_.get(k), d = phased ? phases_.d.get(phases_.at(i, j)) : displacement_.get(k);
-        const Vec3<T> before = x;
-        vbdProject(x, d);
-        if (x != before) vbdSet(k, x, d);
+    if (!phased) {  // (no row kernels)
+        for (int i = i0; i < i1; ++i) {
+            const std::int64_t k = row + i;
+            if (pinned_[k]) continue;
+            Vec3<T> x = x_.get(k), d = displacement_.get(k);
+            vbdProject(x, d);
+            vbdSet(k, x, d);
+        }
+        return;
+    }
+    // By runs through the colliders' row code (the same bits as vertex by vertex).
+    constexpr int kRun = 64;
+    alignas(64) T p[3][kRun], v[3][kRun];
+    for (int c = i0; c < i1; c += kRun) {
+        const int n = std::min(kRun, i1 - c);
+        const ConstRow3<T> x = std::as_const(x_).row(row + c);
+        for (int m = 0; m < n; ++m) {
+            p[0][m] = x.x[m], p[1][m] = x.y[m], p[2][m] = x.z[m];
+            v[0][m] = v[1][m] = v[2][m] = T(0);
+        }
+        if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_)) continue;
+        for (int m = 0; m < n; ++m) {
+            const std::int64_t k = row + c + m;
+            const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old = x_.get(k);
+            if (pinned_[k] || pushed == old) continue;
+            const std::int64_t at = phases_.at(c + m, j);
+            x_.set(k, pushed);
+            phases_.x.set(at, pushed);
+            phases_.d.set(at, phases_.d.get(at) + (pushed - old));
+        }
     }
 }
 
