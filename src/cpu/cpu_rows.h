@@ -110,7 +110,10 @@ struct ContactRow {
 // run is at + m and its neighbours lie a fixed offset away; it writes the moved vertices there
 // and into the iterate. A pinned vertex, and `skip` (the grabbed one, which the caller steps),
 // keep their position; moved[m] says whether vertex m took its step (the caller then applies the
-// colliders, with the Hessians the kernel leaves it).
+// colliders, with the Hessians the kernel leaves it). The kernel computes whole vectors: it reads
+// up to kVbdSlack entries past a run in every array in phases, and writes moved and the Hessians
+// for n rounded up to a multiple of 64 / sizeof(T) (64 entries hold any run of 64 or fewer).
+inline constexpr std::int64_t kVbdSlack = 64;
 template <typename T>
 struct VbdRow {
     // The positions in the grid's order: written.

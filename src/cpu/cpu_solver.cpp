@@ -65,7 +65,7 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
         for (auto* a : {&inertialStep_, &vPrevious_}) a->assign(n, Vec3<T>(0));
         if (kernels_) {
             phases_.configure(nu, nv);
-            phases_.bendDiagonal.assign(bendingDiagonal_.size(), T(0));
+            phases_.sizeBendDiagonal(bendingDiagonal_.size());
         }
     }  // (its Chebyshev iterates are takeParameters': a new ρ may ask for them)
     // Bands of whole rows, on chunk boundaries (reduce()), so each row's sweep is one thread's.
@@ -152,7 +152,7 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
         for (int j = 0; j < grid_.nv; ++j)
             for (int i = 0; i < grid_.nu; ++i)
                 bendingDiagonal_.push_back(bendingDiagonal<T>(bending_, i, j));
-    if (phases_.active()) phases_.bendDiagonal.assign(bendingDiagonal_.size(), T(0));
+    if (phases_.active()) phases_.sizeBendDiagonal(bendingDiagonal_.size());
     gravity_ = cast<T>(scene.gravity);
     maxSpeed_ = scene.maxSpeed;
     maxSpeed2_ = T(scene.maxSpeed * scene.maxSpeed);
@@ -362,18 +362,14 @@ SimState CpuSolver<T>::read() const {
 template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
-    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_, &displacement_, &pushNormal_,
-                             &phases_.x, &phases_.d, &phases_.y})
+    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_, &displacement_, &pushNormal_})
         vectors += std::size_t(a->size());
     for (const auto* a : {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_,
                           &ap_, &z_, &inertialStep_, &vPrevious_, &dBefore_, &dBeforeLast_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
-           contacts_.size() * sizeof(SolveContact<T>) + vbdContacts_.bytes() +
-           (inverseMass_.size() + bendingDiagonal_.size() + phases_.inverseMass.size() +
-            phases_.bendDiagonal.size()) *
-               sizeof(T) +
-           pinned_.size() + phases_.pinned.size();
+           contacts_.size() * sizeof(SolveContact<T>) + vbdContacts_.bytes() + phases_.bytes() +
+           (inverseMass_.size() + bendingDiagonal_.size()) * sizeof(T) + pinned_.size();
 }
 
 template <typename T>

@@ -7,7 +7,9 @@
 //
 // so a run of one colour's vertices, and the same run shifted by any stencil offset (di, dj), is
 // contiguous. Phase p of a row starts at start[p] (the phases before it hold ⌈(nu − q)/5⌉ columns
-// each): no padding, nu · nv entries. The solver keeps this copy of the positions beside its own
+// each): no padding between rows, nu · nv entries, then kVbdSlack more (cpu_rows.h: the row
+// kernel's last vector of a run reads past the run; those lanes are computed and never stored),
+// pinned there and zero elsewhere. The solver keeps this copy of the positions beside its own
 // (both written on every move, cpu_vbd.cpp vbdSet), the displacements only here during the
 // sweeps, and fills the rest once a step (vbdStart).
 #pragma once
@@ -35,12 +37,23 @@ struct VbdPhases {
         nu = u;
         nv = v;
         for (int p = 1; p < 5; ++p) start[p] = start[p - 1] + (u - (p - 1) + 4) / 5;
-        const std::int64_t n = std::int64_t(u) * v;
+        const std::int64_t n = std::int64_t(u) * v + kVbdSlack;
         for (Soa3<T>* a : {&x, &d, &y}) a->assign(n, Vec3<T>(0));
         inverseMass.assign(std::size_t(n), T(0));
         pinned.assign(std::size_t(n), 1);
     }
+    // Bending's diagonal weights for `vertices` vertices (0: no bending).
+    void sizeBendDiagonal(std::size_t vertices) {
+        bendDiagonal.assign(vertices > 0 ? vertices + std::size_t(kVbdSlack) : 0, T(0));
+    }
     bool active() const { return nu > 0; }
+    // What the copy holds for the grid's vertices (the slack, a constant, is not counted: the
+    // memory model, cpu/cpu_memory.h, is per vertex).
+    std::size_t bytes() const {
+        if (!active()) return 0;
+        const std::size_t n = std::size_t(nu) * std::size_t(nv);
+        return n * ((9 + 1 + (bendDiagonal.empty() ? 0 : 1)) * sizeof(T) + 1);
+    }
     std::int64_t at(int i, int j) const { return std::int64_t(j) * nu + start[i % 5] + i / 5; }
     std::int64_t at(std::int64_t k) const { return at(int(k % nu), int(k / nu)); }
     // How far (i + di, j + dj) lies from (i, j) here: the same for every i of one phase.
@@ -68,15 +81,19 @@ struct VbdContacts {
     Soa3<T> normal, slide;
     AlignedVector<T> weight;
 
-    // n contacts, none touching; those there are kept where there are n already.
+    // n contacts (and kVbdSlack more, read by the row kernel), none touching; those there are
+    // kept where there are n already.
     void resize(std::size_t n) {
-        if (weight.size() == n) return;
-        for (Soa3<T>* a : {&normal, &slide}) a->assign(std::int64_t(n), Vec3<T>(0));
-        weight.assign(n, T(0));
+        const std::size_t entries = n > 0 ? n + std::size_t(kVbdSlack) : 0;
+        if (weight.size() == entries) return;
+        for (Soa3<T>* a : {&normal, &slide}) a->assign(std::int64_t(entries), Vec3<T>(0));
+        weight.assign(entries, T(0));
     }
     void clear() { std::fill(weight.begin(), weight.end(), T(0)); }
     bool active() const { return !weight.empty(); }
-    std::size_t bytes() const { return 7 * weight.size() * sizeof(T); }
+    std::size_t bytes() const {  // the slack not counted, as VbdPhases::bytes
+        return weight.empty() ? 0 : 7 * (weight.size() - std::size_t(kVbdSlack)) * sizeof(T);
+    }
 };
 
 // How many contacts vbd keeps for `scene`: one per vertex where a collider has friction, else 0.

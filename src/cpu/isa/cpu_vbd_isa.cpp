@@ -15,11 +15,25 @@
 namespace cloth::CLOTH_ISA_NS {
 namespace {
 
+#ifndef CLOTH_ISA_VECTOR_BYTES
+#error "CLOTH_ISA_VECTOR_BYTES gives the instruction set's widest vector"
+#endif
+
 // vbd (cpu_rows.h VbdRow) on up to kVbdChunk vertices from m0: each term of the local problems
 // in a loop of its own over the chunk's vertices, their sums kept in the chunk's arrays, so each
 // loop vectorises across the vertices (every load contiguous: the arrays are in phases); then
-// the Newton steps, and the stores after every step is taken.
+// the Newton steps, and the stores after every step is taken. The loops that compute run over
+// whole vectors (vbdLanes): a run's last vector would otherwise go through the compiler's scalar
+// epilogue, which cost as much as the vectors before it (docs/performance.md). The lanes past
+// the run read what lies beyond it in phases (VbdPhases' slack at the end) and are never stored.
 constexpr int kVbdChunk = 64;
+
+template <typename T>
+constexpr int vbdLanes(int n) {
+    constexpr int width = CLOTH_ISA_VECTOR_BYTES / int(sizeof(T));
+    static_assert(kVbdChunk % width == 0 && width - 1 <= kVbdSlack, "whole vectors fit");
+    return (n + width - 1) / width * width;
+}
 
 template <typename T>
 struct VbdChunk {
@@ -97,17 +111,18 @@ void vbdBendingLoop(T* __restrict g, const T* const (&p)[13], T u1, T u0, T v1, 
 template <typename T>
 void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     VbdChunk<T> c;
+    const int lanes = vbdLanes<T>(n);
     const std::int64_t a0 = r.at + m0;
     const T* __restrict px = r.px.x + a0, * __restrict py = r.px.y + a0, * __restrict pz = r.px.z + a0;
     const T* __restrict dx = r.pd.x + a0, * __restrict dy = r.pd.y + a0, * __restrict dz = r.pd.z + a0;
     const T* __restrict inverseMass = r.inverseMass + a0;
     const T h = r.h, dampingRate = r.dampingRate, inverseH = T(1) / r.h;
-    for (int m = 0; m < n; ++m) c.mass[m] = T(1) / inverseMass[m];
+    for (int m = 0; m < lanes; ++m) c.mass[m] = T(1) / inverseMass[m];
     // The inertia first, as addVbdInertia starts the sum from zero.
-    vbdInertiaLoop(c.gx, dx, r.py.x + a0, c.mass, h, dampingRate, n);
-    vbdInertiaLoop(c.gy, dy, r.py.y + a0, c.mass, h, dampingRate, n);
-    vbdInertiaLoop(c.gz, dz, r.py.z + a0, c.mass, h, dampingRate, n);
-    for (int m = 0; m < n; ++m) {
+    vbdInertiaLoop(c.gx, dx, r.py.x + a0, c.mass, h, dampingRate, lanes);
+    vbdInertiaLoop(c.gy, dy, r.py.y + a0, c.mass, h, dampingRate, lanes);
+    vbdInertiaLoop(c.gz, dz, r.py.z + a0, c.mass, h, dampingRate, lanes);
+    for (int m = 0; m < lanes; ++m) {
         const T mass = c.mass[m];
         const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
         c.xx[m] = diagonal, c.yy[m] = diagonal, c.zz[m] = diagonal;
@@ -119,7 +134,7 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
         const T K = r.stiffness[s], L = r.restLength[s], beta = r.damping[s];
         if (beta > 0) {
             const T* __restrict qdx = dx + o, * __restrict qdy = dy + o, * __restrict qdz = dz + o;
-            for (int m = 0; m < n; ++m) {
+            for (int m = 0; m < lanes; ++m) {
                 VbdLane<T> a = c.get(m);
                 const T ex = qx[m] - px[m], ey = qy[m] - py[m], ez = qz[m] - pz[m];
                 const T wx = qdx[m] - dx[m], wy = qdy[m] - dy[m], wz = qdz[m] - dz[m];
@@ -128,7 +143,7 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
                 c.set(m, a);
             }
         } else {
-            for (int m = 0; m < n; ++m) {
+            for (int m = 0; m < lanes; ++m) {
                 VbdLane<T> a = c.get(m);
                 vbdSpringLane(qx[m] - px[m], qy[m] - py[m], qz[m] - pz[m], K, L, a);
                 c.set(m, a);
@@ -145,10 +160,10 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
             vbdBendingLoop(axis == 0   ? c.gx
                            : axis == 1 ? c.gy
                                        : c.gz,
-                           p, u1, u0, v1, v0, plus, minus, n);
+                           p, u1, u0, v1, v0, plus, minus, lanes);
         }
         const T* __restrict w = r.bendDiagonal + a0;
-        for (int m = 0; m < n; ++m) {
+        for (int m = 0; m < lanes; ++m) {
             const T s = w[m];
             c.xx[m] += s, c.yy[m] += s, c.zz[m] += s;
         }
@@ -158,14 +173,14 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
         const T* __restrict uz = r.contactSlide.z + a0, * __restrict w = r.contactWeight + a0;
         const T* __restrict cx = r.contactNormal.x + a0, * __restrict cy = r.contactNormal.y + a0;
         const T* __restrict cz = r.contactNormal.z + a0;
-        for (int m = 0; m < n; ++m) {
+        for (int m = 0; m < lanes; ++m) {
             VbdLane<T> a = c.get(m);
             vbdFrictionLane(dx[m] - ux[m], dy[m] - uy[m], dz[m] - uz[m], cx[m], cy[m], cz[m], w[m],
                             r.epsilon, a);
             c.set(m, a);
         }
         T* const* out = r.hessian;
-        for (int m = 0; m < n; ++m) {
+        for (int m = 0; m < lanes; ++m) {
             out[0][m0 + m] = c.xx[m], out[1][m0 + m] = c.yy[m], out[2][m0 + m] = c.zz[m];
             out[3][m0 + m] = c.xy[m], out[4][m0 + m] = c.xz[m], out[5][m0 + m] = c.yz[m];
         }
@@ -173,7 +188,7 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     const std::uint8_t* __restrict pinned = r.pinned + a0;
     std::uint8_t* __restrict moved = r.moved + m0;
     const std::int64_t k0 = r.first + 5 * std::int64_t(m0);
-    for (int m = 0; m < n; ++m) {
+    for (int m = 0; m < lanes; ++m) {
         T sx, sy, sz;
         const bool stepped =
             vbdNewtonLane(c.get(m), double(c.mass[m]) / (double(h) * h), sx, sy, sz);
