@@ -142,23 +142,24 @@ private:
     // Chebyshev extrapolation after a sweep, each over this band's vertices.
     bool stepVbd(Band& band, const Team& team, long stepNumber);
     void vbdStart(const Band& band, const Team& team, long stepNumber);
-    void vbdSweep(const Band& band, int colour);
+    void vbdSweep(const Band& band, int colour, bool pushes);
     VbdRow<T> vbdRow();
     void vbdRunOffsets(VbdRow<T>& r, int i) const;
     // Vertex k's iterate, position x and displacement d = x − x_n, and its copy in phases.
     void vbdSet(std::int64_t k, const Vec3<T>& x, const Vec3<T>& d);
-    void vbdVertex(std::int64_t k, int i, int j);
+    void vbdVertex(std::int64_t k, int i, int j, bool pushes);
     void vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
                   const typename CpuColliders<T>::Surface& surface, const VbdLane<T>& hessian);
     void vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved, int n,
-                       const T* const* hessian);
+                       const T* const* hessian, bool pushes);
     void vbdProject(Vec3<T>& x, Vec3<T>& d) const;
     void vbdFillPhases(const Band& band);
     // Vertex k's displacement d = x − x_n: kept in phases alone where the solver keeps phases.
     Vec3<T> vbdDisplacement(std::int64_t k) const {
         return phases_.active() ? phases_.d.get(phases_.at(k)) : displacement_.get(k);
     }
-    // The unit push p − x of a Newton step's projection at contact slot c (0: none).
+    // The unit push p − x of a Newton step's projection at contact slot c (0: none), kept where
+    // a translation's step reads it: `pushes` in vbdSweep, vbdVertex, vbdCollideRun (stepVbd).
     void vbdPushed(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p) {
         const Vec3<T> push = p - x;
         const T length = push == Vec3<T>(0) ? T(0) : glm::length(push);

@@ -28,8 +28,11 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     if (translationLevels_ > 0) vbdTranslateLevels(band, team);  // (cpu_vbd_translation.cpp)
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
+        // The pushes the translation's steps read: the sweeps each follows, and the last sweep
+        // (read by the next step's levels and translation); the others' are never read.
+        const bool pushes = n <= translationSweeps_ || n == vbdIterations_;
         for (int colour = 0; colour < kVbdColours; ++colour) {
-            vbdSweep(band, colour);
+            vbdSweep(band, colour, pushes);
             team.sync();  // the next colour reads this one's new positions
         }
         if (n <= translationSweeps_) vbdTranslate(band, team);  // (cpu_vbd_translation.cpp)
@@ -119,11 +122,11 @@ void CpuSolver<T>::vbdFillPhases(const Band& band) {
 // goes through the vbd kernel (cpu/cpu_rows.h), up to kRun at a time; the rest, and the
 // grabbed vertex, vertex by vertex. The colour's vertices share no term, so the order is free.
 template <typename T>
-void CpuSolver<T>::vbdSweep(const Band& band, int colour) {
+void CpuSolver<T>::vbdSweep(const Band& band, int colour, bool pushes) {
     const int nu = grid_.nu, nv = grid_.nv;
     auto step = [&](int i, int j) {
         const std::int64_t k = std::int64_t(j) * nu + i;
-        if (!pinned_[k]) vbdVertex(k, i, j);
+        if (!pinned_[k]) vbdVertex(k, i, j, pushes);
     };
     VbdRow<T> row{};
     if (kernels_) row = vbdRow();
@@ -145,8 +148,9 @@ void CpuSolver<T>::vbdSweep(const Band& band, int colour) {
                 kernels_->vbd(row, n);
                 if (row.skip >= row.first && row.skip < row.first + kVbdColours * n &&
                     (row.skip - row.first) % kVbdColours == 0 && !pinned_[row.skip])
-                    vbdVertex(row.skip, int(row.skip % nu), j);
-                if (!colliders_.empty()) vbdCollideRun(row.first, row.at, moved, n, row.hessian);
+                    vbdVertex(row.skip, int(row.skip % nu), j, pushes);
+                if (!colliders_.empty())
+                    vbdCollideRun(row.first, row.at, moved, n, row.hessian, pushes);
                 i += kVbdColours * n;
             }
         }
@@ -216,7 +220,7 @@ void CpuSolver<T>::vbdSet(std::int64_t k, const Vec3<T>& x, const Vec3<T>& d) {
 // projection of the new position (docs/integrators.md "vbd": contact and friction); the
 // displacement moves with the position.
 template <typename T>
-void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
+void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j, bool pushes) {
     const T h = dt_t_, mass = T(1) / inverseMass_[std::size_t(k)];
     Vec3<T> x = x_.get(k), d = vbdDisplacement(k);
     VbdLocal<T> local;
@@ -241,7 +245,7 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j) {
         Vec3<T> p = x;
         const auto surface = colliders_.project(p);
         if (vbdContacts_.active()) vbdTouch(c, x, p, surface, vbdLane(local));
-        if (pushNormal_.size() > 0) vbdPushed(c, x, p);
+        if (pushes && pushNormal_.size() > 0) vbdPushed(c, x, p);
         d += p - x;
         x = p;
     }
@@ -276,7 +280,7 @@ void CpuSolver<T>::vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
 // null for a projection that sets no contact (Chebyshev's extrapolation).
 template <typename T>
 void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved,
-                                 int n, const T* const* hessian) {
+                                 int n, const T* const* hessian, bool pushes) {
     constexpr int kRun = 64;
     alignas(64) T p[3][kRun], v[3][kRun] = {};
     const T* position[3] = {phases_.x.x.data() + at, phases_.x.y.data() + at,
@@ -285,10 +289,10 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
         for (int m = 0; m < n; ++m) p[c][m] = position[c][m];
     if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_)) {
         // Nothing pushed: no contact and no push where there was one (vbdTouch, vbdPushed).
-        for (int m = 0; m < n && hessian; ++m) {
+        for (int m = 0; m < n; ++m) {
             if (!moved[m]) continue;
-            if (hessian[0]) vbdContacts_.weight[at + m] = T(0);
-            if (pushNormal_.size() > 0) pushNormal_.set(at + m, Vec3<T>(0));
+            if (hessian && hessian[0]) vbdContacts_.weight[at + m] = T(0);
+            if (pushes && pushNormal_.size() > 0) pushNormal_.set(at + m, Vec3<T>(0));
         }
         return;
     }
@@ -302,7 +306,7 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
                 pushed != old ? colliders_.surfaceAt(old) : typename CpuColliders<T>::Surface{},
                 {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m], hessian[4][m],
                  hessian[5][m]});
-        if (hessian && pushNormal_.size() > 0) vbdPushed(at + m, old, pushed);
+        if (pushes && pushNormal_.size() > 0) vbdPushed(at + m, old, pushed);
         if (pushed == old) continue;
         const std::int64_t k = first + std::int64_t(kVbdColours) * m;
         const Vec3<T> d = phases_.d.get(at + m) + (pushed - old);
@@ -327,17 +331,17 @@ void CpuSolver<T>::vbdProject(Vec3<T>& x, Vec3<T>& d) const {
 #define CLOTH_INSTANTIATE(T)                                                                   \
     template bool CpuSolver<T>::stepVbd(Band&, const Team&, long);                             \
     template void CpuSolver<T>::vbdStart(const Band&, const Team&, long);                      \
-    template void CpuSolver<T>::vbdSweep(const Band&, int);                                    \
+    template void CpuSolver<T>::vbdSweep(const Band&, int, bool);                              \
     template VbdRow<T> CpuSolver<T>::vbdRow();                                                 \
     template void CpuSolver<T>::vbdRunOffsets(VbdRow<T>&, int) const;                          \
     template void CpuSolver<T>::vbdSet(std::int64_t, const Vec3<T>&, const Vec3<T>&);          \
     template void CpuSolver<T>::vbdFillPhases(const Band&);                                    \
-    template void CpuSolver<T>::vbdVertex(std::int64_t, int, int);                             \
+    template void CpuSolver<T>::vbdVertex(std::int64_t, int, int, bool);                       \
     template void CpuSolver<T>::vbdTouch(std::int64_t, const Vec3<T>&, const Vec3<T>&,         \
                                          const typename CpuColliders<T>::Surface&,             \
                                          const VbdLane<T>&);                                   \
     template void CpuSolver<T>::vbdCollideRun(std::int64_t, std::int64_t, const std::uint8_t*, \
-                                              int, const T* const*);                           \
+                                              int, const T* const*, bool);                     \
     template void CpuSolver<T>::vbdProject(Vec3<T>&, Vec3<T>&) const;
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)

@@ -59,7 +59,7 @@ void CpuSolver<T>::vbdAccelerate(const Band& band, double omega) {
                     phases_.x.set(at + m, x);
                     phases_.d.set(at + m, d);
                 }
-                if (!colliders_.empty()) vbdCollideRun(first, at, moved, n, nullptr);
+                if (!colliders_.empty()) vbdCollideRun(first, at, moved, n, nullptr, false);
                 for (int m = 0; m < n; ++m)
                     if (moved[m])
                         shift(first + std::int64_t(kVbdColours) * m, phases_.d.get(at + m));
