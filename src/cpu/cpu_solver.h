@@ -154,6 +154,7 @@ private:
                        const T* const* hessian, bool pushes);
     void vbdProject(Vec3<T>& x, Vec3<T>& d) const;
     void vbdFillPhases(const Band& band);
+    bool vbdFinishRows(Band& band);  // (cpu_vbd_finish.cpp)
     // Vertex k's displacement d = x − x_n: kept in phases alone where the solver keeps phases.
     Vec3<T> vbdDisplacement(std::int64_t k) const {
         return phases_.active() ? phases_.d.get(phases_.at(k)) : displacement_.get(k);

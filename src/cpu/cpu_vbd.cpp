@@ -20,8 +20,9 @@ namespace cloth {
 // One step: the start (ŷ, the initial guess), `iterations` sweeps over the five colours (the
 // first translation_sweeps followed by the translation's step, each with ρ > 0 by the Chebyshev
 // extrapolation), then v_{n+1} = d/h and
-// finishStep's pins, colliders and check; a vertex that started inside a collider keeps none of
-// the correction that put it out as velocity (model/start_inside.h).
+// finishStep's pins, colliders and check (by rows with row kernels, cpu_vbd_finish.cpp); a vertex
+// that started inside a collider keeps none of the correction that put it out as velocity
+// (model/start_inside.h).
 template <typename T>
 bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     vbdStart(band, team, stepNumber);
@@ -42,6 +43,7 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
             team.sync();
         }
     }
+    if (kernels_) return vbdFinishRows(band);
     const T h = dt_t_;
     const auto collide = [this](Vec3<T>& p, Vec3<T>& w) { colliders_.apply(p, w); };
     const auto surface = [this](const Vec3<T>& p) { return colliders_.surfaceVelocity(p); };
