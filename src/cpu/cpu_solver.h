@@ -173,10 +173,21 @@ private:
     // (gradient 3, Hessian 6, Σ m/h²), then the step on every free vertex.
     void vbdTranslationRow(int j, double* out) const;
     void vbdTranslate(const Band& band, const Team& team);
-    void vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t);
+    void vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* own = nullptr);
     double vbdTranslationTerms(int i, int j, std::int64_t k, VbdLane<double>& a) const;
-    // The translation's levels (integrator.translation_levels): a block's sums over row j, and
-    // the steps of every level before the first sweep.
+    // Whether free vertex k's own terms (contact slot at) are linear in its displacement: no
+    // friction contact, not grabbed. Their weight m/h² + m c/h, the gradient's rate of change.
+    bool vbdLinearOwn(std::int64_t k, std::int64_t at) const {
+        return !(grab_ && grab_->vertex == k) &&
+               !(vbdContacts_.active() && vbdContacts_.weight[std::size_t(at)] != T(0));
+    }
+    double vbdInertiaDrag(std::int64_t k) const {
+        const double h = double(dt_t_), m = 1.0 / double(inverseMass_[std::size_t(k)]);
+        return m / (h * h) + m * double(dampingRate_) / h;
+    }
+    // The translation's levels (integrator.translation_levels, cpu_vbd_levels.cpp): row j's own
+    // sums, a block's sums over row j, and the steps of every level before the first sweep.
+    void vbdLevelOwnRow(int j);
     void vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsNear, double* out) const;
     void vbdTranslateLevels(const Band& band, const Team& team);
     void vbdTakeParameters(const Scene& scene);  // sweeps, ρ, their storage
@@ -263,6 +274,12 @@ private:
     int translationLevels_ = 0;
     std::vector<double> blockRows_;        // per row and block column, vbdBlockRow's 10 sums
     std::vector<std::uint8_t> rowPinned_;  // per row: whether it holds a pin (the levels')
+    // The levels' own sums per row and finest block column (vbd_sums::kOwn each), whether each
+    // row has a vertex whose own terms are not linear, the finest block column of each column
+    // (and the finest parts a side at nu).
+    std::vector<double> ownRows_;
+    std::vector<std::uint8_t> rowNonlinear_;
+    std::vector<int> finestColumn_;
     int springReach_ = 2;  // the farthest a spring of the stencil reaches along u or v (1 or 2)
     // With colliders and translation sweeps: the unit push of each vertex's last Newton step's
     // projection (0: none), where its contact is kept (vbdContactAt).

@@ -15,22 +15,16 @@
 #include <utility>
 
 #include "cpu/cpu_solver.h"
+#include "cpu/cpu_vbd_sums.h"
 #include "model/vbd_lane.h"
 #include "model/vbd_local.h"
 
 namespace cloth {
 
-namespace {
-
-constexpr int kSums = 10;                  // gradient (3), Hessian (6), Σ m/h²
-constexpr double kContactStiffness = 1e4;  // × m/h²: a contact's hold along its push
-
-void addLane(const VbdLane<double>& a, double* out) {
-    const double v[9] = {a.gx, a.gy, a.gz, a.xx, a.yy, a.zz, a.xy, a.xz, a.yz};
-    for (int e = 0; e < 9; ++e) out[e] += v[e];
-}
-
-}  // namespace
+using vbd_sums::addLane;
+using vbd_sums::kContactStiffness;
+using vbd_sums::kOwn;
+using vbd_sums::kSums;
 
 template <typename T>
 void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
@@ -46,7 +40,16 @@ void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
     const int parts = vbdLevelParts(translationLevels_, grid_.nu, grid_.nv);
     const std::size_t blockSums = std::size_t(grid_.nv) * std::size_t(parts) * kSums;
     if (blockRows_.size() < blockSums) blockRows_.assign(blockSums, 0.0);
-    if (translationLevels_ > 0) rowPinned_.assign(std::size_t(grid_.nv), 0);
+    if (translationLevels_ > 0) {
+        rowPinned_.assign(std::size_t(grid_.nv), 0);
+        rowNonlinear_.assign(std::size_t(grid_.nv), 0);
+        const std::size_t ownSums = std::size_t(grid_.nv) * std::size_t(parts) * kOwn;
+        if (ownRows_.size() < ownSums) ownRows_.assign(ownSums, 0.0);
+        finestColumn_.assign(std::size_t(grid_.nu) + 1, parts);
+        for (int c = parts - 1; c >= 0; --c)
+            for (int i = c * grid_.nu / parts; i < (c + 1) * grid_.nu / parts; ++i)
+                finestColumn_[std::size_t(i)] = c;
+    }
     springReach_ = 0;  // a material's: 1 (no bend springs)
     for (const StencilSpring<T>& s : springs_)
         springReach_ = std::max({springReach_, std::abs(s.di), std::abs(s.dj)});
@@ -140,10 +143,11 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
 }
 
 // Row j's free vertices in columns [i0, i1) moved by t, position and displacement, then the
-// colliders' projection where one may touch the row (CpuColliders::mayTouchRow, whose cull is
-// conservative: the same bits as projecting every vertex).
+// colliders' projection (by runs through their row code with row kernels, where their cull lets
+// one touch the run: the same bits as projecting every vertex). own: row j's own sums of the
+// levels (vbdLevelOwnRow), kept up to date with the moves; null for the translation's step.
 template <typename T>
-void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t) {
+void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* own) {
     const std::int64_t row = std::int64_t(j) * grid_.nu;
     const bool phased = phases_.active();
     for (int i = i0; i < i1; ++i) {
@@ -159,18 +163,31 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t) {
         phases_.x.set(at, x);
         phases_.d.set(at, phases_.d.get(at) + t);
     }
-    if (colliders_.empty() || !colliders_.mayTouchRow(x_.row(row + i0), i1 - i0)) return;
+    // The linear vertices' gradient Σ m/h² (d − ŷ) + m c/h d moves by their Σ (m/h² + m c/h)
+    // times the shift, and by each one's weight times its push.
+    if (own)
+        for (int c = finestColumn_[std::size_t(i0)]; c < finestColumn_[std::size_t(i1)]; ++c)
+            for (int e = 0; e < 3; ++e) own[c * kOwn + e] += double(t[e]) * own[c * kOwn + kSums];
+    const auto pushed = [&](int i, std::int64_t k, const Vec3<T>& push) {
+        if (!own || !vbdLinearOwn(k, phased ? phases_.at(i, j) : k)) return;
+        double* o = own + finestColumn_[std::size_t(i)] * kOwn;
+        const double w = vbdInertiaDrag(k);
+        for (int e = 0; e < 3; ++e) o[e] += w * double(push[e]);
+    };
+    if (colliders_.empty()) return;
     if (!phased) {  // (no row kernels)
+        if (!colliders_.mayTouchRow(x_.row(row + i0), i1 - i0)) return;
         for (int i = i0; i < i1; ++i) {
             const std::int64_t k = row + i;
             if (pinned_[k]) continue;
             Vec3<T> x = x_.get(k), d = displacement_.get(k);
+            const Vec3<T> before = x;
             vbdProject(x, d);
             vbdSet(k, x, d);
+            pushed(i, k, x - before);
         }
         return;
     }
-    // By runs through the colliders' row code (the same bits as vertex by vertex).
     constexpr int kRun = 64;
     alignas(64) T p[3][kRun], v[3][kRun];
     for (int c = i0; c < i1; c += kRun) {
@@ -183,138 +200,15 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t) {
         if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_)) continue;
         for (int m = 0; m < n; ++m) {
             const std::int64_t k = row + c + m;
-            const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old = x_.get(k);
-            if (pinned_[k] || pushed == old) continue;
+            const Vec3<T> moved(p[0][m], p[1][m], p[2][m]), old = x_.get(k);
+            if (pinned_[k] || moved == old) continue;
             const std::int64_t at = phases_.at(c + m, j);
-            x_.set(k, pushed);
-            phases_.x.set(at, pushed);
-            phases_.d.set(at, phases_.d.get(at) + (pushed - old));
+            x_.set(k, moved);
+            phases_.x.set(at, moved);
+            phases_.d.set(at, phases_.d.get(at) + (moved - old));
+            pushed(c + m, k, moved - old);
         }
     }
-}
-
-// Row j's part of the block [i0, i1) × [j0, j1)'s problem: its free vertices' own terms and their
-// springs to vertices outside the block or pinned (seen from the free vertex; those inside cancel).
-// A spring reaches r = springReach_ cells (2 with bend springs, 1 for a material): a vertex r or
-// more from the block's edges, with no pin within r rows (`pinsNear` false), has none.
-template <typename T>
-void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsNear,
-                               double* out) const {
-    for (int e = 0; e < kSums; ++e) out[e] = 0;
-    const int nu = grid_.nu, nv = grid_.nv;
-    const int reach = springReach_;
-    const bool edgeRow = pinsNear || j - j0 < reach || j1 - 1 - j < reach;
-    const double h = double(dt_t_), perH2 = 1 / (h * h), dragPerMass = double(dampingRate_) / h;
-    const std::int64_t grabbed = grab_ ? grab_->vertex : -1;
-    double gx = 0, gy = 0, gz = 0, diagonal = 0, inertiaSum = 0;  // the plain vertices'
-    for (int i = i0; i < i1; ++i) {
-        const std::int64_t k = std::int64_t(j) * nu + i;
-        if (pinned_[k]) continue;
-        const std::int64_t at = phases_.active() ? phases_.at(i, j) : k;
-        const bool plain = k != grabbed &&
-                           !(vbdContacts_.active() && vbdContacts_.weight[at] != T(0)) &&
-                           !(pushNormal_.size() > 0 && pushNormal_.get(at) != Vec3<T>(0));
-        VbdLane<double> a{};
-        if (plain) {  // inertia and drag alone (vbdTranslationTerms' first terms)
-            const double m = 1.0 / double(inverseMass_[std::size_t(k)]);
-            const double inertia = m * perH2, drag = m * dragPerMass;
-            const Vec3<T> d = phases_.active() ? phases_.d.get(at) : displacement_.get(k);
-            const Vec3<T>& y = inertialStep_[std::size_t(k)];
-            gx += inertia * (double(d.x) - double(y.x)) + drag * double(d.x);
-            gy += inertia * (double(d.y) - double(y.y)) + drag * double(d.y);
-            gz += inertia * (double(d.z) - double(y.z)) + drag * double(d.z);
-            diagonal += inertia + drag;
-            inertiaSum += inertia;
-        } else {
-            out[9] += vbdTranslationTerms(i, j, k, a);
-        }
-        if (!edgeRow && i - i0 >= reach && i1 - 1 - i >= reach) {  // no spring leaves the block
-            if (!plain) addLane(a, out);
-            continue;
-        }
-        const glm::dvec3 xk(x_.get(k));
-        for (const StencilSpring<T>& s : springs_) {
-            const int qi = i + s.di, qj = j + s.dj;
-            if (qi < 0 || qi >= nu || qj < 0 || qj >= nv) continue;
-            const std::int64_t q = std::int64_t(qj) * nu + qi;
-            if (qi >= i0 && qi < i1 && qj >= j0 && qj < j1 && !pinned_[q]) continue;
-            const glm::dvec3 e = glm::dvec3(x_.get(q)) - xk;
-            vbdSpringLane(e.x, e.y, e.z, double(stiffnessAt(s, i, j, nu, nv)), double(s.restLength),
-                          a);
-        }
-        addLane(a, out);
-    }
-    out[0] += gx;
-    out[1] += gy;
-    out[2] += gz;
-    for (int e = 3; e < 6; ++e) out[e] += diagonal;
-    out[9] += inertiaSum;
-}
-
-// The translation's levels, before the first sweep: for each level, coarse to fine, and each of
-// its four colours of blocks (no two blocks of a colour side by side), the threads share the
-// colour's rows evenly (not by band: at the first level a colour's rows are half the sheet's),
-// sum each row's part of each block, then take each block's Newton step from all of that block's
-// rows, in order, and apply it to their own rows (vbdTranslate's, per block).
-template <typename T>
-void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
-    const int nu = grid_.nu, nv = grid_.nv, finest = vbdLevelParts(translationLevels_, nu, nv);
-    for (int j = band.rowBegin; j < band.rowEnd; ++j) {
-        const auto row = pinned_.begin() + std::int64_t(j) * nu;
-        rowPinned_[std::size_t(j)] = std::find(row, row + nu, std::uint8_t(1)) != row + nu;
-    }
-    team.sync();
-    const auto pinsNear = [&](int j) {
-        for (int r = std::max(0, j - springReach_); r <= std::min(nv - 1, j + springReach_); ++r)
-            if (rowPinned_[std::size_t(r)]) return true;
-        return false;
-    };
-    const int self = int(&band - bands_.data()), threads = int(bands_.size());
-    for (int parts = 2; parts <= finest; parts *= 2)
-        for (int colour = 0; colour < 4; ++colour) {
-            const auto rows = [&](int b) { return b * nv / parts; };
-            const auto columns = [&](int b) { return b * nu / parts; };
-            // This thread's share [first, last) of the colour's rows, counted over its blocks.
-            int total = 0;
-            for (int bj = colour / 2; bj < parts; bj += 2) total += rows(bj + 1) - rows(bj);
-            const int first = int(std::int64_t(total) * self / threads);
-            const int last = int(std::int64_t(total) * (self + 1) / threads);
-            // f(bj, j0, j1) on each block row bj's part [j0, j1) of this thread's share.
-            const auto forShare = [&](auto&& f) {
-                int counted = 0;
-                for (int bj = colour / 2; bj < parts; bj += 2) {
-                    const int height = rows(bj + 1) - rows(bj);
-                    const int j0 = rows(bj) + std::max(0, first - counted);
-                    const int j1 = rows(bj) + std::min(height, last - counted);
-                    counted += height;
-                    if (j0 < j1) f(bj, j0, j1);
-                }
-            };
-            forShare([&](int bj, int j0, int j1) {
-                for (int j = j0; j < j1; ++j) {
-                    const bool near = pinsNear(j);  // once a row, not once a block of it
-                    for (int bi = colour % 2; bi < parts; bi += 2)
-                        vbdBlockRow(j, columns(bi), columns(bi + 1), rows(bj), rows(bj + 1), near,
-                                    blockRows_.data() + (std::size_t(j) * parts + bi) * kSums);
-                }
-            });
-            team.sync();
-            forShare([&](int bj, int j0, int j1) {
-                for (int bi = colour % 2; bi < parts; bi += 2) {
-                    double sum[kSums] = {};
-                    for (int j = rows(bj); j < rows(bj + 1); ++j)
-                        for (int e = 0; e < kSums; ++e)
-                            sum[e] += blockRows_[(std::size_t(j) * parts + bi) * kSums + e];
-                    const VbdLane<double> a{sum[0], sum[1], sum[2], sum[3], sum[4],
-                                            sum[5], sum[6], sum[7], sum[8]};
-                    double tx, ty, tz;
-                    if (!(sum[9] > 0) || !vbdNewtonLane(a, sum[9], tx, ty, tz)) continue;
-                    for (int j = j0; j < j1; ++j)
-                        vbdShiftRow(j, columns(bi), columns(bi + 1), Vec3<T>{T(tx), T(ty), T(tz)});
-                }
-            });
-            team.sync();
-        }
 }
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
@@ -323,9 +217,7 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
     template void CpuSolver<T>::vbdTakeParameters(const Scene&);                                \
     template void CpuSolver<T>::vbdTranslationRow(int, double*) const;                          \
     template void CpuSolver<T>::vbdTranslate(const Band&, const Team&);                         \
-    template void CpuSolver<T>::vbdTranslateLevels(const Band&, const Team&);                   \
-    template void CpuSolver<T>::vbdShiftRow(int, int, int, const Vec3<T>&);                     \
-    template void CpuSolver<T>::vbdBlockRow(int, int, int, int, int, bool, double*) const;      \
+    template void CpuSolver<T>::vbdShiftRow(int, int, int, const Vec3<T>&, double*);            \
     template double CpuSolver<T>::vbdTranslationTerms(int, int, std::int64_t, VbdLane<double>&) \
         const;
 CLOTH_INSTANTIATE(float)
