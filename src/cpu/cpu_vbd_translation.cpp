@@ -8,8 +8,8 @@
 // Sums per row in double, then over the rows in order: every band takes the same step, and the
 // result has the same bits for any number of threads and any instruction set.
 //
-// The translation's levels do the same for each block of the sheet cut into 2^l × 2^l equal
-// parts, where the springs that leave the block join the pins'.
+// The translation's levels (cpu_vbd_levels.cpp) do the same for each block of the sheet cut into
+// 2^l × 2^l equal parts, where the springs that leave the block join the pins'.
 #include <algorithm>
 #include <cstdint>
 #include <utility>
