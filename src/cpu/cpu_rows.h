@@ -110,9 +110,11 @@ struct ContactRow {
 // run is at + m and its neighbours lie a fixed offset away; it writes the moved vertices there
 // and into the iterate. A pinned vertex, and `skip` (the grabbed one, which the caller steps),
 // keep their position; moved[m] says whether vertex m took its step (the caller then applies the
-// colliders, with the Hessians the kernel leaves it). The kernel computes whole vectors: it reads
-// up to kVbdSlack entries past a run in every array in phases, and writes moved and the Hessians
-// for n rounded up to a multiple of 64 / sizeof(T) (64 entries hold any run of 64 or fewer).
+// colliders, with the Hessians the kernel leaves it). With `wholeVectors` the kernel computes
+// whole vectors: it reads up to kVbdSlack entries past a run (and past each neighbour's run) in
+// every array in phases, and writes moved and the Hessians for n rounded up to a multiple of
+// 64 / sizeof(T) (64 entries hold any run of 64 or fewer). The caller sets it only where no other
+// thread writes what those reads reach (cpu_vbd.cpp vbdSweep).
 inline constexpr std::int64_t kVbdSlack = 64;
 template <typename T>
 struct VbdRow {
@@ -129,6 +131,7 @@ struct VbdRow {
     std::uint8_t* moved = nullptr;
     // first: the run's first vertex in the grid, at: in phases; skip: −1 for none.
     std::int64_t first = 0, at = 0, skip = -1;
+    bool wholeVectors = false;
     int springs = 0;            // the stencil's springs, as the solver's springs_
     std::int64_t offset[12]{};  // q − k in phases
     std::int64_t bendAt[13]{};  // bendingLane's 13 stencil vertices, in phases

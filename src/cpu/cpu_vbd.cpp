@@ -140,6 +140,10 @@ void CpuSolver<T>::vbdSweep(const Band& band, int colour, bool pushes) {
         for (int e = 0; e < 6; ++e) row.hessian[e] = hessian[e];
     for (int j = band.rowBegin; j < band.rowEnd; ++j) {
         int i = ((colour - 2 * j) % kVbdColours + kVbdColours) % kVbdColours;
+        // Whole vectors read past the runs of rows j − 2 … j + 2 into the next row's first
+        // phase: only where those rows are this band's (or there is no other band), as another
+        // thread writes its own rows' vertices of this colour meanwhile.
+        row.wholeVectors = bands_.size() == 1 || (j - 2 >= band.rowBegin && j + 3 < band.rowEnd);
         if (kernels_ && j >= 2 && j < nv - 2) {
             for (; i < 2; i += kVbdColours) step(i, j);
             for (; i <= nu - 3;) {

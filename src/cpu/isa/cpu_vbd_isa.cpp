@@ -25,7 +25,9 @@ namespace {
 // the Newton steps, and the stores after every step is taken. The loops that compute run over
 // whole vectors (vbdLanes): a run's last vector would otherwise go through the compiler's scalar
 // epilogue, which cost as much as the vectors before it (docs/performance.md). The lanes past
-// the run read what lies beyond it in phases (VbdPhases' slack at the end) and are never stored.
+// the run read what lies beyond it in phases (VbdPhases' slack at the end) and are never stored;
+// where another thread may be writing there, the caller asks for the run's length alone
+// (VbdRow::wholeVectors).
 constexpr int kVbdChunk = 64;
 
 template <typename T>
@@ -111,7 +113,7 @@ void vbdBendingLoop(T* __restrict g, const T* const (&p)[13], T u1, T u0, T v1, 
 template <typename T>
 void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     VbdChunk<T> c;
-    const int lanes = vbdLanes<T>(n);
+    const int lanes = r.wholeVectors ? vbdLanes<T>(n) : n;
     const std::int64_t a0 = r.at + m0;
     const T* __restrict px = r.px.x + a0, * __restrict py = r.px.y + a0, * __restrict pz = r.px.z + a0;
     const T* __restrict dx = r.pd.x + a0, * __restrict dy = r.pd.y + a0, * __restrict dz = r.pd.z + a0;
