@@ -20,16 +20,17 @@ bool CpuSolver<T>::vbdFinishRows(Band& band) {
     const auto surface = [this](const Vec3<T>& p) { return colliders_.surfaceVelocity(p); };
     constexpr int kRun = 64;
     alignas(64) T s[3][kRun], w[3][kRun];
+    Vec3<T> start[kRun];  // the run's start positions, before the colliders move s
     auto pin = std::lower_bound(pinList_.begin(), pinList_.end(), band.begin);
     bool ok = true;
     for (int j = band.rowBegin; j < band.rowEnd; ++j) {
         const std::int64_t row = std::int64_t(j) * nu;
-        const auto start = [&](int i) { return x_.get(row + i) - phases_.d.get(phases_.at(i, j)); };
         for (int i = 0; i < nu; ++i) v_.set(row + i, phases_.d.get(phases_.at(i, j)) / h);
         for (int c = 0; c < nu && !colliders_.empty(); c += kRun) {
             const int n = std::min(kRun, nu - c);
             for (int m = 0; m < n; ++m) {
-                const Vec3<T> p = start(c + m);
+                const Vec3<T> p = x_.get(row + c + m) - phases_.d.get(phases_.at(c + m, j));
+                start[m] = p;
                 s[0][m] = p.x, s[1][m] = p.y, s[2][m] = p.z;
                 w[0][m] = w[1][m] = w[2][m] = T(0);
             }
@@ -37,7 +38,7 @@ bool CpuSolver<T>::vbdFinishRows(Band& band) {
                 continue;
             for (int m = 0; m < n; ++m) {
                 const std::int64_t k = row + c + m;
-                const Vec3<T> p = start(c + m);
+                const Vec3<T>& p = start[m];
                 if (pinned_[k] || Vec3<T>(s[0][m], s[1][m], s[2][m]) == p) continue;
                 v_.set(k, withoutStartCorrection(p, v_.get(k), h, collide, surface));
             }

@@ -19,6 +19,7 @@
 namespace cloth {
 
 using vbd_sums::addLane;
+using vbd_sums::kMass;
 using vbd_sums::kOwn;
 using vbd_sums::kSums;
 
@@ -40,7 +41,7 @@ void CpuSolver<T>::vbdLevelOwnRow(int j) {
         }
         VbdLane<double> a{};
         double* o = own + finestColumn_[std::size_t(i)] * kOwn;
-        o[9] += vbdTranslationTerms(i, j, k, a);
+        o[kMass] += vbdTranslationTerms(i, j, k, a);
         addLane(a, o);
         o[kSums] += vbdInertiaDrag(k);
     }
@@ -67,7 +68,7 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsN
         if (pinned_[k]) return;
         VbdLane<double> a{};
         if (!vbdLinearOwn(k, phases_.active() ? phases_.at(i, j) : k))
-            out[9] += vbdTranslationTerms(i, j, k, a);
+            out[kMass] += vbdTranslationTerms(i, j, k, a);
         if (edgeRow || i - i0 < reach || i1 - 1 - i < reach) {
             const glm::dvec3 xk(x_.get(k));
             for (const StencilSpring<T>& s : springs_) {
@@ -149,7 +150,7 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
                     const VbdLane<double> a{sum[0], sum[1], sum[2], sum[3], sum[4],
                                             sum[5], sum[6], sum[7], sum[8]};
                     double tx, ty, tz;
-                    if (!(sum[9] > 0) || !vbdNewtonLane(a, sum[9], tx, ty, tz)) continue;
+                    if (!(sum[kMass] > 0) || !vbdNewtonLane(a, sum[kMass], tx, ty, tz)) continue;
                     for (int j = j0; j < j1; ++j)
                         vbdShiftRow(j, columns(bi), columns(bi + 1), Vec3<T>{T(tx), T(ty), T(tz)},
                                     ownRows_.data() + std::size_t(j) * std::size_t(finest) * kOwn);

@@ -7,6 +7,7 @@
 namespace cloth::vbd_sums {
 
 inline constexpr int kSums = 10;                  // gradient (3), Hessian (6), Σ m/h²
+inline constexpr int kMass = kSums - 1;           // the index of Σ m/h²
 inline constexpr int kOwn = kSums + 1;            // and Σ (m/h² + m c/h): the levels' own sums
 inline constexpr double kContactStiffness = 1e4;  // × m/h²: a contact's hold along its push
 

@@ -23,6 +23,7 @@ namespace cloth {
 
 using vbd_sums::addLane;
 using vbd_sums::kContactStiffness;
+using vbd_sums::kMass;
 using vbd_sums::kOwn;
 using vbd_sums::kSums;
 
@@ -117,7 +118,7 @@ void CpuSolver<T>::vbdTranslationRow(int j, double* out) const {
             continue;
         }
         VbdLane<double> a{};
-        out[9] += vbdTranslationTerms(i, j, k, a);
+        out[kMass] += vbdTranslationTerms(i, j, k, a);
         addLane(a, out);
     }
 }
@@ -134,7 +135,7 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
         for (int e = 0; e < kSums; ++e) sum[e] += translationRows_[std::size_t(j) * kSums + e];
     const VbdLane<double> a{sum[0], sum[1], sum[2], sum[3], sum[4], sum[5], sum[6], sum[7], sum[8]};
     double tx, ty, tz;
-    const bool step = vbdNewtonLane(a, sum[9], tx, ty, tz);
+    const bool step = vbdNewtonLane(a, sum[kMass], tx, ty, tz);
     team.sync();  // every band has read the rows
     if (!step) return;
     for (int j = band.rowBegin; j < band.rowEnd; ++j)
