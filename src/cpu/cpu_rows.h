@@ -148,6 +148,32 @@ struct VbdRow {
     T* hessian[6]{};
 };
 
+// vbd: the Newton steps of up to kSize vertices of one colour anywhere in the grid (the border's,
+// whose springs leave the grid or are halved there), gathered by the caller (cpu_vbd_border.cpp)
+// lane by lane, so that the kernel computes what vbdVertex computes, in its order, over whole
+// vectors: lanes n … n rounded up to 16 hold copies of a gathered vertex. Spring s of lane m is
+// absent where present[s][m] is 0 (it leaves the grid): its far end q holds any finite
+// position, and the lane keeps the sums without it. The kernel leaves every lane's local problem
+// (gradient 3, Hessian 6, as VbdLane) in `lane` and its Newton step in `step` where `stepped`.
+template <typename T>
+struct VbdBatch {
+    static constexpr int kSize = 64;
+    alignas(64) T p[3][kSize], d[3][kSize], y[3][kSize];  // x, d = x − x_n, ŷ = y − x_n
+    alignas(64) T inverseMass[kSize];
+    alignas(64) T q[12][3][kSize], qd[12][3][kSize];  // spring s's far end: position, d
+    alignas(64) T stiffness[12][kSize], damping[12][kSize];
+    alignas(64) std::uint8_t present[12][kSize];
+    alignas(64) T bend[3][kSize], bendDiagonal[kSize];  // bendingForce, W_kk (with bending)
+    alignas(64) T slide[3][kSize], normal[3][kSize], weight[kSize];  // the contact (friction)
+    alignas(64) T lane[9][kSize], step[3][kSize];
+    alignas(64) std::uint8_t stepped[kSize];
+    int springs = 0;
+    T restLength[12]{};
+    bool damped[12]{};
+    T h{}, dampingRate{}, epsilon{};
+    bool bending = false, friction = false;
+};
+
 // Every kernel runs over n elements from the given (already offset) pointers.
 template <typename T>
 struct RowKernels {
@@ -178,6 +204,7 @@ struct RowKernels {
     void (*dampingCoefficients)(ConstRow3<T> p, ConstRow3<T> q, ConstRow3<T> vp, ConstRow3<T> vq,
                                 T dampingK, T restLength, T* c, int n);
     void (*vbd)(const VbdRow<T>& row, int n);
+    void (*vbdBatch)(VbdBatch<T>& batch, int n);
 };
 
 template <typename T>

@@ -148,6 +148,11 @@ private:
     // Vertex k's iterate, position x and displacement d = x − x_n, and its copy in phases.
     void vbdSet(std::int64_t k, const Vec3<T>& x, const Vec3<T>& d);
     void vbdVertex(std::int64_t k, int i, int j, bool pushes);
+    void vbdMove(std::int64_t k, Vec3<T> x, Vec3<T> d, std::int64_t c, const VbdLane<T>& lane,
+                 bool pushes);
+    // The border's vertices through the batch kernel (cpu_vbd_border.cpp).
+    void vbdBatchTake(VbdBatch<T>& batch) const;
+    void vbdBorderRun(VbdBatch<T>& batch, const std::int64_t* vertices, int n, bool pushes);
     void vbdTouch(std::int64_t c, const Vec3<T>& x, const Vec3<T>& p,
                   const typename CpuColliders<T>::Surface& surface, const VbdLane<T>& hessian);
     void vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved, int n,

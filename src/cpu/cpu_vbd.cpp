@@ -121,14 +121,28 @@ void CpuSolver<T>::vbdFillPhases(const Band& band) {
 
 // The Newton steps of one colour's vertices in this band's rows: in row j the colour's columns
 // are i ≡ colour − 2j (mod 5). With row kernels, the run of them two or more from every border
-// goes through the vbd kernel (cpu/cpu_rows.h), up to kRun at a time; the rest, and the
-// grabbed vertex, vertex by vertex. The colour's vertices share no term, so the order is free.
+// goes through the vbd kernel (cpu/cpu_rows.h), up to kRun at a time, the rest through the batch
+// kernel once 64 are gathered (and at the end), and the grabbed vertex vertex by vertex. The
+// colour's vertices share no term, so the order is free.
 template <typename T>
 void CpuSolver<T>::vbdSweep(const Band& band, int colour, bool pushes) {
     const int nu = grid_.nu, nv = grid_.nv;
+    VbdBatch<T> batch;  // the border's vertices, through the batch kernel (cpu_vbd_border.cpp)
+    std::int64_t border[VbdBatch<T>::kSize];
+    int borderCount = 0;
+    if (kernels_) vbdBatchTake(batch);
     auto step = [&](int i, int j) {
         const std::int64_t k = std::int64_t(j) * nu + i;
-        if (!pinned_[k]) vbdVertex(k, i, j, pushes);
+        if (pinned_[k]) return;
+        if (!kernels_ || (grab_ && grab_->vertex == k)) {
+            vbdVertex(k, i, j, pushes);
+            return;
+        }
+        border[borderCount++] = k;
+        if (borderCount == VbdBatch<T>::kSize) {
+            vbdBorderRun(batch, border, borderCount, pushes);
+            borderCount = 0;
+        }
     };
     VbdRow<T> row{};
     if (kernels_) row = vbdRow();
@@ -162,6 +176,7 @@ void CpuSolver<T>::vbdSweep(const Band& band, int colour, bool pushes) {
         }
         for (; i < nu; i += kVbdColours) step(i, j);
     }
+    if (borderCount > 0) vbdBorderRun(batch, border, borderCount, pushes);
 }
 
 // What the vbd kernel reads of the solver, for any run: the arrays, the stencil's springs inside
@@ -244,13 +259,19 @@ void CpuSolver<T>::vbdVertex(std::int64_t k, int i, int j, bool pushes) {
         addVbdFriction(d - vbdContacts_.slide.get(c), vbdContacts_.normal.get(c),
                        vbdContacts_.weight[c], h * T(kVbdStickSpeed), local);
     Vec3<T> s;
-    if (!vbdNewtonStep(local, double(mass) / (double(h) * h), s)) return;
-    x += s;
-    d += s;
+    if (vbdNewtonStep(local, double(mass) / (double(h) * h), s))
+        vbdMove(k, x + s, d + s, c, vbdLane(local), pushes);
+}
+
+// Vertex k's iterate after its Newton step (position x, displacement d): the colliders'
+// projection, with the contact c's friction set from the local problem `lane`, then stored.
+template <typename T>
+void CpuSolver<T>::vbdMove(std::int64_t k, Vec3<T> x, Vec3<T> d, std::int64_t c,
+                           const VbdLane<T>& lane, bool pushes) {
     if (!colliders_.empty()) {
         Vec3<T> p = x;
         const auto surface = colliders_.project(p);
-        if (vbdContacts_.active()) vbdTouch(c, x, p, surface, vbdLane(local));
+        if (vbdContacts_.active()) vbdTouch(c, x, p, surface, lane);
         if (pushes && pushNormal_.size() > 0) vbdPushed(c, x, p);
         d += p - x;
         x = p;
@@ -343,6 +364,8 @@ void CpuSolver<T>::vbdProject(Vec3<T>& x, Vec3<T>& d) const {
     template void CpuSolver<T>::vbdSet(std::int64_t, const Vec3<T>&, const Vec3<T>&);          \
     template void CpuSolver<T>::vbdFillPhases(const Band&);                                    \
     template void CpuSolver<T>::vbdVertex(std::int64_t, int, int, bool);                       \
+    template void CpuSolver<T>::vbdMove(std::int64_t, Vec3<T>, Vec3<T>, std::int64_t,          \
+                                        const VbdLane<T>&, bool);                              \
     template void CpuSolver<T>::vbdTouch(std::int64_t, const Vec3<T>&, const Vec3<T>&,         \
                                          const typename CpuColliders<T>::Surface&,             \
                                          const VbdLane<T>&);                                   \

@@ -278,6 +278,10 @@ template <typename T>
 void vbd(const VbdRow<T>& r, int n);
 extern template void vbd(const VbdRow<float>&, int);
 extern template void vbd(const VbdRow<double>&, int);
+template <typename T>
+void vbdBatch(VbdBatch<T>& b, int n);
+extern template void vbdBatch(VbdBatch<float>&, int);
+extern template void vbdBatch(VbdBatch<double>&, int);
 
 template <typename T>
 const RowKernels<T>& rowKernels() {
@@ -293,7 +297,8 @@ const RowKernels<T>& rowKernels() {
                                        &contact<T, true>,
                                        &bending<T>,
                                        &dampingCoefficients<T>,
-                                       &vbd<T>};
+                                       &vbd<T>,
+                                       &vbdBatch<T>};
     return kernels;
 }
 template const RowKernels<float>& rowKernels();

@@ -206,6 +206,74 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
 
 }  // namespace
 
+// cpu_rows.h VbdBatch: the terms as vbdChunk adds them (vbdVertex's order), from the gathered
+// lanes; an absent spring's lane keeps its sums (a choice, not a branch).
+template <typename T>
+void vbdBatch(VbdBatch<T>& b, int n) {
+    VbdChunk<T> c;
+    const int lanes = vbdLanes<T>(n);
+    const T h = b.h, dampingRate = b.dampingRate, inverseH = T(1) / b.h;
+    const T* __restrict px = b.p[0], * __restrict py = b.p[1], * __restrict pz = b.p[2];
+    const T* __restrict dx = b.d[0], * __restrict dy = b.d[1], * __restrict dz = b.d[2];
+    for (int m = 0; m < lanes; ++m) c.mass[m] = T(1) / b.inverseMass[m];
+    vbdInertiaLoop(c.gx, dx, b.y[0], c.mass, h, dampingRate, lanes);
+    vbdInertiaLoop(c.gy, dy, b.y[1], c.mass, h, dampingRate, lanes);
+    vbdInertiaLoop(c.gz, dz, b.y[2], c.mass, h, dampingRate, lanes);
+    for (int m = 0; m < lanes; ++m) {
+        const T mass = c.mass[m];
+        const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
+        c.xx[m] = diagonal, c.yy[m] = diagonal, c.zz[m] = diagonal;
+        c.xy[m] = T(0), c.xz[m] = T(0), c.yz[m] = T(0);
+    }
+    for (int s = 0; s < b.springs; ++s) {
+        const T* __restrict qx = b.q[s][0], * __restrict qy = b.q[s][1], * __restrict qz = b.q[s][2];
+        const T* __restrict qdx = b.qd[s][0], * __restrict qdy = b.qd[s][1];
+        const T* __restrict qdz = b.qd[s][2];
+        const T* __restrict K = b.stiffness[s], * __restrict beta = b.damping[s];
+        const std::uint8_t* __restrict present = b.present[s];
+        const T L = b.restLength[s];
+        const bool damped = b.damped[s];
+        for (int m = 0; m < lanes; ++m) {
+            const VbdLane<T> a = c.get(m);
+            VbdLane<T> t = a;
+            const T ex = qx[m] - px[m], ey = qy[m] - py[m], ez = qz[m] - pz[m];
+            vbdSpringLane(ex, ey, ez, K[m], L, t);
+            if (damped) {
+                const T wx = qdx[m] - dx[m], wy = qdy[m] - dy[m], wz = qdz[m] - dz[m];
+                vbdSpringDampingLane(ex - wx, ey - wy, ez - wz, wx, wy, wz, beta[m], L, inverseH,
+                                     t);
+            }
+            c.set(m, present[m] ? t : a);
+        }
+    }
+    if (b.bending)
+        for (int m = 0; m < lanes; ++m) {
+            c.gx[m] -= b.bend[0][m], c.gy[m] -= b.bend[1][m], c.gz[m] -= b.bend[2][m];
+            const T s = b.bendDiagonal[m];
+            c.xx[m] += s, c.yy[m] += s, c.zz[m] += s;
+        }
+    if (b.friction)
+        for (int m = 0; m < lanes; ++m) {
+            VbdLane<T> a = c.get(m);
+            vbdFrictionLane(dx[m] - b.slide[0][m], dy[m] - b.slide[1][m], dz[m] - b.slide[2][m],
+                            b.normal[0][m], b.normal[1][m], b.normal[2][m], b.weight[m], b.epsilon,
+                            a);
+            c.set(m, a);
+        }
+    for (int m = 0; m < lanes; ++m) {
+        const VbdLane<T> a = c.get(m);
+        T sx, sy, sz;
+        b.stepped[m] = vbdNewtonLane(a, double(c.mass[m]) / (double(h) * h), sx, sy, sz);
+        b.step[0][m] = sx, b.step[1][m] = sy, b.step[2][m] = sz;
+        b.lane[0][m] = a.gx, b.lane[1][m] = a.gy, b.lane[2][m] = a.gz;
+        b.lane[3][m] = a.xx, b.lane[4][m] = a.yy, b.lane[5][m] = a.zz;
+        b.lane[6][m] = a.xy, b.lane[7][m] = a.xz, b.lane[8][m] = a.yz;
+    }
+}
+
+template void vbdBatch(VbdBatch<float>&, int);
+template void vbdBatch(VbdBatch<double>&, int);
+
 template <typename T>
 void vbd(const VbdRow<T>& r, int n) {
     for (int m = 0; m < n; m += kVbdChunk) vbdChunk(r, m, n - m < kVbdChunk ? n - m : kVbdChunk);
