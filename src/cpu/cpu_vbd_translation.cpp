@@ -16,6 +16,7 @@
 
 #include "cpu/cpu_solver.h"
 #include "cpu/cpu_vbd_sums.h"
+#include "model/vbd_colouring.h"
 #include "model/vbd_lane.h"
 #include "model/vbd_local.h"
 
@@ -147,22 +148,39 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
 // colliders' projection (by runs through their row code with row kernels, where their cull lets
 // one touch the run: the same bits as projecting every vertex). own: row j's own sums of the
 // levels (vbdLevelOwnRow), kept up to date with the moves; null for the translation's step.
+namespace {
+
+// a_k += t for the n entries from k0 whose pinned[k] is 0, as a choice in every lane (vectorised).
+template <typename T>
+void shiftFree(Soa3<T>& a, const std::uint8_t* pinned, std::int64_t k0, int n, const Vec3<T>& t) {
+    T* __restrict x = a.x.data() + k0, * __restrict y = a.y.data() + k0;
+    T* __restrict z = a.z.data() + k0;
+    const std::uint8_t* __restrict pin = pinned + k0;
+    for (int m = 0; m < n; ++m) {
+        const bool free = pin[m] == 0;
+        x[m] = free ? x[m] + t.x : x[m];
+        y[m] = free ? y[m] + t.y : y[m];
+        z[m] = free ? z[m] + t.z : z[m];
+    }
+}
+
+}  // namespace
+
 template <typename T>
 void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* own) {
     const std::int64_t row = std::int64_t(j) * grid_.nu;
     const bool phased = phases_.active();
-    for (int i = i0; i < i1; ++i) {
-        const std::int64_t k = row + i;
-        if (pinned_[k]) continue;
-        const Vec3<T> x = x_.get(k) + t;
-        x_.set(k, x);
-        if (!phased) {
-            displacement_.set(k, displacement_.get(k) + t);
-            continue;
-        }
-        const std::int64_t at = phases_.at(i, j);
-        phases_.x.set(at, x);
-        phases_.d.set(at, phases_.d.get(at) + t);
+    shiftFree(x_, pinned_.data(), row + i0, i1 - i0, t);
+    if (!phased) shiftFree(displacement_, pinned_.data(), row + i0, i1 - i0, t);
+    // In phases each residue of i mod 5 is a contiguous run: the copy x there is x_'s, bit for
+    // bit, so it moves by the same sum.
+    for (int r = 0; r < kVbdColours && phased; ++r) {
+        const int first = i0 + ((r - i0) % kVbdColours + kVbdColours) % kVbdColours;
+        if (first >= i1) continue;
+        const std::int64_t at = phases_.at(first, j);
+        const int n = (i1 - 1 - first) / kVbdColours + 1;
+        shiftFree(phases_.x, phases_.pinned.data(), at, n, t);
+        shiftFree(phases_.d, phases_.pinned.data(), at, n, t);
     }
     // The linear vertices' gradient Σ m/h² (d − ŷ) + m c/h d moves by their Σ (m/h² + m c/h)
     // times the shift, and by each one's weight times its push.
