@@ -309,11 +309,11 @@ template <typename T>
 void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved,
                                  int n, const T* const* hessian, bool pushes) {
     constexpr int kRun = 64;
-    alignas(64) T p[3][kRun], v[3][kRun] = {};
+    alignas(64) T p[3][kRun], v[3][kRun];
     const T* position[3] = {phases_.x.x.data() + at, phases_.x.y.data() + at,
                             phases_.x.z.data() + at};
     for (int c = 0; c < 3; ++c)
-        for (int m = 0; m < n; ++m) p[c][m] = position[c][m];
+        for (int m = 0; m < n; ++m) p[c][m] = position[c][m], v[c][m] = T(0);
     if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_)) {
         // Nothing pushed: no contact and no push where there was one (vbdTouch, vbdPushed).
         for (int m = 0; m < n; ++m) {
@@ -323,11 +323,23 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
         }
         return;
     }
+    // Which vertices have anything to do, over whole vectors: pushed, or a contact to update
+    // (one to lift off included), or a push to keep.
+    const bool contacts = hessian && hessian[0], keepPushes = pushes && pushNormal_.size() > 0;
+    std::uint8_t work[kRun];
+    for (int m = 0; m < n; ++m)
+        work[m] =
+            std::uint8_t(unsigned(p[0][m] != position[0][m]) | unsigned(p[1][m] != position[1][m]) |
+                         unsigned(p[2][m] != position[2][m]) | unsigned(keepPushes));
+    if (contacts) {
+        const T* weight = vbdContacts_.weight.data() + at;
+        for (int m = 0; m < n; ++m) work[m] |= std::uint8_t(weight[m] != T(0));
+    }
     for (int m = 0; m < n; ++m) {
-        if (!moved[m]) continue;
+        if (!moved[m] || !work[m]) continue;
         const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old = phases_.x.get(at + m);
         // The run's projection ran on whole rows; the surface is asked of the pushed ones only.
-        if (hessian && hessian[0] && (pushed != old || vbdContacts_.weight[at + m] != T(0)))
+        if (contacts && (pushed != old || vbdContacts_.weight[at + m] != T(0)))
             vbdTouch(
                 at + m, old, pushed,
                 pushed != old ? colliders_.surfaceAt(old) : typename CpuColliders<T>::Surface{},
