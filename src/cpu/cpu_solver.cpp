@@ -362,10 +362,11 @@ SimState CpuSolver<T>::read() const {
 template <typename T>
 std::size_t CpuSolver<T>::allocatedBytes() const {
     std::size_t vectors = 0;
-    for (const Soa3<T>* a : {&x_, &v_, &f_, &xNext_, &vNext_, &displacement_, &pushNormal_})
+    for (const Soa3<T>* a :
+         {&x_, &v_, &f_, &xNext_, &vNext_, &displacement_, &pushNormal_, &dBefore_, &dBeforeLast_})
         vectors += std::size_t(a->size());
     for (const auto* a : {&pinPosition_, &pinVelocity_, &x0_, &v0_, &sumX_, &sumV_, &dv_, &r_, &p_,
-                          &ap_, &z_, &inertialStep_, &vPrevious_, &dBefore_, &dBeforeLast_})
+                          &ap_, &z_, &inertialStep_, &vPrevious_})
         vectors += a->size();
     return vectors * sizeof(Vec3<T>) + blockInverse_.size() * sizeof(Sym3<T>) +
            contacts_.size() * sizeof(SolveContact<T>) + vbdContacts_.bytes() + phases_.bytes() +

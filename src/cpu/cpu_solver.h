@@ -266,9 +266,10 @@ private:
     // where the solver keeps phases, whose copy the sweeps move: vbdDisplacement), the inertial
     // target's
     // ŷ = y − x_n = h v_n + h² a_ext, the previous step's velocity v_{n−1} (the adaptive initial
-    // guess), and with Chebyshev acceleration the displacements of iterates n − 1, n − 2.
-    Soa3<T> displacement_;
-    std::vector<Vec3<T>> inertialStep_, vPrevious_, dBefore_, dBeforeLast_;
+    // guess), and with Chebyshev acceleration the displacements of iterates n − 1, n − 2 (where
+    // the solver keeps phases, in phases' order: vbdContactAt).
+    Soa3<T> displacement_, dBefore_, dBeforeLast_;
+    std::vector<Vec3<T>> inertialStep_, vPrevious_;
     std::vector<T> bendingDiagonal_;  // W_kk per vertex (model/vbd_local.h), with bending only
     VbdPhases<T> phases_;             // what the row kernel reads (with row kernels)
     VbdContacts<T> vbdContacts_;      // with colliders

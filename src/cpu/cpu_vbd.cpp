@@ -84,7 +84,7 @@ void CpuSolver<T>::vbdStart(const Band& band, const Team& team, long stepNumber)
         vPrevious_[k] = v;
         x_.set(k, pinned_[k] ? pinPosition_[k] : start + d);
         displacement_.set(k, d);
-        if (!dBefore_.empty()) dBefore_[k] = d;
+        if (dBefore_.size() > 0 && !phases_.active()) dBefore_.set(k, d);
     }
     if (phases_.active()) vbdFillPhases(band);
     team.sync();
@@ -116,6 +116,12 @@ void CpuSolver<T>::vbdFillPhases(const Band& band) {
             if (bending)
                 for (int m = 0; m < count; ++m)
                     phases_.bendDiagonal[a0 + m] = bendingDiagonal_[k0 + kVbdColours * m];
+            if (dBefore_.size() > 0) {  // Chebyshev's iterate before the first sweep
+                const Row3<T> from = phases_.d.row(a0), to = dBefore_.row(a0);
+                std::copy_n(from.x, count, to.x);
+                std::copy_n(from.y, count, to.y);
+                std::copy_n(from.z, count, to.z);
+            }
         }
 }
 

@@ -35,8 +35,8 @@ void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
     translationSweeps_ = scene.integrator.translationSweeps;
     translationLevels_ = scene.integrator.translationLevels;
     const std::size_t n = std::size_t(x_.size());
-    if (chebyshevRho_ > 0 && dBefore_.empty())
-        for (auto* a : {&dBefore_, &dBeforeLast_}) a->assign(n, Vec3<T>(0));
+    if (chebyshevRho_ > 0 && dBefore_.size() == 0)
+        for (auto* a : {&dBefore_, &dBeforeLast_}) a->assign(std::int64_t(n), Vec3<T>(0));
     if (translationSweeps_ > 0 && translationRows_.empty())
         translationRows_.assign(std::size_t(grid_.nv) * kSums, 0.0);
     const int parts = vbdLevelParts(translationLevels_, grid_.nu, grid_.nv);
