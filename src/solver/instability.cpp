@@ -83,6 +83,14 @@ InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
               "the sheet before the sweeps: with it 10 sweeps at 1/60 s hold a dropped sheet of "
               "192 vertices a side, docs/integrators.md)"
             : "";
+    // With the levels, Chebyshev's extrapolation holds the landing wherever the sheet meets the
+    // collider (docs/stability.md "vbd"); without it only a landing on a block's edge held.
+    const std::string chebyshev =
+        in.translationLevels >= kVbdRuleLevels && in.chebyshevRho == 0
+            ? ", or set integrator.chebyshev_rho = 0.95 (with the translation's levels it held the "
+              "dropped cotton sheet of up to 240 vertices a side wherever the sphere lay under "
+              "it, docs/stability.md)"
+            : "";
     char buf[1600];
     if (dt < in.dt) {
         std::snprintf(buf, sizeof buf,
@@ -90,17 +98,18 @@ InstabilityAdvice vbdStrainAdvice(const Scene& scene) {
                       "%.0f sweeps a simulated second (iterations / dt), and dropped sheets of %d "
                       "vertices a side held with %.0f x %d = %.0f (docs/performance.md); lower "
                       "integrator.dt to %.2g s or raise integrator.iterations (with "
-                      "integrator.chebyshev_rho = 0.9)%s%s; %s",
+                      "integrator.chebyshev_rho = 0.9)%s%s%s; %s",
                       in.iterations, rate, n, vbdHoldingFactor(scene), n, needed, dt,
-                      levels.c_str(), translation.c_str(), tooSoft(scene).c_str());
+                      levels.c_str(), chebyshev.c_str(), translation.c_str(),
+                      tooSoft(scene).c_str());
         return {buf, dt};
     }
     std::snprintf(buf, sizeof buf,
                   "vbd's %d sweeps a step did not carry the tension across the sheet, although "
                   "%.0f sweeps a simulated second for %d vertices a side held a dropped cotton "
                   "sheet (docs/performance.md): a stiffer or more loaded cloth needs more; raise "
-                  "integrator.iterations or lower integrator.dt%s%s; %s",
-                  in.iterations, rate, n, levels.c_str(), translation.c_str(),
+                  "integrator.iterations or lower integrator.dt%s%s%s; %s",
+                  in.iterations, rate, n, levels.c_str(), chebyshev.c_str(), translation.c_str(),
                   tooSoft(scene).c_str());
     return {buf, std::nullopt};
 }
