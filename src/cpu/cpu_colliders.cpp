@@ -61,29 +61,23 @@ void setPosed(CpuCollider<T>& c, const SdfColliderT<double>& s, double h) {
     c.boundRadius2 = boundRadius2(T(glm::length(half) + g.cell + h));
 }
 
-// Whether any vertex of the row may touch: branch-free, so the compiler vectorises it; the
+// Whether any vertex of the row may touch, through the row kernels' culls (vectorised); the
 // response itself then decides per vertex, so the result is the same bits as without the cull.
 template <typename T>
-bool rowMayTouch(const CpuCollider<T>& c, ConstRow3<T> x, int n) {
-    int hits = 0;
+bool rowMayTouch(const CpuCollider<T>& c, ConstRow3<T> x, int n, const RowKernels<T>& kernels) {
+    CullRow<T> cull{};
     if (const PlaneT<T>* pl = std::get_if<PlaneT<T>>(&c.shape)) {
         const Vec3<T> q = pl->point, m = pl->normal;
         const T h = c.params.thickness;
-        const T qMag = std::abs(q.x) + std::abs(q.y) + std::abs(q.z) + std::abs(h);
-        for (int i = 0; i < n; ++i) {
-            const T s = (x.x[i] - q.x) * m.x + (x.y[i] - q.y) * m.y + (x.z[i] - q.z) * m.z;
-            const T mag = std::abs(x.x[i]) + std::abs(x.y[i]) + std::abs(x.z[i]) + qMag;
-            hits |= int(s < h + kCullSlack<T> * mag);
-        }
-        return hits != 0;
+        cull.cx = q.x, cull.cy = q.y, cull.cz = q.z, cull.mx = m.x, cull.my = m.y, cull.mz = m.z;
+        cull.h = h;
+        cull.qMag = std::abs(q.x) + std::abs(q.y) + std::abs(q.z) + std::abs(h);
+        cull.slack = kCullSlack<T>;
+        return kernels.planeMayTouch(x, cull, n);
     }
-    const Vec3<T> b = c.boundCenter;
-    const T r2 = c.boundRadius2;
-    for (int i = 0; i < n; ++i) {
-        const T dx = x.x[i] - b.x, dy = x.y[i] - b.y, dz = x.z[i] - b.z;
-        hits |= int(dx * dx + dy * dy + dz * dz < r2);
-    }
-    return hits != 0;
+    cull.cx = c.boundCenter.x, cull.cy = c.boundCenter.y, cull.cz = c.boundCenter.z;
+    cull.radius2 = c.boundRadius2;
+    return kernels.sphereMayTouch(x, cull, n);
 }
 
 }  // namespace
@@ -188,8 +182,9 @@ ContactRow<T> contactRow(const CpuCollider<T>& c, Row3<T> x, Row3<T> v) {
 
 template <typename T>
 bool CpuColliders<T>::mayTouchRow(ConstRow3<T> x, int n) const {
+    const RowKernels<T>& culls = rowKernels<T>(CpuIsa::Generic);  // (any set: the same answers)
     for (const CpuCollider<T>& c : posed_)
-        if (rowMayTouch(c, x, n)) return true;
+        if (rowMayTouch(c, x, n, culls)) return true;
     return false;
 }
 
@@ -197,7 +192,7 @@ template <typename T>
 bool CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const {
     bool mayTouch = false;
     for (const CpuCollider<T>& c : posed_) {
-        if (!rowMayTouch(c, ConstRow3<T>(x), n)) continue;
+        if (!rowMayTouch(c, ConstRow3<T>(x), n, kernels)) continue;
         mayTouch = true;
         if (std::holds_alternative<PlaneT<T>>(c.shape)) {
             kernels.planeContact(contactRow(c, x, v), n);

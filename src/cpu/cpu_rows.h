@@ -103,6 +103,16 @@ struct ContactRow {
     T lx, ly, lz, ax, ay, az, ox, oy, oz;  // linear [m/s], angular [rad/s], origin [m]
 };
 
+// A plane's or a sphere's row cull (cpu/cpu_colliders.cpp rowMayTouch): whether any of a row's
+// positions may touch. Plane: point c, unit normal m, thickness h, magnitude qMag = |c|₁ + |h|
+// and the rounding slack; sphere: the bound's centre c and squared radius.
+template <typename T>
+struct CullRow {
+    T cx, cy, cz;
+    T mx, my, mz, h, qMag, slack;
+    T radius2;
+};
+
 // vbd: the Newton steps of a run of one colour's vertices in an interior row (every vertex two
 // or more from every border), grid vertex k = first + 5m for m < n, each on its local potential
 // as cpu_vbd.cpp's vbdVertex builds it (model/vbd_lane.h: the same operations, the same bits).
@@ -205,6 +215,9 @@ struct RowKernels {
                                 T dampingK, T restLength, T* c, int n);
     void (*vbd)(const VbdRow<T>& row, int n);
     void (*vbdBatch)(VbdBatch<T>& batch, int n);
+    // The row culls of CullRow, in its operations (the same answers at any width).
+    bool (*planeMayTouch)(ConstRow3<T> x, const CullRow<T>& cull, int n);
+    bool (*sphereMayTouch)(ConstRow3<T> x, const CullRow<T>& cull, int n);
 };
 
 template <typename T>

@@ -165,6 +165,33 @@ bool anyBad(ConstRow3<T> x, ConstRow3<T> v, T maxSpeed2, int n) {
     return bad != 0;
 }
 
+// cpu_colliders.cpp rowMayTouch's culls, in its operations.
+template <typename T>
+bool planeMayTouch(ConstRow3<T> x, const CullRow<T>& c, int n) {
+    const T* __restrict px = x.x, * __restrict py = x.y, * __restrict pz = x.z;
+    const T qx = c.cx, qy = c.cy, qz = c.cz, mx = c.mx, my = c.my, mz = c.mz;
+    const T h = c.h, qMag = c.qMag, slack = c.slack;
+    int hits = 0;
+    for (int i = 0; i < n; ++i) {
+        const T s = (px[i] - qx) * mx + (py[i] - qy) * my + (pz[i] - qz) * mz;
+        const T mag = std::abs(px[i]) + std::abs(py[i]) + std::abs(pz[i]) + qMag;
+        hits |= int(s < h + slack * mag);
+    }
+    return hits != 0;
+}
+
+template <typename T>
+bool sphereMayTouch(ConstRow3<T> x, const CullRow<T>& c, int n) {
+    const T* __restrict px = x.x, * __restrict py = x.y, * __restrict pz = x.z;
+    const T bx = c.cx, by = c.cy, bz = c.cz, r2 = c.radius2;
+    int hits = 0;
+    for (int i = 0; i < n; ++i) {
+        const T dx = px[i] - bx, dy = py[i] - by, dz = pz[i] - bz;
+        hits |= int(dx * dx + dy * dy + dz * dz < r2);
+    }
+    return hits != 0;
+}
+
 // model/collider_contact.h's collide() for a plane (kSphere false) or a sphere, every lane
 // computed and the result selected: the shape's φ and normal in the same operations and order as
 // collider_shapes.h (glm's dot is (x + y) + z, its cross a.y·b.z − b.y·a.z, ...), then the
@@ -298,7 +325,9 @@ const RowKernels<T>& rowKernels() {
                                        &bending<T>,
                                        &dampingCoefficients<T>,
                                        &vbd<T>,
-                                       &vbdBatch<T>};
+                                       &vbdBatch<T>,
+                                       &planeMayTouch<T>,
+                                       &sphereMayTouch<T>};
     return kernels;
 }
 template const RowKernels<float>& rowKernels();
