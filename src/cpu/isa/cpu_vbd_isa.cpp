@@ -110,6 +110,24 @@ void vbdBendingLoop(T* __restrict g, const T* const (&p)[13], T u1, T u0, T v1, 
                             c2[m], d[m], e[m], u1, u0, v1, v0, plus, minus);
 }
 
+// A chunk's sums started with the inertia, as addVbdInertia starts them from zero: the masses
+// m = 1/(1/m), the gradient's inertia and drag on the displacements d against ŷ, and the
+// Hessian's diagonal.
+template <typename T>
+void vbdInertiaChunk(VbdChunk<T>& c, const T* __restrict inverseMass, ConstRow3<T> d,
+                     ConstRow3<T> y, T h, T dampingRate, int lanes) {
+    for (int m = 0; m < lanes; ++m) c.mass[m] = T(1) / inverseMass[m];
+    vbdInertiaLoop(c.gx, d.x, y.x, c.mass, h, dampingRate, lanes);
+    vbdInertiaLoop(c.gy, d.y, y.y, c.mass, h, dampingRate, lanes);
+    vbdInertiaLoop(c.gz, d.z, y.z, c.mass, h, dampingRate, lanes);
+    for (int m = 0; m < lanes; ++m) {
+        const T mass = c.mass[m];
+        const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
+        c.xx[m] = diagonal, c.yy[m] = diagonal, c.zz[m] = diagonal;
+        c.xy[m] = T(0), c.xz[m] = T(0), c.yz[m] = T(0);
+    }
+}
+
 template <typename T>
 void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     VbdChunk<T> c;
@@ -117,19 +135,8 @@ void vbdChunk(const VbdRow<T>& r, int m0, int n) {
     const std::int64_t a0 = r.at + m0;
     const T* __restrict px = r.px.x + a0, * __restrict py = r.px.y + a0, * __restrict pz = r.px.z + a0;
     const T* __restrict dx = r.pd.x + a0, * __restrict dy = r.pd.y + a0, * __restrict dz = r.pd.z + a0;
-    const T* __restrict inverseMass = r.inverseMass + a0;
     const T h = r.h, dampingRate = r.dampingRate, inverseH = T(1) / r.h;
-    for (int m = 0; m < lanes; ++m) c.mass[m] = T(1) / inverseMass[m];
-    // The inertia first, as addVbdInertia starts the sum from zero.
-    vbdInertiaLoop(c.gx, dx, r.py.x + a0, c.mass, h, dampingRate, lanes);
-    vbdInertiaLoop(c.gy, dy, r.py.y + a0, c.mass, h, dampingRate, lanes);
-    vbdInertiaLoop(c.gz, dz, r.py.z + a0, c.mass, h, dampingRate, lanes);
-    for (int m = 0; m < lanes; ++m) {
-        const T mass = c.mass[m];
-        const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
-        c.xx[m] = diagonal, c.yy[m] = diagonal, c.zz[m] = diagonal;
-        c.xy[m] = T(0), c.xz[m] = T(0), c.yz[m] = T(0);
-    }
+    vbdInertiaChunk(c, r.inverseMass + a0, {dx, dy, dz}, r.py + a0, h, dampingRate, lanes);
     for (int s = 0; s < r.springs; ++s) {
         const std::int64_t o = r.offset[s];
         const T* __restrict qx = px + o, * __restrict qy = py + o, * __restrict qz = pz + o;
@@ -215,16 +222,8 @@ void vbdBatch(VbdBatch<T>& b, int n) {
     const T h = b.h, dampingRate = b.dampingRate, inverseH = T(1) / b.h;
     const T* __restrict px = b.p[0], * __restrict py = b.p[1], * __restrict pz = b.p[2];
     const T* __restrict dx = b.d[0], * __restrict dy = b.d[1], * __restrict dz = b.d[2];
-    for (int m = 0; m < lanes; ++m) c.mass[m] = T(1) / b.inverseMass[m];
-    vbdInertiaLoop(c.gx, dx, b.y[0], c.mass, h, dampingRate, lanes);
-    vbdInertiaLoop(c.gy, dy, b.y[1], c.mass, h, dampingRate, lanes);
-    vbdInertiaLoop(c.gz, dz, b.y[2], c.mass, h, dampingRate, lanes);
-    for (int m = 0; m < lanes; ++m) {
-        const T mass = c.mass[m];
-        const T diagonal = T(0) + (vbdInertiaWeight(mass, h) + vbdDragWeight(mass, h, dampingRate));
-        c.xx[m] = diagonal, c.yy[m] = diagonal, c.zz[m] = diagonal;
-        c.xy[m] = T(0), c.xz[m] = T(0), c.yz[m] = T(0);
-    }
+    vbdInertiaChunk(c, b.inverseMass, {dx, dy, dz}, {b.y[0], b.y[1], b.y[2]}, h, dampingRate,
+                    lanes);
     for (int s = 0; s < b.springs; ++s) {
         const T* __restrict qx = b.q[s][0], * __restrict qy = b.q[s][1], * __restrict qz = b.q[s][2];
         const T* __restrict qdx = b.qd[s][0], * __restrict qdy = b.qd[s][1];
