@@ -278,6 +278,7 @@ private:
     int translationSweeps_ = 0;
     std::vector<double> translationRows_;  // per row, vbdTranslationRow's 10 sums
     int translationLevels_ = 0;
+    int translationLevelPasses_ = 1;       // the levels' passes a step (vbdLevelPassSweep)
     std::vector<double> blockRows_;        // per row and block column, vbdBlockRow's 10 sums
     std::vector<std::uint8_t> rowPinned_;  // per row: whether it holds a pin (the levels')
     // The levels' own sums per row and finest block column (vbd_sums::kOwn each), whether each

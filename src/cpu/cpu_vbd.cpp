@@ -18,27 +18,34 @@
 namespace cloth {
 
 // One step: the start (ŷ, the initial guess), `iterations` sweeps over the five colours (the
-// first translation_sweeps followed by the translation's step, each with ρ > 0 by the Chebyshev
-// extrapolation), then v_{n+1} = d/h and
+// translation's levels before the first and, with more passes, before sweeps spread over the
+// rest; the first translation_sweeps followed by the translation's step; each with ρ > 0 by the
+// Chebyshev extrapolation), then v_{n+1} = d/h and
 // finishStep's pins, colliders and check (by rows with row kernels, cpu_vbd_finish.cpp); a vertex
 // that started inside a collider keeps none of the correction that put it out as velocity
 // (model/start_inside.h).
 template <typename T>
 bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     vbdStart(band, team, stepNumber);
-    if (translationLevels_ > 0) vbdTranslateLevels(band, team);  // (cpu_vbd_translation.cpp)
+    const int passes = translationLevels_ > 0 ? translationLevelPasses_ : 0;
+    const auto levelsBefore = [&](int n) { return vbdLevelsBefore(n, vbdIterations_, passes); };
+    const int chebyshevStart =
+        vbdChebyshevStart(translationSweeps_, vbdIterations_, translationLevels_, passes);
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
-        // The pushes the translation's steps read: the sweeps each follows, and the last sweep
-        // (read by the next step's levels and translation); the others' are never read.
-        const bool pushes = n <= translationSweeps_ || n == vbdIterations_;
+        if (passes > 0 && levelsBefore(n)) vbdTranslateLevels(band, team);  // (cpu_vbd_levels.cpp)
+        // The pushes the translation's steps read: the sweeps each follows, the sweeps before a
+        // pass of the levels, and the last sweep (read by the next step's levels and
+        // translation); the others' are never read.
+        const bool pushes =
+            n <= translationSweeps_ || n == vbdIterations_ || (passes > 1 && levelsBefore(n + 1));
         for (int colour = 0; colour < kVbdColours; ++colour) {
             vbdSweep(band, colour, pushes);
             team.sync();  // the next colour reads this one's new positions
         }
         if (n <= translationSweeps_) vbdTranslate(band, team);  // (cpu_vbd_translation.cpp)
         if (chebyshevRho_ > 0) {
-            omega = vbdChebyshevOmega(n, translationSweeps_, chebyshevRho_, omega);
+            omega = vbdChebyshevOmega(n, chebyshevStart, chebyshevRho_, omega);
             vbdAccelerate(band, omega);
             team.sync();
         }

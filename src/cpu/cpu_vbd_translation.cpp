@@ -34,6 +34,7 @@ void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
     chebyshevRho_ = scene.integrator.chebyshevRho;
     translationSweeps_ = scene.integrator.translationSweeps;
     translationLevels_ = scene.integrator.translationLevels;
+    translationLevelPasses_ = scene.integrator.translationLevelPasses;
     const std::size_t n = std::size_t(x_.size());
     if (chebyshevRho_ > 0 && dBefore_.size() == 0)
         for (auto* a : {&dBefore_, &dBeforeLast_}) a->assign(std::int64_t(n), Vec3<T>(0));

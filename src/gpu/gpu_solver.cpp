@@ -84,6 +84,7 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       chebyshevRho_(scene.integrator.chebyshevRho),
       translationSweeps_(scene.integrator.translationSweeps),
       translationLevels_(scene.integrator.translationLevels),
+      translationLevelPasses_(scene.integrator.translationLevelPasses),
       forces_(options.forces),
       nu_(scene.cloth.nu),
       nv_(scene.cloth.nv),

@@ -170,8 +170,9 @@ private:
     // vbd: sweeps per step, Chebyshev's ρ, and the first step whose v_{n−1} is in kVbdPrevious.
     int vbdIterations_;
     double chebyshevRho_;
-    int translationSweeps_;  // vbd: the sweeps followed by the translation's step
-    int translationLevels_;  // vbd: the translation's levels before the first sweep
+    int translationSweeps_;       // vbd: the sweeps followed by the translation's step
+    int translationLevels_;       // vbd: the translation's levels before the first sweep
+    int translationLevelPasses_;  // vbd: their passes a step (vbdLevelPassSweep)
     long vbdHistoryFrom_ = 2;
     // verlet: the forces buffer holds F(x_n) of the coming step (F(x_{n+1}) of the last one).
     // Anything that changes the state or the forces from outside discards it.

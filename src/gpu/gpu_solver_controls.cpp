@@ -159,6 +159,7 @@ void GpuSolver::setParameters(const Scene& scene) {
     chebyshevRho_ = scene.integrator.chebyshevRho;
     translationSweeps_ = scene.integrator.translationSweeps;
     translationLevels_ = scene.integrator.translationLevels;
+    translationLevelPasses_ = scene.integrator.translationLevelPasses;
     forcesKept_ = false;
     uploadParams(scene);
     setSelfUniforms(scene);

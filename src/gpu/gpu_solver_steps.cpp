@@ -144,17 +144,21 @@ void GpuSolver::stepImplicit(long stepNumber) {
 }
 
 // vbd (docs/integrators.md "vbd"; src/cpu/cpu_vbd.cpp stepVbd, pass for pass): the start and
-// the initial guess, `iterations` sweeps of one dispatch per colour (the first
-// translation_sweeps followed by the translation's step, each with ρ > 0 by the Chebyshev
+// the initial guess, `iterations` sweeps of one dispatch per colour (the translation's levels
+// before the first and, with more passes, before sweeps spread over the rest; the first
+// translation_sweeps followed by the translation's step; each with ρ > 0 by the Chebyshev
 // extrapolation), then the end of the step.
 void GpuSolver::stepVbd(long stepNumber) const {
     runPass(Kernel::VbdStart);
     glProgramUniform1i(programs_[int(Kernel::VbdGuess)], gpu::kVbdLocation,
                        stepNumber >= vbdHistoryFrom_ ? 1 : 0);
     runStepPass(Kernel::VbdGuess, stepNumber);
-    if (translationLevels_ > 0) runVbdLevels(stepNumber);
+    const int passes = translationLevels_ > 0 ? translationLevelPasses_ : 0;
+    const int chebyshevStart =
+        vbdChebyshevStart(translationSweeps_, vbdIterations_, translationLevels_, passes);
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
+        if (passes > 0 && vbdLevelsBefore(n, vbdIterations_, passes)) runVbdLevels(stepNumber);
         for (int colour = 0; colour < kVbdColours; ++colour) {
             glProgramUniform1i(programs_[int(Kernel::VbdSweep)], gpu::kVbdLocation, colour);
             runStepPass(Kernel::VbdSweep, stepNumber, vbdGroupsX_);  // the colour's columns
@@ -167,7 +171,7 @@ void GpuSolver::stepVbd(long stepNumber) const {
             runStepPass(Kernel::VbdTranslationApply, stepNumber);
         }
         if (chebyshevRho_ > 0) {
-            omega = vbdChebyshevOmega(n, translationSweeps_, chebyshevRho_, omega);
+            omega = vbdChebyshevOmega(n, chebyshevStart, chebyshevRho_, omega);
             glProgramUniform1f(programs_[int(Kernel::VbdAccelerate)], gpu::kVbdLocation,
                                float(omega));
             runStepPass(Kernel::VbdAccelerate, stepNumber);

@@ -98,6 +98,13 @@ std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& in) {
             unused("translation_sweeps", std::to_string(in.translationSweeps), "vbd", "");
         if (in.translationLevels != defaults.translationLevels)
             unused("translation_levels", std::to_string(in.translationLevels), "vbd", "");
+        if (in.translationLevelPasses != defaults.translationLevelPasses)
+            unused("translation_level_passes", std::to_string(in.translationLevelPasses), "vbd",
+                   "");
+    } else if (in.translationLevels == 0 && in.translationLevelPasses != 1) {
+        lines.push_back(
+            "integrator.translation_level_passes = " + std::to_string(in.translationLevelPasses) +
+            " repeats the translation's levels; translation_levels = 0 runs none");
     }
     return lines;
 }

@@ -190,12 +190,37 @@ inline double chebyshevOmega(int n, double rho, double previous) {
     return 4 / (4 - rho * rho * previous);
 }
 
-// ω after sweep n of a vbd step whose first `translationSweeps` sweeps end with the translation's
-// step: the semi-iteration assumes one fixed map from sweep to sweep, which a sweep followed by
-// the translation's step is not, so its sequence starts from the iterate after the last
-// translation step (sweep n is its iteration n − translationSweeps; docs/integrators.md "vbd").
-inline double vbdChebyshevOmega(int n, int translationSweeps, double rho, double previous) {
-    return chebyshevOmega(n - std::max(translationSweeps, 0), rho, previous);
+// The sweep before which the translation's levels run for the p-th time (p = 0 … passes − 1) in a
+// vbd step of `iterations` sweeps: sweep 1, then 1 + ⌈p N / P⌉, spread evenly over the N sweeps
+// (P at most N, one pass before a sweep; docs/integrators.md "The translation's levels").
+inline int vbdLevelPassSweep(int p, int iterations, int passes) {
+    const int n = std::max(iterations, 1), each = std::clamp(passes, 1, n);
+    return 1 + (p * n + each - 1) / each;
+}
+
+// Whether the translation's levels run before sweep n of such a step.
+inline bool vbdLevelsBefore(int n, int iterations, int passes) {
+    const int each = std::clamp(passes, 1, std::max(iterations, 1));
+    for (int p = 0; p < each; ++p)
+        if (n == vbdLevelPassSweep(p, iterations, passes)) return true;
+    return false;
+}
+
+// The sweeps of a vbd step that come before Chebyshev's first iteration: the semi-iteration
+// assumes one fixed map from sweep to sweep, which a sweep followed by the translation's step is
+// not, nor a sweep that follows a pass of the levels after the first, so its sequence starts from
+// the iterate after the last such sweep (docs/integrators.md "vbd").
+inline int vbdChebyshevStart(int translationSweeps, int iterations, int levels, int passes) {
+    const int each = std::clamp(passes, 1, std::max(iterations, 1));
+    const int lastPass =
+        levels > 0 && each > 1 ? vbdLevelPassSweep(each - 1, iterations, passes) : 0;
+    return std::max({translationSweeps, lastPass, 0});
+}
+
+// ω after sweep n of a vbd step whose first `start` sweeps come before Chebyshev's sequence
+// (vbdChebyshevStart): sweep n is its iteration n − start.
+inline double vbdChebyshevOmega(int n, int start, double rho, double previous) {
+    return chebyshevOmega(n - start, rho, previous);
 }
 
 // The parts a side of the finest of the translation's `levels` (level l cuts an nu × nv grid

@@ -132,6 +132,15 @@ constexpr ParamSpec kParams[] = {
                     ? std::optional<double>(s.integrator.translationLevels) : std::nullopt;
      },
      [](Scene& s, double v) { s.integrator.translationLevels = int(std::lround(v)); }},
+    {"integrator.translation_level_passes", "", 1, 100000, false, true, 1, false,
+     "vbd: how many times a step the translation levels run: before the first sweep and again "
+     "spread evenly over the sweeps (at most one before each)",
+     {PanelSection::TimeStep, SliderScale::Linear, 1, 5, "vbd level passes", "%d"},
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::Vbd
+                    ? std::optional<double>(s.integrator.translationLevelPasses) : std::nullopt;
+     },
+     [](Scene& s, double v) { s.integrator.translationLevelPasses = int(std::lround(v)); }},
     {"integrator.max_step_strain", "", 0, 10, false, false, 0, false,
      "a step that stretches a structural spring by more than this fraction of its rest length "
      "is redone as two of half the Δt, down to Δt/16; 0 = off", kHidden,

@@ -117,6 +117,7 @@ std::string sceneToJson(const Scene& s) {
         j["integrator"]["chebyshev_rho"] = s.integrator.chebyshevRho;
         j["integrator"]["translation_sweeps"] = s.integrator.translationSweeps;
         j["integrator"]["translation_levels"] = s.integrator.translationLevels;
+        j["integrator"]["translation_level_passes"] = s.integrator.translationLevelPasses;
     }
     if (s.integrator.maxStepStrain > 0)
         j["integrator"]["max_step_strain"] = s.integrator.maxStepStrain;

@@ -193,10 +193,10 @@ Material SceneReader::readMaterial(const Json& j) const {
 }
 
 void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) const {
-    expectObject(
-        j, "integrator",
-        {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner", "iterations",
-         "chebyshev_rho", "translation_sweeps", "translation_levels", "max_step_strain"});
+    expectObject(j, "integrator",
+                 {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner",
+                  "iterations", "chebyshev_rho", "translation_sweeps", "translation_levels",
+                  "translation_level_passes", "max_step_strain"});
     if (j.contains("method")) {
         const Json& m = j["method"];
         if (!m.is_string()) fail("integrator.method", "expected a string, got " + describe(m));
@@ -230,6 +230,9 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
         j, "translation_sweeps", "integrator.translation_sweeps", "integrator.translation_sweeps"));
     integrator.translationLevels = int(param(
         j, "translation_levels", "integrator.translation_levels", "integrator.translation_levels"));
+    integrator.translationLevelPasses =
+        int(param(j, "translation_level_passes", "integrator.translation_level_passes",
+                  "integrator.translation_level_passes"));
     integrator.maxStepStrain =
         param(j, "max_step_strain", "integrator.max_step_strain", "integrator.max_step_strain");
 }

@@ -163,6 +163,16 @@ TEST(CliRun, AKeyOfAnotherMethodIsNoted) {
     for (const char* listed : {"integrator.iterations = 5", "integrator.chebyshev_rho = 0.5"})
         EXPECT_NE(validate.out.find(listed), std::string::npos) << listed << "\n" << validate.out;
     EXPECT_EQ(validate.out.find("integrator.tolerance"), std::string::npos) << validate.out;
+    // Passes of the translation's levels where no level runs: noted, not refused.
+    const auto passes = runProcess(
+        {kExe, "validate", kScenes + "hanging.json", "--set", vbd, "--set",
+         "integrator.translation_levels=0", "--set", "integrator.translation_level_passes=3"},
+        60);
+    ASSERT_EQ(passes.exitCode, 0) << test::describe(passes);
+    EXPECT_NE(passes.err.find("note: integrator.translation_level_passes = 3 repeats the "
+                              "translation's levels; translation_levels = 0 runs none"),
+              std::string::npos)
+        << passes.err;
 
     const auto own = runProcess({kExe, "validate", kScenes + "hanging.json", "--set", implicit,
                                  "--set", "integrator.iterations=10"},

@@ -6,7 +6,10 @@
 //   sweeps alone let the springs at the sphere's apex pass it;
 // - the levels change where the sweeps go, not where they converge: 300 sweeps give the same
 //   state with and without them;
-// - vbd's default (4 levels) holds the 128² landing that the sweeps alone tear.
+// - vbd's default (4 levels) holds the 128² landing that the sweeps alone tear;
+// - a second pass of the levels between the sweeps holds a landing off the middle that one pass
+//   before the first sweep lets tear;
+// - the passes fall before sweeps spread evenly over the step.
 // (Bits across threads and instruction sets: Vbd.EveryInstructionSetAndThreadCount… .)
 #include <gtest/gtest.h>
 
@@ -16,6 +19,7 @@
 #include <string>
 
 #include "cpu/cpu_backend.h"
+#include "model/vbd_local.h"
 #include "scene/scene_loader.h"
 #include "solver/diagnostics.h"
 #include "support/contact_runs.h"
@@ -25,7 +29,8 @@ namespace {
 
 // The bench's drape (src/bench/bench_realtime_scene.cpp): 1 m of cotton falls 0.3 m onto a
 // sphere of 0.25 m on the ground, vbd at 10 sweeps and Δt = 1/60; `levels` < 0: vbd's default.
-Scene drape(int n, int levels) {
+// The sphere lies (east, north) off the sheet's middle.
+Scene drape(int n, int levels, double east = 0, double north = 0) {
     const std::string doc =
         R"({"name": "apex", "cloth": {"resolution": [)" + std::to_string(n) + ", " +
         std::to_string(n) +
@@ -34,7 +39,9 @@ Scene drape(int n, int levels) {
         R"( "integrator": {"method": "vbd", "dt": 0.016666666666666666, "iterations": 10)" +
         (levels < 0 ? std::string() : ", \"translation_levels\": " + std::to_string(levels)) +
         R"(}, "colliders": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]},)"
-        R"( {"type": "sphere", "center": [0, 0.25, 0], "radius": 0.25}], "max_strain": 100})";
+        R"( {"type": "sphere", "center": [)" +
+        std::to_string(east) + ", 0.25, " + std::to_string(north) +
+        R"(], "radius": 0.25}], "max_strain": 100})";
     return parseScene(doc, "drape.json");
 }
 
@@ -73,15 +80,61 @@ TEST(VbdLevels, TheDefaultHoldsTheLandingThatTearsWithoutThem) {
     EXPECT_GT(without, 1.0) << "the sweeps alone held it";
 }
 
-// Converged, vbd is backward Euler whatever path its sweeps took: 300 sweeps with the levels and
-// without them end 1 s of the stiff slide within 1e-5 m of each other.
+// A landing off the middle crosses the blocks, whose edges the pass before the first sweep
+// cannot move: with 2 sweeps at 1/60 the 128² sheet, the sphere 0.13 m and 0.07 m off its
+// middle, reaches strain 1.16 with one pass of 4 levels and 0.81 with a second pass before the
+// second sweep (docs/integrators.md "The translation's levels").
+TEST(VbdLevels, ASecondPassHoldsALandingOffTheMiddleThatOnePassLetsTear) {
+    Scene scene = drape(128, 4, 0.13, 0.07);
+    scene.integrator.iterations = 2;
+    const double one = largestStrainEveryFrame(scene, 60);
+    scene.integrator.translationLevelPasses = 2;
+    const double two = largestStrainEveryFrame(scene, 60);
+    std::printf(
+        "drape 128², sphere off the middle, 2 sweeps: largest strain %.3g with one pass "
+        "of the levels, %.3g with two\n",
+        one, two);
+    EXPECT_GT(one, 1.0) << "one pass held it";
+    EXPECT_LT(two, 0.9);
+}
+
+// The passes fall before sweep 1 and before sweeps 1 + ⌈p N / P⌉: evenly spread, at most one a
+// sweep; Chebyshev's sequence starts after the sweep that follows the last of them.
+TEST(VbdLevels, ThePassesAreSpreadEvenlyOverTheSweeps) {
+    const auto sweeps = [](int iterations, int passes) {
+        std::string out;
+        for (int n = 1; n <= iterations; ++n)
+            if (vbdLevelsBefore(n, iterations, passes)) out += std::to_string(n) + " ";
+        return out;
+    };
+    EXPECT_EQ(sweeps(10, 1), "1 ");
+    EXPECT_EQ(sweeps(10, 2), "1 6 ");
+    EXPECT_EQ(sweeps(7, 2), "1 5 ");
+    EXPECT_EQ(sweeps(6, 3), "1 3 5 ");
+    EXPECT_EQ(sweeps(3, 5), "1 2 3 ");             // no more passes than sweeps
+    EXPECT_EQ(vbdChebyshevStart(1, 10, 4, 1), 1);  // one pass: after the translation's step
+    EXPECT_EQ(vbdChebyshevStart(1, 10, 4, 2), 6);  // the pass before sweep 6
+    EXPECT_EQ(vbdChebyshevStart(1, 10, 0, 2), 1);  // passes without levels run none
+    EXPECT_EQ(vbdChebyshevStart(8, 10, 4, 2), 8);
+}
+
+// Converged, vbd is backward Euler whatever path its sweeps took: 300 sweeps with the levels (one
+// pass a step, and three) and without them end 1 s of the stiff slide within 1e-5 m of each
+// other.
 TEST(VbdLevels, TheyChangeThePathNotTheConvergedStep) {
-    Scene with = test::stiffSheetOnSlope(10, 0, 0), without = with;
-    with.integrator.translationLevels = 3;
-    with.integrator.iterations = without.integrator.iterations = 300;
-    const double most = test::farthestApartAfter(with, without, 60);
-    std::printf("300 sweeps with and without the translation's levels: %.3g m apart\n", most);
-    EXPECT_LT(most, 1e-5);
+    for (int passes : {1, 3}) {
+        Scene with = test::stiffSheetOnSlope(10, 0, 0), without = with;
+        with.integrator.translationLevels = 3;
+        with.integrator.translationLevelPasses = passes;
+        without.integrator.translationLevels = 0;  // (the default runs 4)
+        with.integrator.iterations = without.integrator.iterations = 300;
+        const double most = test::farthestApartAfter(with, without, 60);
+        std::printf(
+            "300 sweeps with and without the translation's levels (%d passes): %.3g m "
+            "apart\n",
+            passes, most);
+        EXPECT_LT(most, 1e-5) << passes << " passes";
+    }
 }
 
 }  // namespace

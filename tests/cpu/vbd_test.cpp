@@ -99,10 +99,13 @@ TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
     scene.colliders.back().thickness = 0.005;
     scene.integrator.chebyshevRho = 0.5;
     const Grab grab{2000, scene.cloth.origin + glm::dvec3(0.3, 0.2, 0.1), 5};
-    for (int translation : {0, 2})  // the step after the first two sweeps, 3 levels before
+    // The step after the first two sweeps, 3 levels before the first sweep (and with 3, a second
+    // pass of them before the sixth).
+    for (int translation : {0, 2, 3})
         for (Precision precision : {Precision::Double, Precision::Float}) {
-            scene.integrator.translationSweeps = translation;
+            scene.integrator.translationSweeps = std::min(translation, 2);
             scene.integrator.translationLevels = translation > 0 ? 3 : 0;
+            scene.integrator.translationLevelPasses = translation == 3 ? 2 : 1;
             auto run = [&](CpuIsa isa, int threads) {
                 std::unique_ptr<Solver> solver = makeCpuSolver(scene, {precision, threads, isa});
                 solver->setGrab(grab);
@@ -114,11 +117,11 @@ TEST(Vbd, EveryInstructionSetAndThreadCountGivesTheScalarPathsBits) {
                 if (!cpuIsaSupported(isa)) continue;
                 for (int threads : {1, 3}) {
                     if (isa == CpuIsa::Scalar && threads == 1) continue;
-                    test::expectSameBits(run(isa, threads), scalar,
-                                         std::string(precisionName(precision)) + " " +
-                                             cpuIsaName(isa) + " " + std::to_string(threads) +
-                                             " threads, " + std::to_string(translation) +
-                                             " translation sweeps");
+                    test::expectSameBits(
+                        run(isa, threads), scalar,
+                        std::string(precisionName(precision)) + " " + cpuIsaName(isa) + " " +
+                            std::to_string(threads) + " threads, " + std::to_string(translation) +
+                            " translation case (0: none, 2: sweeps and levels, 3: and two passes)");
                 }
             }
         }
