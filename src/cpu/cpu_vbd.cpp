@@ -20,10 +20,9 @@ namespace cloth {
 // One step: the start (ŷ, the initial guess), `iterations` sweeps over the five colours (the
 // translation's levels before the first and, with more passes, before sweeps spread over the
 // rest; the first translation_sweeps followed by the translation's step; each with ρ > 0 by the
-// Chebyshev extrapolation), then v_{n+1} = d/h and
-// finishStep's pins, colliders and check (by rows with row kernels, cpu_vbd_finish.cpp); a vertex
-// that started inside a collider keeps none of the correction that put it out as velocity
-// (model/start_inside.h).
+// Chebyshev extrapolation), then v_{n+1} = d/h and finishStep's pins, colliders and check (by
+// rows with row kernels, cpu_vbd_finish.cpp); a vertex that started inside a collider keeps none
+// of the correction that put it out as velocity (model/start_inside.h).
 template <typename T>
 bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     vbdStart(band, team, stepNumber);
@@ -33,12 +32,10 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
         vbdChebyshevStart(translationSweeps_, vbdIterations_, translationLevels_, passes);
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
-        if (passes > 0 && levelsBefore(n)) vbdTranslateLevels(band, team);  // (cpu_vbd_levels.cpp)
-        // The pushes the translation's steps read: the sweeps each follows, the sweeps before a
-        // pass of the levels, and the last sweep (read by the next step's levels and
-        // translation); the others' are never read.
-        const bool pushes =
-            n <= translationSweeps_ || n == vbdIterations_ || (passes > 1 && levelsBefore(n + 1));
+        if (levelsBefore(n)) vbdTranslateLevels(band, team);  // (cpu_vbd_levels.cpp)
+        // The pushes the translation's steps read: those of the sweeps each follows and of the
+        // last sweep (read by the next step's levels and translation); the others' are not.
+        const bool pushes = n <= translationSweeps_ || n == vbdIterations_ || levelsBefore(n + 1);
         for (int colour = 0; colour < kVbdColours; ++colour) {
             vbdSweep(band, colour, pushes);
             team.sync();  // the next colour reads this one's new positions
@@ -64,10 +61,9 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     return true;
 }
 
-// The inertial target's displacement ŷ = h v_n + h² (g + F_w(x_n)/m): the wind is taken
-// explicitly at x_n, from the normals of the positions every band still holds. Then, once every
-// band has read them, the initial guess (vbdInitialGuess: x = x_n + d); pinned vertices at their
-// pin, d = pin − x_n.
+// The inertial target's displacement ŷ = h v_n + h² (g + F_w(x_n)/m), the wind taken at x_n
+// from the normals every band still holds; then, once every band has read them, the initial
+// guess (vbdInitialGuess: x = x_n + d); pinned vertices at their pin, d = pin − x_n.
 template <typename T>
 void CpuSolver<T>::vbdStart(const Band& band, const Team& team, long stepNumber) {
     const int nu = grid_.nu, nv = grid_.nv;

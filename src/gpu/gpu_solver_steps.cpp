@@ -158,7 +158,7 @@ void GpuSolver::stepVbd(long stepNumber) const {
         vbdChebyshevStart(translationSweeps_, vbdIterations_, translationLevels_, passes);
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
-        if (passes > 0 && vbdLevelsBefore(n, vbdIterations_, passes)) runVbdLevels(stepNumber);
+        if (vbdLevelsBefore(n, vbdIterations_, passes)) runVbdLevels(stepNumber);
         for (int colour = 0; colour < kVbdColours; ++colour) {
             glProgramUniform1i(programs_[int(Kernel::VbdSweep)], gpu::kVbdLocation, colour);
             runStepPass(Kernel::VbdSweep, stepNumber, vbdGroupsX_);  // the colour's columns

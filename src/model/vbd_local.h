@@ -198,9 +198,9 @@ inline int vbdLevelPassSweep(int p, int iterations, int passes) {
     return 1 + (p * n + each - 1) / each;
 }
 
-// Whether the translation's levels run before sweep n of such a step.
+// Whether the translation's levels run before sweep n of such a step (none where passes ≤ 0).
 inline bool vbdLevelsBefore(int n, int iterations, int passes) {
-    const int each = std::clamp(passes, 1, std::max(iterations, 1));
+    const int each = std::min(passes, std::max(iterations, 1));
     for (int p = 0; p < each; ++p)
         if (n == vbdLevelPassSweep(p, iterations, passes)) return true;
     return false;
