@@ -187,6 +187,7 @@ RealtimeMeta describeRun(const Options& o, const std::vector<BenchTarget>& targe
         if (t.backend == Backend::Gpu) meta.gpuRenderer = gpuRenderer();
     meta.scriptDir = o.scriptDir;
     meta.time = o.time;
+    meta.sets = o.sets;
     meta.tolerance = o.tolerance;
     meta.safety = o.safety;
     meta.referenceFactor = o.referenceFactor;

@@ -85,7 +85,8 @@ struct Frontier {
 
 struct RealtimeMeta {
     std::string label, material, form, buildType, cpuModel, gpuRenderer, scriptDir;
-    std::string materialLine;  // the material's numbers as run
+    std::string materialLine;       // the material's numbers as run
+    std::vector<std::string> sets;  // the --set overrides, as given
     double time = 1, tolerance = 0.1, safety = 0.9, referenceFactor = 10;
     bool quick = false, searched = true;
     double totalWall = 0;  // [s]

@@ -121,6 +121,7 @@ std::string header(const RealtimeMeta& m, const char* what) {
                   what, m.quick ? " (quick)" : "", m.materialLine.c_str(), m.form.c_str(), m.time,
                   m.safety, m.tolerance, m.referenceFactor);
     std::string s = line;
+    if (!m.sets.empty()) s += "# --set " + join(m.sets, ' ') + "\n";
     s += "# build " + m.buildType + "; cpu " + m.cpuModel + "; gpu " +
          (m.gpuRenderer.empty() ? "none" : m.gpuRenderer) + "\n";
     s += "# units: n vertices per side; dt_s, predicted_tight_dt_s, reference_dt_s, simulated_s, "
@@ -162,6 +163,7 @@ std::string jsonText(const RealtimeMeta& m, const std::vector<Frontier>& rows) {
     Json j = {{"label", m.label},
               {"material", m.material},
               {"material_as_run", m.materialLine},
+              {"sets", m.sets},
               {"form", m.form},
               {"simulated_s", m.time},
               {"safety", m.safety},
@@ -183,8 +185,9 @@ std::string jsonText(const RealtimeMeta& m, const std::vector<Frontier>& rows) {
 }
 
 void printTable(const RealtimeMeta& m, const std::vector<Frontier>& rows) {
-    std::printf("\nreal-time frontier: the drape, %s (%s form), T = %g s | cpu %s | gpu %s\n",
-                m.materialLine.c_str(), m.form.c_str(), m.time, m.cpuModel.c_str(),
+    std::printf("\nreal-time frontier: the drape, %s (%s form), T = %g s%s%s | cpu %s | gpu %s\n",
+                m.materialLine.c_str(), m.form.c_str(), m.time, m.sets.empty() ? "" : ", --set ",
+                join(m.sets, ' ').c_str(), m.cpuModel.c_str(),
                 m.gpuRenderer.empty() ? "none" : m.gpuRenderer.c_str());
     std::printf("%-16s %-10s %5s %10s %7s %4s %9s %-24s %9s %9s %6s\n", "method", "target", "N",
                 "dt [s]", "st/frm", "halv", "wall/sim", "next N: status wall/sim", "error",
