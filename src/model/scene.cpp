@@ -105,6 +105,11 @@ std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& in) {
         lines.push_back(
             "integrator.translation_level_passes = " + std::to_string(in.translationLevelPasses) +
             " repeats the translation's levels; translation_levels = 0 runs none");
+    } else if (in.translationLevelPasses > in.iterations) {
+        lines.push_back(
+            "integrator.translation_level_passes = " + std::to_string(in.translationLevelPasses) +
+            " is more than the " + std::to_string(in.iterations) +
+            " sweeps a step: the levels run once before each sweep");
     }
     return lines;
 }

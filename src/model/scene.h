@@ -110,9 +110,9 @@ struct IntegratorSpec {
 
 // The integrator keys set away from their defaults that the scene's method does not use
 // (implicit_euler's tolerance, max_iterations and preconditioner; vbd's iterations,
-// chebyshev_rho, translation_sweeps, translation_levels and translation_level_passes; passes
-// without levels), one line each naming the key, its
-// value and whose it is; empty when none.
+// chebyshev_rho, translation_sweeps, translation_levels and translation_level_passes), one line
+// each naming the key, its value and whose it is, and vbd's passes of the levels that do not run
+// as set (no levels, more passes than sweeps); empty when none.
 std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& integrator);
 
 struct Plane {

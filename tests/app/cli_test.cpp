@@ -173,6 +173,15 @@ TEST(CliRun, AKeyOfAnotherMethodIsNoted) {
                               "translation's levels; translation_levels = 0 runs none"),
               std::string::npos)
         << passes.err;
+    // More passes than sweeps: one before each sweep, noted.
+    const auto many = runProcess({kExe, "validate", kScenes + "hanging.json", "--set", vbd, "--set",
+                                  "integrator.translation_level_passes=7"},
+                                 60);
+    ASSERT_EQ(many.exitCode, 0) << test::describe(many);
+    EXPECT_NE(many.err.find("note: integrator.translation_level_passes = 7 is more than the 5 "
+                            "sweeps a step: the levels run once before each sweep"),
+              std::string::npos)
+        << many.err;
 
     const auto own = runProcess({kExe, "validate", kScenes + "hanging.json", "--set", implicit,
                                  "--set", "integrator.iterations=10"},
