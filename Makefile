@@ -82,7 +82,7 @@ ASAN_LABELS := cpu|scene|model|solver|app
 ASAN_EXCLUDE := LargeGrid.EveryIntegratorSteps2048SquaredAndStaysFinite|Vbd.StableFromSilkToAStretchOfOneMillion|IntegratorParity.SmallEverythingSceneReachesItsColliders|SelfCollisionScenes.NeverCross|ShippedScene.StaysStableForItsWholeDuration/(pile|fold|cape)|ImplicitContact.AStiffSheetFallingOntoASphereKeepsItsLength|ShippedSceneOutcome.CapeDrapesOverTheTurningFiguresBack|StiffCloth.ImplicitEulerAtASixtiethOfASecondGainsNoMoreThanItsLinearisationInjects|Export.OutSolvesHasARowPerImplicitStepThatSumsToTheSummary
 # ThreadSanitizer slows a step tenfold: of the cpu tests, those that run two or more threads.
 TSAN_LABELS := cpu
-TSAN_TESTS  := Thread|RowBands|RowColliders|CpuMemory|IntegratorParity.DoubleMatches
+TSAN_TESTS  := Thread|RowBands|RowColliders|CpuMemory|IntegratorParity.DoubleMatches|VbdLevels.ASecondPass
 
 sanitize: asan tsan
 
