@@ -236,10 +236,9 @@ void expectFrontierRow(const std::map<std::string, std::string>& row) {
 TEST(BenchRealtime, QuickRunWritesTheFrontierEveryTrialAndThePlot) {
     const fs::path d = test::freshTempDir("bench_realtime", "quick");
     const double cpuBefore = childCpuSeconds();
-    // A --set (cotton's own air damping) is recorded with the results.
-    const auto r = runProcess({kExe, "bench", "realtime", "--quick", "--set",
-                               "material.air_damping=1", "--out", d.string()},
-                              300);
+    const std::string set = "material.air_damping=1";  // cotton's own: recorded in the files
+    const auto r =
+        runProcess({kExe, "bench", "realtime", "--quick", "--set", set, "--out", d}, 300);
     const double cpu = childCpuSeconds() - cpuBefore;
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
     const Csv frontier = readCsv(d / "realtime_cotton.csv");
@@ -249,7 +248,7 @@ TEST(BenchRealtime, QuickRunWritesTheFrontierEveryTrialAndThePlot) {
                            "attempts", "status", "simulated_s", "wall_s", "wall_per_sim_s"});
     ASSERT_GE(frontier.comments.size(), 2u);
     EXPECT_TRUE(contains(frontier.comments.back(), "# units:"));
-    EXPECT_EQ(frontier.comments[1], "# --set material.air_damping=1");
+    EXPECT_EQ(frontier.comments[1], "# --set " + set);
     std::map<std::string, int> targets;
     for (const auto& row : frontier.rows) {
         ++targets[row.at("target")];
@@ -268,17 +267,15 @@ TEST(BenchRealtime, QuickRunWritesTheFrontierEveryTrialAndThePlot) {
     }
     EXPECT_EQ(frontier.rows.size(), std::size_t(methods) * targets.size());
 
-    std::ifstream in(d / "realtime_cotton.json");
-    const nlohmann::json j = nlohmann::json::parse(in);
+    const nlohmann::json j = nlohmann::json::parse(std::ifstream(d / "realtime_cotton.json"));
     EXPECT_EQ(j["frontier"].size(), frontier.rows.size());
     EXPECT_EQ(j["trials"].size(), trials.rows.size());
     EXPECT_TRUE(j["quick"].get<bool>());
-    EXPECT_EQ(j["sets"], nlohmann::json::array({"material.air_damping=1"}));
+    EXPECT_EQ(j["sets"], nlohmann::json::array({set}));
     EXPECT_EQ(j["simulated_s"].get<double>(), 0.25);
     EXPECT_TRUE(j["frontier"][0]["n"].is_number());
-    // --quick is for CI: well under a minute. Judged by the CPU time it took (about 40 s on this
-    // 2-core machine, 33 s of wall time alone), not by its wall time, which other processes on a
-    // shared machine stretch as they please.
+    // --quick is for CI: well under a minute of the CPU time it took (about 40 s on this 2-core
+    // machine, 33 s of wall time alone), not of wall time, which other processes stretch.
     EXPECT_LT(cpu, 60) << "wall " << r.seconds << " s\n" << r.out;
 
     const bool gnuplot = runProcess({"/bin/sh", "-c", "command -v gnuplot"}, 10).exitCode == 0;
