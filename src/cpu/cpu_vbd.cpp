@@ -28,8 +28,7 @@ bool CpuSolver<T>::stepVbd(Band& band, const Team& team, long stepNumber) {
     vbdStart(band, team, stepNumber);
     const int passes = translationLevels_ > 0 ? translationLevelPasses_ : 0;
     const auto levelsBefore = [&](int n) { return vbdLevelsBefore(n, vbdIterations_, passes); };
-    const int chebyshevStart =
-        vbdChebyshevStart(translationSweeps_, vbdIterations_, translationLevels_, passes);
+    const int chebyshevStart = vbdChebyshevStart(translationSweeps_, vbdIterations_, passes);
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
         if (levelsBefore(n)) vbdTranslateLevels(band, team);  // (cpu_vbd_levels.cpp)

@@ -154,8 +154,7 @@ void GpuSolver::stepVbd(long stepNumber) const {
                        stepNumber >= vbdHistoryFrom_ ? 1 : 0);
     runStepPass(Kernel::VbdGuess, stepNumber);
     const int passes = translationLevels_ > 0 ? translationLevelPasses_ : 0;
-    const int chebyshevStart =
-        vbdChebyshevStart(translationSweeps_, vbdIterations_, translationLevels_, passes);
+    const int chebyshevStart = vbdChebyshevStart(translationSweeps_, vbdIterations_, passes);
     double omega = 1;
     for (int n = 1; n <= vbdIterations_; ++n) {
         if (vbdLevelsBefore(n, vbdIterations_, passes)) runVbdLevels(stepNumber);

@@ -190,18 +190,22 @@ inline double chebyshevOmega(int n, double rho, double previous) {
     return 4 / (4 - rho * rho * previous);
 }
 
-// The sweep before which the translation's levels run for the p-th time (p = 0 … passes − 1) in a
-// vbd step of `iterations` sweeps: sweep 1, then 1 + ⌈p N / P⌉, spread evenly over the N sweeps
-// (P at most N, one pass before a sweep; docs/integrators.md "The translation's levels").
-inline int vbdLevelPassSweep(int p, int iterations, int passes) {
-    const int n = std::max(iterations, 1), each = std::clamp(passes, 1, n);
-    return 1 + (p * n + each - 1) / each;
+// The passes of the translation's levels a vbd step of `iterations` sweeps runs for `passes`
+// asked: at most one before each sweep; none where passes ≤ 0 (no levels).
+inline int vbdLevelPassCount(int iterations, int passes) {
+    return std::clamp(passes, 0, std::max(iterations, 1));
 }
 
-// Whether the translation's levels run before sweep n of such a step (none where passes ≤ 0).
+// The sweep before which the levels run for the p-th time (p = 0 … count − 1): sweep 1, then
+// 1 + ⌈p N / P⌉, spread evenly over the N sweeps (docs/integrators.md "The translation's levels").
+inline int vbdLevelPassSweep(int p, int iterations, int passes) {
+    const int each = std::max(vbdLevelPassCount(iterations, passes), 1);
+    return 1 + (p * std::max(iterations, 1) + each - 1) / each;
+}
+
+// Whether the levels run before sweep n of such a step.
 inline bool vbdLevelsBefore(int n, int iterations, int passes) {
-    const int each = std::min(passes, std::max(iterations, 1));
-    for (int p = 0; p < each; ++p)
+    for (int p = 0; p < vbdLevelPassCount(iterations, passes); ++p)
         if (n == vbdLevelPassSweep(p, iterations, passes)) return true;
     return false;
 }
@@ -209,11 +213,10 @@ inline bool vbdLevelsBefore(int n, int iterations, int passes) {
 // The sweeps of a vbd step that come before Chebyshev's first iteration: the semi-iteration
 // assumes one fixed map from sweep to sweep, which a sweep followed by the translation's step is
 // not, nor a sweep that follows a pass of the levels after the first, so its sequence starts from
-// the iterate after the last such sweep (docs/integrators.md "vbd").
-inline int vbdChebyshevStart(int translationSweeps, int iterations, int levels, int passes) {
-    const int each = std::clamp(passes, 1, std::max(iterations, 1));
-    const int lastPass =
-        levels > 0 && each > 1 ? vbdLevelPassSweep(each - 1, iterations, passes) : 0;
+// the iterate after the last such sweep (docs/integrators.md "vbd"). `passes` 0: no levels.
+inline int vbdChebyshevStart(int translationSweeps, int iterations, int passes) {
+    const int count = vbdLevelPassCount(iterations, passes);
+    const int lastPass = count > 1 ? vbdLevelPassSweep(count - 1, iterations, passes) : 0;
     return std::max({translationSweeps, lastPass, 0});
 }
 

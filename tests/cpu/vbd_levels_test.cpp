@@ -111,11 +111,12 @@ TEST(VbdLevels, ThePassesAreSpreadEvenlyOverTheSweeps) {
     EXPECT_EQ(sweeps(10, 2), "1 6 ");
     EXPECT_EQ(sweeps(7, 2), "1 5 ");
     EXPECT_EQ(sweeps(6, 3), "1 3 5 ");
-    EXPECT_EQ(sweeps(3, 5), "1 2 3 ");             // no more passes than sweeps
-    EXPECT_EQ(vbdChebyshevStart(1, 10, 4, 1), 1);  // one pass: after the translation's step
-    EXPECT_EQ(vbdChebyshevStart(1, 10, 4, 2), 6);  // the pass before sweep 6
-    EXPECT_EQ(vbdChebyshevStart(1, 10, 0, 2), 1);  // passes without levels run none
-    EXPECT_EQ(vbdChebyshevStart(8, 10, 4, 2), 8);
+    EXPECT_EQ(sweeps(3, 5), "1 2 3 ");          // no more passes than sweeps
+    EXPECT_EQ(sweeps(10, 0), "");               // no levels, no pass
+    EXPECT_EQ(vbdChebyshevStart(1, 10, 1), 1);  // one pass: after the translation's step
+    EXPECT_EQ(vbdChebyshevStart(1, 10, 2), 6);  // the pass before sweep 6
+    EXPECT_EQ(vbdChebyshevStart(1, 10, 0), 1);  // no levels
+    EXPECT_EQ(vbdChebyshevStart(8, 10, 2), 8);
 }
 
 // Converged, vbd is backward Euler whatever path its sweeps took: 300 sweeps with the levels (one
