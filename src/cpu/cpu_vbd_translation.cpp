@@ -33,7 +33,9 @@ void CpuSolver<T>::vbdTakeParameters(const Scene& scene) {
     vbdIterations_ = scene.integrator.iterations;
     chebyshevRho_ = scene.integrator.chebyshevRho;
     translationSweeps_ = scene.integrator.translationSweeps;
-    translationLevels_ = scene.integrator.translationLevels;
+    translationLevels_ =
+        vbdTranslationLevels(scene.integrator.translationLevels,
+                             scene.integrator.translationBlockWidth, grid_.nu, grid_.nv);
     translationLevelPasses_ = scene.integrator.translationLevelPasses;
     const std::size_t n = std::size_t(x_.size());
     if (chebyshevRho_ > 0 && dBefore_.size() == 0)

@@ -17,6 +17,7 @@
 #include "model/errors.h"
 #include "model/pin_follow.h"
 #include "model/vbd_colouring.h"
+#include "model/vbd_local.h"
 
 namespace cloth {
 namespace {
@@ -83,7 +84,9 @@ GpuSolver::GpuSolver(const Scene& scene, const GpuOptions& options)
       vbdIterations_(scene.integrator.iterations),
       chebyshevRho_(scene.integrator.chebyshevRho),
       translationSweeps_(scene.integrator.translationSweeps),
-      translationLevels_(scene.integrator.translationLevels),
+      translationLevels_(vbdTranslationLevels(scene.integrator.translationLevels,
+                                              scene.integrator.translationBlockWidth,
+                                              scene.cloth.nu, scene.cloth.nv)),
       translationLevelPasses_(scene.integrator.translationLevelPasses),
       forces_(options.forces),
       nu_(scene.cloth.nu),

@@ -171,7 +171,7 @@ private:
     int vbdIterations_;
     double chebyshevRho_;
     int translationSweeps_;       // vbd: the sweeps followed by the translation's step
-    int translationLevels_;       // vbd: the translation's levels before the first sweep
+    int translationLevels_;       // vbd: the translation's levels that run (vbdTranslationLevels)
     int translationLevelPasses_;  // vbd: their passes a step (vbdLevelPassSweep)
     long vbdHistoryFrom_ = 2;
     // verlet: the forces buffer holds F(x_n) of the coming step (F(x_{n+1}) of the last one).

@@ -13,6 +13,7 @@
 #include "gpu/gpu_buffers.h"
 #include "gpu/gpu_solver.h"
 #include "model/pin_follow.h"
+#include "model/vbd_local.h"
 
 namespace cloth {
 
@@ -158,7 +159,8 @@ void GpuSolver::setParameters(const Scene& scene) {
     vbdIterations_ = scene.integrator.iterations;
     chebyshevRho_ = scene.integrator.chebyshevRho;
     translationSweeps_ = scene.integrator.translationSweeps;
-    translationLevels_ = scene.integrator.translationLevels;
+    translationLevels_ = vbdTranslationLevels(scene.integrator.translationLevels,
+                                              scene.integrator.translationBlockWidth, nu_, nv_);
     translationLevelPasses_ = scene.integrator.translationLevelPasses;
     forcesKept_ = false;
     uploadParams(scene);

@@ -101,6 +101,8 @@ std::vector<std::string> unusedIntegratorSettings(const IntegratorSpec& in) {
         if (in.translationLevelPasses != defaults.translationLevelPasses)
             unused("translation_level_passes", std::to_string(in.translationLevelPasses), "vbd",
                    "");
+        if (in.translationBlockWidth != defaults.translationBlockWidth)
+            unused("translation_block_width", std::to_string(in.translationBlockWidth), "vbd", "");
     } else if (in.translationLevels == 0 && in.translationLevelPasses != 1) {
         lines.push_back(
             "integrator.translation_level_passes = " + std::to_string(in.translationLevelPasses) +

@@ -95,6 +95,11 @@ struct IntegratorSpec {
     // with them 10 sweeps at 1/60 s hold a landing sheet of 192² where without them it tears
     // from 72², for about a quarter more a step.
     int translationLevels = 4;
+    // vbd only, with the levels: more levels than translationLevels where the finest blocks would
+    // be wider than this many vertices (vbdTranslationLevels); 0 = exactly translationLevels. 16
+    // by default: it adds levels only past 256 vertices a side, where 4 levels' blocks held the
+    // landing less far than blocks 16 wide (docs/integrators.md "The translation's levels").
+    int translationBlockWidth = 16;
     // vbd only, with the levels: how many times a step they run, before the first sweep and again
     // before sweeps spread evenly over the rest (vbdLevelPassSweep; at most one before each
     // sweep). 1 by default: a second pass holds a landing wherever it meets the collider on sheets

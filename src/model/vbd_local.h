@@ -226,6 +226,18 @@ inline double vbdChebyshevOmega(int n, int start, double rho, double previous) {
     return chebyshevOmega(n - start, rho, previous);
 }
 
+// The translation's levels that run on an nu × nv grid: `levels`, and more while the finest
+// blocks are wider than `blockWidth` vertices (0: no more), up to 16; 0 where `levels` is 0. With
+// 8 sweeps and 2 passes at Δt = 1/60, 1/120 and 1/240 s, blocks 16 wide held the dropped cotton
+// sheet of 256², 512² and 1024² vertices (N Δt ≈ 4.3 s), where blocks 32 and 64 wide tore it at
+// 512² and 1024² (docs/integrators.md "The translation's levels").
+inline int vbdTranslationLevels(int levels, int blockWidth, int nu, int nv) {
+    if (levels <= 0) return 0;
+    const std::int64_t widest = std::max(nu, nv);
+    while (blockWidth > 0 && levels < 16 && widest > (std::int64_t(blockWidth) << levels)) ++levels;
+    return levels;
+}
+
 // The parts a side of the finest of the translation's `levels` (level l cuts an nu × nv grid
 // into 2^l × 2^l blocks) that runs: 2^levels, or fewer where a block would be narrower than 2
 // vertices; 1 where no level runs.

@@ -141,6 +141,14 @@ constexpr ParamSpec kParams[] = {
                     ? std::optional<double>(s.integrator.translationLevelPasses) : std::nullopt;
      },
      [](Scene& s, double v) { s.integrator.translationLevelPasses = int(std::lround(v)); }},
+    {"integrator.translation_block_width", "", 0, 100000, false, true, 16, false,
+     "vbd: more translation levels where the finest blocks would be wider than this many "
+     "vertices, up to 16 levels; 0 = exactly translation_levels", kHidden,
+     [](const Scene& s) -> std::optional<double> {
+         return s.integrator.method == Method::Vbd
+                    ? std::optional<double>(s.integrator.translationBlockWidth) : std::nullopt;
+     },
+     [](Scene& s, double v) { s.integrator.translationBlockWidth = int(std::lround(v)); }},
     {"integrator.max_step_strain", "", 0, 10, false, false, 0, false,
      "a step that stretches a structural spring by more than this fraction of its rest length "
      "is redone as two of half the Δt, down to Δt/16; 0 = off", kHidden,

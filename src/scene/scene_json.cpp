@@ -118,6 +118,7 @@ std::string sceneToJson(const Scene& s) {
         j["integrator"]["translation_sweeps"] = s.integrator.translationSweeps;
         j["integrator"]["translation_levels"] = s.integrator.translationLevels;
         j["integrator"]["translation_level_passes"] = s.integrator.translationLevelPasses;
+        j["integrator"]["translation_block_width"] = s.integrator.translationBlockWidth;
     }
     if (s.integrator.maxStepStrain > 0)
         j["integrator"]["max_step_strain"] = s.integrator.maxStepStrain;

@@ -196,7 +196,7 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
     expectObject(j, "integrator",
                  {"method", "dt", "substeps", "tolerance", "max_iterations", "preconditioner",
                   "iterations", "chebyshev_rho", "translation_sweeps", "translation_levels",
-                  "translation_level_passes", "max_step_strain"});
+                  "translation_level_passes", "translation_block_width", "max_step_strain"});
     if (j.contains("method")) {
         const Json& m = j["method"];
         if (!m.is_string()) fail("integrator.method", "expected a string, got " + describe(m));
@@ -217,24 +217,22 @@ void SceneReader::readIntegrator(const Json& j, IntegratorSpec& integrator) cons
                                                   "\"; known: none, jacobi, multigrid");
         integrator.preconditioner = *preconditioner;
     }
-    integrator.tolerance = param(j, "tolerance", "integrator.tolerance", "integrator.tolerance");
-    integrator.maxIterations =
-        int(param(j, "max_iterations", "integrator.max_iterations", "integrator.max_iterations"));
-    integrator.dt = param(j, "dt", "integrator.dt", "integrator.dt");
-    integrator.substeps = int(param(j, "substeps", "integrator.substeps", "integrator.substeps"));
-    integrator.iterations =
-        int(param(j, "iterations", "integrator.iterations", "integrator.iterations"));
-    integrator.chebyshevRho =
-        param(j, "chebyshev_rho", "integrator.chebyshev_rho", "integrator.chebyshev_rho");
-    integrator.translationSweeps = int(param(
-        j, "translation_sweeps", "integrator.translation_sweeps", "integrator.translation_sweeps"));
-    integrator.translationLevels = int(param(
-        j, "translation_levels", "integrator.translation_levels", "integrator.translation_levels"));
-    integrator.translationLevelPasses =
-        int(param(j, "translation_level_passes", "integrator.translation_level_passes",
-                  "integrator.translation_level_passes"));
-    integrator.maxStepStrain =
-        param(j, "max_step_strain", "integrator.max_step_strain", "integrator.max_step_strain");
+    // Every scalar key here is "integrator.<key>" in the parameter table.
+    const auto number = [&](const char* key) {
+        const std::string path = std::string("integrator.") + key;
+        return param(j, key, path, path.c_str());
+    };
+    integrator.tolerance = number("tolerance");
+    integrator.maxIterations = int(number("max_iterations"));
+    integrator.dt = number("dt");
+    integrator.substeps = int(number("substeps"));
+    integrator.iterations = int(number("iterations"));
+    integrator.chebyshevRho = number("chebyshev_rho");
+    integrator.translationSweeps = int(number("translation_sweeps"));
+    integrator.translationLevels = int(number("translation_levels"));
+    integrator.translationLevelPasses = int(number("translation_level_passes"));
+    integrator.translationBlockWidth = int(number("translation_block_width"));
+    integrator.maxStepStrain = number("max_step_strain");
 }
 
 // A pin is [i, j], or {"at": [i, j], "follow": n} to follow colliders[n] (checked once the

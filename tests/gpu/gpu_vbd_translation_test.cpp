@@ -141,5 +141,29 @@ TEST_F(GpuVbdTranslation, ASecondPassOfItsLevelsHoldsALandingOffTheMiddle) {
     EXPECT_LT(most[1], 0.95);
 }
 
+// As on the CPU (VbdLevels.BlocksSixteenWideHoldALandingThatBlocksThirtyTwoWideLetTear: 0.78 and
+// 4.8): with 3 sweeps at 1/60 the 128² landing holds where 2 levels asked for with blocks at most
+// 16 wide run 3, and tears with exactly 2 (blocks 32 wide). Measured on llvmpipe: 0.81 and 4.2.
+TEST_F(GpuVbdTranslation, ItsLevelsFollowTheBlockWidthAsOnTheCpu) {
+    Scene s = landingDrape(128);
+    s.integrator.iterations = 3;
+    s.integrator.translationLevels = 2;
+    double most[2] = {0, 0};
+    for (int width : {16, 0}) {
+        s.integrator.translationBlockWidth = width;
+        auto gpu = makeGpuSolver(s, {});
+        for (int frame = 0; frame < 60; ++frame) {
+            ASSERT_FALSE(gpu->step(1).unstable);
+            most[width == 0] = std::max(most[width == 0], largestStrain(s, gpu->read()).strain);
+        }
+    }
+    std::printf(
+        "gpu, drape 128², 3 sweeps, 2 levels asked: largest strain %.3g with blocks at most 16 "
+        "wide, %.3g with blocks 32 wide\n",
+        most[0], most[1]);
+    EXPECT_LT(most[0], 0.9);
+    EXPECT_GT(most[1], 1.5) << "blocks 32 wide held it";
+}
+
 }  // namespace
 }  // namespace cloth::test

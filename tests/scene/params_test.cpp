@@ -26,6 +26,7 @@ const nlohmann::json kFull = nlohmann::json::parse(R"({
   "integrator": {"method": "vbd", "dt": 0.002, "substeps": 3, "tolerance": 1e-4,
                  "max_iterations": 50, "iterations": 20, "chebyshev_rho": 0.5,
                  "translation_sweeps": 2, "translation_levels": 3, "translation_level_passes": 2,
+                 "translation_block_width": 8,
                  "max_step_strain": 0.2},
   "wind": {"direction": [1, 0, 0], "strength": 0.5},
   "colliders": [{"type": "sphere", "center": [0, -2, 0], "radius": 0.3}],
