@@ -193,6 +193,35 @@ TEST(CliRun, AKeyOfAnotherMethodIsNoted) {
     EXPECT_NE(own.out.find("integrator.tolerance = 1e-05"), std::string::npos) << own.out;
 }
 
+// validate says how many translation levels vbd runs and how wide their finest blocks are: a
+// 300 × 200 sheet is wider than 256, so translation_block_width 16 adds a fifth level (blocks of
+// 10 × 7); with 0, the 4 asked (19 × 13); with no levels, no line.
+TEST(CliValidate, SaysTheTranslationLevelsVbdRuns) {
+    const auto validate = [](const char* width) {
+        return runProcess(
+            {kExe, "validate", kScenes + "hanging.json", "--set",
+             "integrator={\"method\":\"vbd\",\"dt\":0.01}", "--set", "cloth.resolution=[300,200]",
+             "--set", std::string("integrator.translation_block_width=") + width},
+            60);
+    };
+    const auto wide = validate("16");
+    ASSERT_EQ(wide.exitCode, 0) << test::describe(wide);
+    EXPECT_NE(wide.out.find("vbd runs 5 translation levels (translation_levels = 4, "
+                            "translation_block_width = 16): the finest blocks 10 x 7 vertices"),
+              std::string::npos)
+        << wide.out;
+    const auto asked = validate("0");
+    EXPECT_NE(asked.out.find("vbd runs 4 translation levels (translation_levels = 4, "
+                             "translation_block_width = 0): the finest blocks 19 x 13 vertices"),
+              std::string::npos)
+        << asked.out;
+    const auto none = runProcess({kExe, "validate", kScenes + "hanging.json", "--set",
+                                  "integrator={\"method\":\"vbd\",\"dt\":0.01,"
+                                  "\"translation_levels\":0}"},
+                                 60);
+    EXPECT_EQ(none.out.find("translation levels"), std::string::npos) << none.out;
+}
+
 TEST(CliValidate, AbsentFamilyIsReportedAsNotModelled) {
     const auto r = runProcess({kExe, "validate", kScenes + "spring.json"}, 60);
     ASSERT_EQ(r.exitCode, 0) << test::describe(r);
