@@ -266,19 +266,15 @@ void printStability(const Scene& s) {
             rate, held, rate < held ? ": it may over-stretch where it lands on one" : "");
         const IntegratorSpec& in = s.integrator;
         const Grid g = s.grid();
-        const int parts = vbdLevelParts(
-            vbdTranslationLevels(in.translationLevels, in.translationBlockWidth, g.nu, g.nv), g.nu,
-            g.nv);
-        int levels = 0;  // those that run: blocks at least 2 vertices wide
-        while ((1 << levels) < parts) ++levels;
-        if (levels > 0)
+        const VbdLevelsRun run =
+            vbdLevelsRun(in.translationLevels, in.translationBlockWidth, g.nu, g.nv);
+        if (run.levels > 0)
             std::printf(
                 "             vbd runs %d translation levels (translation_levels = %d, "
                 "translation_block_width = %d): the finest blocks %d x %d vertices, %d pass%s a "
                 "step\n",
-                levels, in.translationLevels, in.translationBlockWidth, (g.nu + parts - 1) / parts,
-                (g.nv + parts - 1) / parts, in.translationLevelPasses,
-                in.translationLevelPasses == 1 ? "" : "es");
+                run.levels, in.translationLevels, in.translationBlockWidth, run.width, run.height,
+                in.translationLevelPasses, in.translationLevelPasses == 1 ? "" : "es");
     }
 }
 

@@ -247,4 +247,17 @@ inline int vbdLevelParts(int levels, int nu, int nv) {
     return parts;
 }
 
+// What a vbd step's translation levels come to on an nu × nv grid (what validate and the viewer
+// say): the levels that run (vbdTranslationLevels, as far as blocks stay at least 2 vertices
+// wide) and the widest finest block's vertices along u and v.
+struct VbdLevelsRun {
+    int levels = 0, width = 0, height = 0;
+};
+inline VbdLevelsRun vbdLevelsRun(int levels, int blockWidth, int nu, int nv) {
+    const int parts = vbdLevelParts(vbdTranslationLevels(levels, blockWidth, nu, nv), nu, nv);
+    VbdLevelsRun run{0, (nu + parts - 1) / parts, (nv + parts - 1) / parts};
+    while ((1 << run.levels) < parts) ++run.levels;
+    return run;
+}
+
 }  // namespace cloth

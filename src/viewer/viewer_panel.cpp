@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "model/stability.h"
+#include "model/vbd_local.h"
 #include "solver/instability.h"
 #include "viewer/viewer_session.h"
 #include "viewer/viewer_ui.h"
@@ -94,6 +95,12 @@ bool timeSection(ViewerParams& p, std::vector<std::string>& drawn) {
             "this size held with %.0f",
             rate, held);
         ImGui::PopStyleColor();
+        const Grid g = scene.grid();
+        const VbdLevelsRun run = vbdLevelsRun(scene.integrator.translationLevels,
+                                              scene.integrator.translationBlockWidth, g.nu, g.nv);
+        if (run.levels > 0)
+            ImGui::TextWrapped("%d translation levels run, the finest blocks %d x %d", run.levels,
+                               run.width, run.height);
     } else if (std::isinf(bound)) {
         ImGui::TextWrapped("stable at any dt (linearised); CG tolerance %.0e", in.tolerance);
     } else if (bound <= 0) {

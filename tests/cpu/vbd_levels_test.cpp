@@ -134,6 +134,15 @@ TEST(VbdLevels, TheBlockWidthAddsLevelsOnlyWhereTheBlocksWouldBeWider) {
     EXPECT_EQ(vbdTranslationLevels(4, 0, 1024, 1024), 4);   // 0: exactly the levels asked
     EXPECT_EQ(vbdTranslationLevels(0, 16, 1024, 1024), 0);  // no levels stays none
     EXPECT_EQ(vbdTranslationLevels(4, 1, 100000, 8), 16);   // at most 16
+    // What runs: as far as blocks stay 2 vertices wide, and the widest finest block.
+    const VbdLevelsRun wide = vbdLevelsRun(4, 16, 300, 200), cape = vbdLevelsRun(4, 16, 21, 33);
+    EXPECT_EQ(wide.levels, 5);
+    EXPECT_EQ(wide.width, 10);
+    EXPECT_EQ(wide.height, 7);
+    EXPECT_EQ(cape.levels, 3);  // 21 vertices: blocks of 2 or 3 after 3 levels
+    EXPECT_EQ(cape.width, 3);
+    EXPECT_EQ(cape.height, 5);
+    EXPECT_EQ(vbdLevelsRun(0, 16, 1024, 1024).levels, 0);
 }
 
 // With 3 sweeps at 1/60 the 128² landing tears with 2 levels (blocks 32 wide: strain 4.8 in
