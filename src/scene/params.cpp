@@ -125,7 +125,8 @@ constexpr ParamSpec kParams[] = {
      [](Scene& s, double v) { s.integrator.translationSweeps = int(std::lround(v)); }},
     {"integrator.translation_levels", "", 0, 16, false, true, 4, false,
      "vbd: before the first sweep of a step, the same Newton step on the translation of each "
-     "block of the sheet cut into 2 × 2, 4 × 4, … 2^N × 2^N parts; 0 = none",
+     "block of the sheet cut into 2 × 2, 4 × 4, … 2^N × 2^N parts (more where blocks would be "
+     "wider than translation_block_width); 0 = none",
      {PanelSection::TimeStep, SliderScale::Linear, 0, 8, "vbd translation levels", "%d"},
      [](const Scene& s) -> std::optional<double> {
          return s.integrator.method == Method::Vbd
