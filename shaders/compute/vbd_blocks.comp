@@ -6,8 +6,8 @@
 // colliders' projection. uVbd.w says which part of that this dispatch does:
 // - 0: all of it, one work group a block;
 // - 1: the sums of one of a block's uVbd.z chunks a work group, into vbdTranslation;
-// - 2: one work group a block sums its chunks' sums and takes the step;
-// - 3: the step on one chunk a work group;
+// - 3: one work group a chunk sums its block's chunks' sums, takes the block's step (every
+//   work group of the block the same, in the same order) and applies it to its chunk;
 // - 4: all of it, one invocation a block.
 // Chunks let the first levels' few large blocks spread over many work groups; the last levels'
 // many small blocks take an invocation each, without the work group's barriers.
@@ -135,14 +135,13 @@ void main() {
         applyBlock(lo, hi, 0, count, 1, blockStep(l, inertia));
         return;
     }
-    int block = mode == 0 || mode == 2 ? group : group / chunks, chunk = group % chunks;
+    int block = mode == 0 ? group : group / chunks, chunk = group % chunks;
     ivec2 lo, hi;
     blockBounds(block, lo, hi);
     int count = (hi.x - lo.x) * (hi.y - lo.y);
     int first = mode == 0 ? 0 : (chunk * count) / chunks;
     int last = mode == 0 ? count : ((chunk + 1) * count) / chunks;
     uint at = 1u + 3u * uint(group);  // mode 1: this chunk's sums
-    uint steps = 1u + 3u * uint(blocks * chunks);  // the blocks' steps after the chunks' sums
     uint t = gl_LocalInvocationIndex;
     if (mode == 0 || mode == 1) {
         sumBlockInGroup(lo, hi, first, last);
@@ -151,14 +150,12 @@ void main() {
         } else if (gl_LocalInvocationIndex == 0u) {
             for (uint e = 0u; e < 3u; ++e) vbdTranslation[at + e] = groupSums3[e][0];
         }
-    } else if (mode == 2) {
+    } else {  // 3: the block's chunks' sums (at most kGroup of them), in a fixed order
         for (uint e = 0u; e < 3u; ++e)
             groupSums3[e][t] = int(t) < chunks
                                    ? vbdTranslation[1u + 3u * uint(block * chunks + int(t)) + e]
                                    : vec4(0.0);
         reduceGroup();
-        if (t == 0u) vbdTranslation[steps + uint(block)] = groupStep();
-    } else {
-        applyBlock(lo, hi, first + int(t), last, int(kGroup), vbdTranslation[steps + uint(block)]);
+        applyBlock(lo, hi, first + int(t), last, int(kGroup), groupStep());
     }
 }

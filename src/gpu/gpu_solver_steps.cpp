@@ -183,7 +183,8 @@ void GpuSolver::stepVbd(long stepNumber) const {
 // (parts/2)² blocks of a colour take one work group each; blocks of fewer than kLevelGroupBlock
 // vertices one invocation each; the first levels' large blocks are cut into chunks of at least
 // kLevelChunk vertices, up to kLevelGroups work groups a colour (and what vbdTranslation holds),
-// summed, solved and applied in three passes.
+// in two passes: the chunks' sums, then each chunk's work group takes its block's step from them
+// (the same in each) and applies it.
 void GpuSolver::runVbdLevels(long stepNumber) const {
     constexpr int kLevelChunk = 1024, kLevelGroups = 128, kLevelGroupBlock = 256;
     const unsigned program = programs_[int(Kernel::VbdBlocks)];
@@ -197,8 +198,8 @@ void GpuSolver::runVbdLevels(long stepNumber) const {
     };
     for (int parts = 2; parts <= vbdLevelParts(translationLevels_, nu_, nv_); parts *= 2) {
         const int blocks = (parts / 2) * (parts / 2), count = (nu_ / parts) * (nv_ / parts);
-        const int chunks = std::max(1, std::min({kLevelGroups / blocks, count / kLevelChunk,
-                                                 (room - blocks) / (3 * blocks)}));
+        const int chunks = std::max(
+            1, std::min({kLevelGroups / blocks, count / kLevelChunk, room / (3 * blocks)}));
         for (int colour = 0; colour < 4; ++colour) {
             if (count < kLevelGroupBlock) {
                 pass(parts, colour, 1, 4, (blocks + 255) / 256);
@@ -209,7 +210,6 @@ void GpuSolver::runVbdLevels(long stepNumber) const {
                 continue;
             }
             pass(parts, colour, chunks, 1, blocks * chunks);
-            pass(parts, colour, chunks, 2, blocks);
             pass(parts, colour, chunks, 3, blocks * chunks);
         }
     }
