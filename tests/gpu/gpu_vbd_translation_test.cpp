@@ -102,17 +102,23 @@ TEST_F(GpuVbdTranslation, ItsLevelsStepTheLandingAsOnTheCpu) {
     for (int passes : {1, 2}) expectTheLandingAsOnTheCpu(passes);
 }
 
+// The largest structural or shear strain of `frames` steps on the GPU, every step measured.
+double largestStrainOnTheGpu(const Scene& s, int frames) {
+    auto gpu = makeGpuSolver(s, {});
+    double most = 0;
+    for (int frame = 0; frame < frames; ++frame) {
+        EXPECT_FALSE(gpu->step(1).unstable);
+        most = std::max(most, largestStrain(s, gpu->read()).strain);
+    }
+    return most;
+}
+
 // The whole second of the landing at 96², every frame measured (the first level in chunks): 0.61,
 // the CPU's 0.53 with 5 levels (tests/cpu/vbd_levels_test.cpp), 2.1 without.
 TEST_F(GpuVbdTranslation, ItsLevelsHoldTheLandingSheetInEveryFrame) {
     Scene s = landingDrape(96);
     s.integrator.translationLevels = 5;
-    auto gpu = makeGpuSolver(s, {});
-    double most = 0;
-    for (int frame = 0; frame < 60; ++frame) {
-        ASSERT_FALSE(gpu->step(1).unstable);
-        most = std::max(most, largestStrain(s, gpu->read()).strain);
-    }
+    const double most = largestStrainOnTheGpu(s, 60);
     std::printf("gpu, drape 96², 10 sweeps and 5 levels: largest strain %.3g\n", most);
     EXPECT_LT(most, 0.7);
 }
@@ -127,11 +133,7 @@ TEST_F(GpuVbdTranslation, ASecondPassOfItsLevelsHoldsALandingOffTheMiddle) {
     double most[2] = {0, 0};
     for (int passes : {1, 2}) {
         s.integrator.translationLevelPasses = passes;
-        auto gpu = makeGpuSolver(s, {});
-        for (int frame = 0; frame < 60; ++frame) {
-            ASSERT_FALSE(gpu->step(1).unstable);
-            most[passes - 1] = std::max(most[passes - 1], largestStrain(s, gpu->read()).strain);
-        }
+        most[passes - 1] = largestStrainOnTheGpu(s, 60);
     }
     std::printf(
         "gpu, drape 192² off the middle, 5 sweeps: largest strain %.3g with one pass of "
@@ -151,11 +153,7 @@ TEST_F(GpuVbdTranslation, ItsLevelsFollowTheBlockWidthAsOnTheCpu) {
     double most[2] = {0, 0};
     for (int width : {16, 0}) {
         s.integrator.translationBlockWidth = width;
-        auto gpu = makeGpuSolver(s, {});
-        for (int frame = 0; frame < 60; ++frame) {
-            ASSERT_FALSE(gpu->step(1).unstable);
-            most[width == 0] = std::max(most[width == 0], largestStrain(s, gpu->read()).strain);
-        }
+        most[width == 0] = largestStrainOnTheGpu(s, 60);
     }
     std::printf(
         "gpu, drape 128², 3 sweeps, 2 levels asked: largest strain %.3g with blocks at most 16 "
