@@ -10,6 +10,7 @@ PACKAGES=(
     libgtest-dev libgmock-dev                 # tests
     libegl-dev libgl-dev libglew-dev          # GPU backend: headless EGL + OpenGL 4.3 compute
     libegl-mesa0 libgl1-mesa-dri              # Mesa (llvmpipe where there is no GPU)
+    mesa-vulkan-drivers                       # lavapipe, under zink: the GPU tests' second GL
     libglfw3-dev libimgui-dev libstb-dev      # viewer window, its panel, PNG output
     xvfb xauth xdotool                        # viewer tests without a display, real X input
     clang-14 libfuzzer-14-dev                 # the scene-loader fuzzer

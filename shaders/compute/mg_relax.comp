@@ -1,6 +1,6 @@
-// implicit_euler's multigrid preconditioner, line Gauss–Seidel's second half on level uLevel
-// (multigrid.glsl; src/cpu/cpu_multigrid.cpp substitutePairs): lines uLine.y, uLine.y + 5, … in
-// direction uLine.x, one per work group, each solved exactly, A_line z_line = t, with its banded
+// implicit_euler's multigrid preconditioner, line Gauss–Seidel's second half on level
+// lineLevel() (multigrid.glsl; src/cpu/cpu_multigrid.cpp substitutePairs): lines c, c + 5, … of
+// colour c = lineColour() in lineDirection(), one per work group, each solved exactly, A_line z_line = t, with its banded
 // factor (t the right-hand side mg_relax_right_hand_side.comp left). Lines of one colour lie 5
 // apart, outside each other's stencil, so they are solved independently. With MG_CHUNKS 1 a
 // line is one chain and a work group takes 64 lines.
@@ -33,8 +33,8 @@ void sync() {
 
 void main() {
     if (cg.done != 0u) return;
-    int l = uLevel, direction = uLine.x;
-    int line = uLine.y + 5 * int(gl_GlobalInvocationID.x / MG_CHUNKS);
+    int l = lineLevel(), direction = lineDirection();
+    int line = lineColour() + 5 * int(gl_GlobalInvocationID.x / MG_CHUNKS);
     if (line >= (direction == 0 ? levelV(l) : levelU(l))) return;
     int m = lineLength(l, direction), dofs = 3 * m;
     int f = lineAt(l, direction, line);

@@ -49,9 +49,17 @@ layout(std430, binding = 14) MG_WORK_COHERENT buffer MgWork {
 };
 
 // The level the dispatch works on (the coarse one of a Galerkin product, restriction or
-// prolongation); the smoother's line direction (0 rows, 1 columns) and colour.
+// prolongation).
 layout(location = 4) uniform int uLevel;
-layout(location = 5) uniform ivec2 uLine;
+// The smoother's dispatch (mg_relax_right_hand_side.comp, mg_relax.comp) in one value: its level,
+// line direction (0 rows, 1 columns) and colour, 16 level + 8 direction + colour. One uniform
+// that changes between dispatches, not three: Mesa 22.3's zink (OpenGL over Vulkan, on lavapipe)
+// ran these kernels with the direction and the level of an earlier dispatch of the same colour,
+// and the V-cycle's z was garbage (docs/gpu.md "Drivers").
+layout(location = 5) uniform int uLine;
+int lineLevel() { return uLine >> 4; }
+int lineDirection() { return (uLine >> 3) & 1; }
+int lineColour() { return uLine & 7; }
 
 int levelU(int l) { return kMgLevels[l].x; }
 int levelV(int l) { return kMgLevels[l].y; }

@@ -97,13 +97,14 @@ void GpuMultigrid::sweep(const Programs& programs, int level, int direction, boo
         const int colour = forward ? c : 4 - c;
         const int count = (lines - colour + 4) / 5;  // lines colour, colour + 5, …
         if (count <= 0) continue;
-        for (unsigned program : {rightHandSide, solve}) {
-            glProgramUniform2i(program, kLineLocation, direction, colour);
-            glProgramUniform1i(program, kLevelLocation, level);
-        }
+        // multigrid.glsl uLine: level, direction and colour in one uniform.
+        const int line = 16 * level + 8 * direction + colour;
+        for (unsigned program : {rightHandSide, solve})
+            glProgramUniform1i(program, kLineLocation, line);
         run(rightHandSide, GLuint((length + wg_.x - 1) / wg_.x),
             GLuint((count + wg_.y - 1) / wg_.y));
-        dispatchChunks(solve, level, count, multigridRelaxGroup(chunks_) / chunks_);
+        const int perGroup = multigridRelaxGroup(chunks_) / chunks_;
+        run(solve, GLuint((count + perGroup - 1) / perGroup), 1);
     }
 }
 
