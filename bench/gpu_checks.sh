@@ -96,7 +96,7 @@ for n in 128 512; do
             --set "cloth.resolution=[$n,$n]" \
             --set "integrator={\"method\":\"implicit_euler\",\"dt\":0.016667,\"preconditioner\":\"$p\",\"tolerance\":1e-6,\"max_iterations\":3000}" \
             --steps 10 --out-solves "$res/implicit_${label}_${n}_$p.csv" 2>&1 |
-            grep -E 'ms/step|CG solves|unstable|error' | tr '\n' ' ' || echo "cut off at 20 s")
+            grep -E 'ms/step|CG solves|unstable|error' | tr '\n' ' ' || echo "cut off at its limit")
         echo "$n $p: $line" | tee -a "$res/implicit_$label.txt"
     done
 done
@@ -107,7 +107,7 @@ for chunks in 1 32; do
         line=$(CLOTH_MULTIGRID_CHUNKS=$chunks timeout "$(limit 20)" "$exe" run "$here/scenes/drape.json" \
             --backend gpu --set "cloth.resolution=[128,128]" \
             --set "integrator={\"method\":\"implicit_euler\",\"dt\":0.016667,\"preconditioner\":\"multigrid\",\"tolerance\":1e-6,\"max_iterations\":$cap}" \
-            --steps 10 2>&1 | grep -E 'ms/step|CG solves|error' | tr '\n' ' ' || echo "cut off at 20 s")
+            --steps 10 2>&1 | grep -E 'ms/step|CG solves|error' | tr '\n' ' ' || echo "cut off at its limit")
         echo "128 multigrid, $chunks chunks, cap $cap: $line" | tee -a "$res/implicit_$label.txt"
     done
 done
