@@ -1,9 +1,9 @@
 // implicit_euler's multigrid preconditioner, line Gauss–Seidel's second half on level
 // lineLevel() (multigrid.glsl; src/cpu/cpu_multigrid.cpp substitutePairs): lines c, c + 5, … of
-// colour c = lineColour() in lineDirection(), one per work group, each solved exactly, A_line z_line = t, with its banded
-// factor (t the right-hand side mg_relax_right_hand_side.comp left). Lines of one colour lie 5
-// apart, outside each other's stencil, so they are solved independently. With MG_CHUNKS 1 a
-// line is one chain and a work group takes 64 lines.
+// colour c = lineColour() in lineDirection(), one per work group, each solved exactly,
+// A_line z_line = t, with its banded factor (t the right-hand side mg_relax_right_hand_side.comp
+// left). Lines of one colour lie 5 apart, outside each other's stencil, so they are solved
+// independently. With MG_CHUNKS 1 a line is one chain and a work group takes 64 lines.
 //
 // A substitution is a chain of dependent rows. Along a line of 3 m rows it ran at one row's
 // latency a row; here each invocation takes one chunk of the line (multigrid.glsl

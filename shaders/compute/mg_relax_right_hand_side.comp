@@ -1,8 +1,9 @@
 // implicit_euler's multigrid preconditioner, line Gauss–Seidel's first half on level
 // lineLevel() (multigrid.glsl; src/cpu/cpu_multigrid.cpp lineRightHandSide): for every vertex on
-// the lines of colour lineColour() in lineDirection(), r − (A z − A_line z_line), the stencil's blocks off the
-// line times z on other colours' lines, into t (free while the grid is smoothed). One invocation
-// per vertex: x along the line, y the colour's lines; mg_relax.comp then solves each line.
+// the lines of colour lineColour() in lineDirection(), r − (A z − A_line z_line), the stencil's
+// blocks off the line times z on other colours' lines, into t (free while the grid is smoothed).
+// One invocation per vertex: x along the line, y the colour's lines; mg_relax.comp then solves
+// each line.
 #include "layout.glsl"
 #include "common.glsl"
 #include "multigrid.glsl"
