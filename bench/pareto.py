@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The trade of issue 17 (docs/stability.md, "Large steps: error against cost"): on the drape
+"""The speed-accuracy trade (docs/stability.md, "Large steps: error against cost"): on the drape
 scene in cotton, every solver's error after 1 s against a converged backward Euler, against its
 wall time per simulated second.
 

@@ -58,7 +58,7 @@ TEST(SolverStatics, EveryIntegratorSettlesOnTheSameEquilibrium) {
             methodName(c.method), c.dt, rest.steps, 1e3 * hangingSheetSag(scene, rest.state),
             1e3 * hangingSheetSag(statics, exact.state), 1e3 * error);
         EXPECT_LE(rest.lastMove, 1e-6 * c.dt) << methodName(c.method);
-        EXPECT_LT(error, 2e-3) << methodName(c.method);  // the bound on a 1 m sheet
+        EXPECT_LT(error, 2e-3) << methodName(c.method);  // the statics bound on a 1 m sheet
         // and what settling to 1 µm/s leaves (seen: 1.2e-4, 3.5e-5 and 3.6e-5 mm; vbd without
         // its translation's step 8.1e-4 mm); a gravity 1 % off moves the sheet by more (seen:
         // 0.029 mm RMS).

@@ -149,7 +149,7 @@ TEST(Vbd, AtRestItIsTheStaticEquilibrium) {
         vbd.steps, vbd.lastMove, 1e3 * hangingSheetSag(scene, vbd.state),
         1e3 * hangingSheetSag(statics, exact.state), 1e3 * error);
     EXPECT_LE(vbd.lastMove, 1e-8);
-    EXPECT_LT(error, 2e-3);  // the statics bound on a 1 m sheet
+    EXPECT_LT(error, 2e-3);  // the statics bound on a 1 m sheet
     EXPECT_LT(error, 1e-5);  // and what settling to 1e-8 m a step leaves
 }
 

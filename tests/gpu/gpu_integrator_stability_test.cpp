@@ -166,7 +166,7 @@ TEST_F(GpuIntegratorStability, ImplicitEulerKeepsAStiffClothFiniteAtASixtiethOfA
 namespace cloth::test {
 namespace {
 
-// The agreement rule: at the same (K, Δt), CPU float and GPU reach the same verdict,
+// The agreement rule: at the same (K, Δt), CPU float and GPU reach the same verdict,
 // stable or unstable, except within ±10% of the boundary. Stiffness over six decades, each
 // explicit scheme at 0.85× and 1.15× its tight bound (0.5×/2× are further from the edge, where
 // agreement is easier), 3000 steps. Just past the bound a mode grows slowly from rounding noise,

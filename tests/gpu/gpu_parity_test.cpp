@@ -14,7 +14,7 @@ namespace {
 using Json = nlohmann::json;
 
 constexpr long kSteps = 200;
-constexpr double kReferenceTolerance = 1e-4;  // max |p − p_ref| / extent, the bound
+constexpr double kReferenceTolerance = 1e-4;  // max |p − p_ref| / extent, the parity bound
 // Two float backends whose roundings differ in order (FMA contraction, sqrt): ~1e-7 seen on
 // smooth physics. A sphere contact turns last-bit differences into "inside or not" decisions
 // worth up to Δt²|g| each (~1e-5 m seen): there the reference tolerance applies.
