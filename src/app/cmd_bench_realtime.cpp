@@ -63,7 +63,8 @@ options:
                         not the keys the bench sets: cloth.resolution, integrator.method,
                         integrator.dt, duration, material.preset (--material)
   --out DIR             output folder (default bench/results)
-  --label NAME          file names realtime_NAME.* (default the material's name)
+  --label NAME          file names realtime_NAME.* (default the material's name, with
+                        _per_vertex for --form per-vertex)
   --threads N           CPU threads (default automatic)
   --quick               a small run for CI: T = 0.25 s, tolerance 0.25, reference factor 4,
                         max size 128

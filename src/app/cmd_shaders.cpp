@@ -22,8 +22,8 @@ namespace {
 constexpr const char* kHelp = R"(usage: clothsim shaders --out DIR SCENE...
 
 Writes the compute kernels of every SCENE under every integrator and kernel variant to
-DIR/<scene file name>/*.comp, and the render shaders to DIR/render/*.vert and *.frag, each
-assembled as the program would compile it (#version, #defines, resolved #includes).
+DIR/<scene file name without .json>/*.comp, and the render shaders to DIR/render/*.vert and
+*.frag, each assembled as the program would compile it (#version, #defines, resolved #includes).
 )";
 
 #ifdef CLOTH_HAVE_RENDER

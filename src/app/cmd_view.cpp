@@ -36,7 +36,8 @@ options:
   --out-csv FILE            after the last frame, write the solver's state as run --out-csv
   --help                    this text
 
-exit codes: 0 ok, 1 internal error, 2 invalid input, 4 no window with OpenGL 4.3
+exit codes: 0 ok, 1 internal error, 2 invalid input, 3 the session ended unstable (not reset
+            since), 4 no window with OpenGL 4.3
 )";
 #endif
 

@@ -22,6 +22,7 @@ usage:
   clothsim bench    speed|accuracy|stability|realtime [options]
   clothsim validate SCENE                       check a scene, print what it models
   clothsim info                                 GL/EGL device, limits, build
+  clothsim shaders  --out DIR SCENE...          every shader source, assembled, for a checker
 
 'clothsim COMMAND --help' describes each command.
 exit codes: 0 ok, 1 internal error or a failed write, 2 invalid input, 3 unstable simulation,

@@ -1,5 +1,8 @@
 #include "backends/solver_factory.h"
 
+#include <algorithm>
+#include <string>
+
 #include "cpu/cpu_backend.h"
 #include "model/errors.h"
 #include "solver/step_control.h"
@@ -47,9 +50,21 @@ const GpuEntry& requireGpu() {
 // docs/performance.md: the GPU backend on llvmpipe against the CPU backend on the same cores.
 constexpr const char* kSoftwareCost = "about 10-30x slower than the CPU backend";
 
-// A GpuUnavailable's first line (the context's tries follow on lines of their own).
-std::string firstLine(const std::string& text) {
-    return text.substr(0, text.find('\n'));
+// A GpuUnavailable's message on one line: the context's tries follow its first line on lines of
+// their own, each "platform: reason"; they join it after its colon, "; " between them.
+std::string oneLine(const std::string& text) {
+    std::string line;
+    std::size_t begin = 0;
+    while (begin <= text.size()) {
+        const std::size_t end = std::min(text.find('\n', begin), text.size());
+        const std::size_t first = text.find_first_not_of(' ', begin);
+        if (first < end) {
+            if (!line.empty()) line += line.back() == ':' ? " " : "; ";
+            line += text.substr(first, end - first);
+        }
+        begin = end + 1;
+    }
+    return line;
 }
 
 }  // namespace
@@ -81,8 +96,7 @@ BackendPick pickBackend(const Scene* scene, const GpuOptions& options, bool doub
                 return {Backend::Cpu, "as the GPU backend cannot run this scene: " + *why};
         return {Backend::Gpu, device + "hardware GPU"};
     } catch (const GpuUnavailable& e) {
-        return {Backend::Cpu,
-                "as the GPU backend has no OpenGL 4.3 context: " + firstLine(e.what())};
+        return {Backend::Cpu, "as the GPU backend has no OpenGL 4.3 context: " + oneLine(e.what())};
     }
 }
 

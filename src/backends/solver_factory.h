@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "solver/solver.h"
 #include "cpu/cpu_rows.h"
 #include "gpu/gpu_options.h"
+#include "solver/solver.h"
 
 namespace cloth {
 

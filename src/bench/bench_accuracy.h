@@ -1,5 +1,5 @@
-// clothsim bench accuracy: the options it takes and the run (app/cmd_bench_accuracy.cpp reads the options
-// from the command line).
+// clothsim bench accuracy: the options it takes and the run (app/cmd_bench_accuracy.cpp reads the
+// options from the command line).
 #pragma once
 
 #include "bench/bench.h"

@@ -227,7 +227,9 @@ int runBenchRealtime(const RealtimeOptions& options) {
     }
     // The scene with the --set overrides, checked before anything runs.
     const Scene probe = sceneAt(o, kFirstSize, Method::SymplecticEuler);
-    if (o.label.empty()) o.label = o.material;
+    // The per-vertex form's files sit beside the material's, not over them.
+    if (o.label.empty())
+        o.label = o.material + (o.form == ClothForm::PerVertex ? "_per_vertex" : "");
     checkOutputs(o.out, o.label);  // an unusable --out or --label is refused now, not after
     auto targets = parseTargets("--backend", o.backend, {Precision::Float, Precision::Double});
     targets = availableTargets(targets, probe, o.backend == "gpu", o.base());

@@ -21,5 +21,4 @@ struct GpuSweepOptions {
     std::vector<GpuOptions> variants() const;
 };
 
-
 }  // namespace cloth::app

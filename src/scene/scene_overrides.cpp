@@ -66,6 +66,13 @@ std::string applyOverride(nlohmann::json& doc, const std::string& assignment,
             path += "[" + part + "]";
             node = &(*node)[std::stoul(part)];
         } else {
+            // An index into a list the scene does not have (colliders.1.radius on a scene without
+            // colliders) would make an object keyed "1": say what is missing instead.
+            if (node->is_null() && isIndex(part) && !path.empty())
+                throw InputError(source, key,
+                                 "--set: the scene has no " + path + ", so '" + part +
+                                     "' is not an index of it (set the whole list: " + path +
+                                     "=[...])");
             if (node->is_null()) *node = nlohmann::json::object();
             if (!node->is_object())
                 throw InputError(

@@ -16,7 +16,7 @@ struct ViewerOptions {
     bool doubleAsked = false;       // --precision double: --backend auto picks the CPU
     int width = 1280, height = 800;
     bool vsync = true;
-    int frames = 0;          // > 0: run this many frames, then exit (tests, screenshots)
+    int frames = 0;  // > 0: run this many frames, then exit (tests, screenshots)
     // Written after the last frame: the one `frames` counts to, or the one in which the window
     // was closed (Ctrl+Q, the window manager).
     std::string screenshot;  // the window as PNG

@@ -92,6 +92,22 @@ TEST(BackendAuto, RunAcceptsAutoAndSaysWhatItPicked) {
     EXPECT_EQ(quiet.out + quiet.err, "");
 }
 
+// Law: where EGL offers no OpenGL at all (here: libglvnd pointed at no vendor), auto runs on the
+// CPU and its one line says why, the reason included (each platform tried and what it said).
+TEST(BackendAuto, WithoutAnyOpenGlAutoRunsOnTheCpuAndSaysWhy) {
+    const auto r = runProcess({"/usr/bin/env", "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json",
+                               kExe, "run", kSpring, "--steps", "10", "--backend", "auto"},
+                              60);
+    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
+    EXPECT_NE(r.out.find("(cpu "), std::string::npos) << r.out;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    const std::string why =
+        "clothsim: backend auto: cpu, as the GPU backend has no OpenGL 4.3 "
+        "context: no headless OpenGL 4.3+ context could be made: EGL ";
+    EXPECT_EQ(r.err.rfind(why, 0), 0u) << r.err;
+    EXPECT_GT(r.err.size(), why.size() + 10) << r.err;  // a platform and its error follow
+}
+
 // Law: the GPU computes in float, so auto with --precision double picks the CPU, and says so.
 TEST(BackendAuto, PrecisionDoublePicksTheCpu) {
     const auto r = runProcess(

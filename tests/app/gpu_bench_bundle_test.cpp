@@ -18,8 +18,8 @@ const std::string kExe = CLOTH_EXE;
 const std::string kScript = CLOTH_SOURCE_DIR "/scripts/gpu-bench.sh";
 
 bool cLibrary(const std::string& name) {
-    for (const char* prefix : {"libc.so", "libm.so", "libdl.so", "libpthread.so", "librt.so",
-                               "ld-linux", "linux-vdso"})
+    for (const char* prefix :
+         {"libc.so", "libm.so", "libdl.so", "libpthread.so", "librt.so", "ld-linux", "linux-vdso"})
         if (name.rfind(prefix, 0) == 0) return true;
     return false;
 }
@@ -33,9 +33,9 @@ TEST(GpuBenchBundle, EveryLibraryButTheCLibraryResolvesInsideTheBundle) {
     ASSERT_TRUE(fs::exists(bundle / "clothsim"));
     ASSERT_TRUE(fs::exists(bundle / "shaders" / "compute" / "forces.glsl"));
 
-    const auto ldd = runProcess(
-        {"/usr/bin/env", "LD_LIBRARY_PATH=" + (bundle / "lib").string(), "ldd", (bundle / "clothsim").string()},
-        60);
+    const auto ldd = runProcess({"/usr/bin/env", "LD_LIBRARY_PATH=" + (bundle / "lib").string(),
+                                 "ldd", (bundle / "clothsim").string()},
+                                60);
     ASSERT_EQ(ldd.exitCode, 0) << test::describe(ldd);
     std::istringstream lines(ldd.out);
     std::string line;
@@ -66,7 +66,8 @@ TEST(GpuBenchBundle, EveryLibraryButTheCLibraryResolvesInsideTheBundle) {
 
 TEST(GpuBenchBundle, RefusesAFolderWithoutTheExecutable) {
     const fs::path d = test::freshTempDir("gpu_bench", "missing");
-    const auto r = runProcess({kScript, "bundle", (d / "nothing").string(), (d / "b").string()}, 60);
+    const auto r =
+        runProcess({kScript, "bundle", (d / "nothing").string(), (d / "b").string()}, 60);
     EXPECT_EQ(r.exitCode, 2) << test::describe(r);
     EXPECT_NE(r.err.find("no such executable"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(d / "b"));

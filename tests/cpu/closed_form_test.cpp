@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "scene/scene_loader.h"
 #include "cpu/cpu_backend.h"
+#include "scene/scene_loader.h"
 #include "solver/solver.h"
 
 namespace cloth {

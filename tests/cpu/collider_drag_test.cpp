@@ -9,11 +9,11 @@
 #include <memory>
 #include <stdexcept>
 
+#include "cpu/cpu_backend.h"
 #include "model/collider_limits.h"
 #include "model/collider_mesh.h"
 #include "model/collider_pose.h"
 #include "scene/scene_loader.h"
-#include "cpu/cpu_backend.h"
 #include "solver/solver.h"
 #include "support/contact_scenes.h"
 

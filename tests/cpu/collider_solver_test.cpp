@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "model/collider_mesh.h"
-#include "scene/scene_loader.h"
 #include "cpu/cpu_backend.h"
-#include "solver/solver.h"
+#include "model/collider_mesh.h"
 #include "reference/reference.h"
 #include "reference/reference_colliders.h"
+#include "scene/scene_loader.h"
+#include "solver/solver.h"
 #include "support/collider_cases.h"
 #include "support/contact_scenes.h"
 #include "support/process.h"

@@ -12,10 +12,10 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "cpu/cpu_backend.h"
 #include "model/collider_contact.h"
 #include "model/collider_motion.h"
 #include "scene/scene_loader.h"
-#include "cpu/cpu_backend.h"
 #include "solver/solver.h"
 
 namespace cloth {

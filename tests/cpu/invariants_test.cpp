@@ -11,10 +11,10 @@
 #include <string>
 #include <variant>
 
-#include "scene/scene_loader.h"
 #include "cpu/cpu_backend.h"
-#include "solver/solver.h"
 #include "reference/reference.h"
+#include "scene/scene_loader.h"
+#include "solver/solver.h"
 #include "support/reference_bridge.h"
 
 namespace cloth {

@@ -10,10 +10,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "cpu/cpu_backend.h"
 #include "model/errors.h"
 #include "scene/scene_json.h"
 #include "scene/scene_loader.h"
-#include "cpu/cpu_backend.h"
 #include "solver/solver.h"
 #include "support/follow_scene.h"
 #include "support/reference_bridge.h"

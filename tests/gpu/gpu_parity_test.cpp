@@ -47,7 +47,9 @@ struct Case {
     std::function<void(Json&)> edit;
 };
 // gtest prints a parameter in test listings; the name says which case it is.
-void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Case& c, std::ostream* os) {
+    *os << c.name;
+}
 
 void springsOnly(Json& j, const char* family) {
     j["springs"] = Json::object({{family, j["springs"][family]}});

@@ -11,10 +11,10 @@
 #include <tuple>
 
 #include "cpu/cpu_backend.h"
+#include "gpu_test_support.h"
 #include "model/collider_motion.h"
 #include "model/pin_follow.h"
 #include "scene/scene_json.h"
-#include "gpu_test_support.h"
 #include "support/follow_scene.h"
 
 namespace cloth {

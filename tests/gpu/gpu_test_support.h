@@ -9,12 +9,12 @@
 #include <optional>
 #include <string>
 
-#include "scene/scene_loader.h"
 #include "cpu/cpu_backend.h"
-#include "solver/solver.h"
 #include "gpu/egl_context.h"
 #include "gpu/gpu_backend.h"
 #include "reference/reference.h"
+#include "scene/scene_loader.h"
+#include "solver/solver.h"
 #include "support/reference_bridge.h"
 
 namespace cloth::test {

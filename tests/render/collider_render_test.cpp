@@ -6,13 +6,13 @@
 #include <optional>
 #include <string>
 
-#include "scene/scene_loader.h"
 #include "cpu/cpu_backend.h"
-#include "solver/solver.h"
 #include "gpu/gpu_test_support.h"
 #include "render/image.h"
 #include "render/image_checks.h"
 #include "render/renderer.h"
+#include "scene/scene_loader.h"
+#include "solver/solver.h"
 
 namespace cloth::render {
 namespace {

@@ -92,6 +92,20 @@ TEST(Overrides, ListEntriesAreReachedByIndexInEitherSpelling) {
               0.25);
 }
 
+// An index into a list the scene lacks names the missing list, not an object the --set made.
+TEST(Overrides, AnIndexIntoAListTheSceneLacksNamesTheList) {
+    try {
+        parseScene(kMinimal, "o.json", {"colliders.1.radius=0.4"});
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_EQ(e.file(), "o.json");
+        EXPECT_EQ(e.key(), "colliders.1.radius");
+        EXPECT_NE(e.reason().find("the scene has no colliders, so '1' is not an index of it"),
+                  std::string::npos)
+            << e.reason();
+    }
+}
+
 TEST(Overrides, BadOverrideIsRejectedLikeTheFileWouldBe) {
     try {
         parseScene(kMinimal, "o.json", {"springs.bnd=3"});

@@ -5,9 +5,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cpu/cpu_backend.h"
 #include "model/pin_follow.h"
 #include "scene/scene_loader.h"
-#include "cpu/cpu_backend.h"
 #include "solver/solver.h"
 
 namespace cloth {

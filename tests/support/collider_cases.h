@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "model/collider_mesh.h"
-#include "scene/scene_loader.h"
 #include "reference/reference_colliders.h"
+#include "scene/scene_loader.h"
 #include "support/process.h"
 
 namespace cloth::test {

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <variant>
 
-#include "scene/scene_loader.h"
 #include "reference/reference.h"
+#include "scene/scene_loader.h"
 #include "support/reference_bridge.h"
 
 namespace cloth {

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "model/scene.h"
-#include "solver/solver.h"
 #include "reference/reference.h"
+#include "solver/solver.h"
 
 namespace cloth {
 

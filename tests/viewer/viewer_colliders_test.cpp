@@ -7,10 +7,10 @@
 
 #include <utility>
 
-#include "viewer/viewer_session.h"
 #include "model/collider_motion.h"
 #include "model/errors.h"
 #include "scene/scene_loader.h"
+#include "viewer/viewer_session.h"
 
 namespace cloth {
 namespace {

@@ -7,12 +7,12 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "viewer/viewer_session.h"
 #include "model/collider_limits.h"
 #include "model/collider_speed.h"
 #include "model/errors.h"
-#include "scene/scene_loader.h"
 #include "render/image_checks.h"
+#include "scene/scene_loader.h"
+#include "viewer/viewer_session.h"
 
 namespace cloth {
 namespace {

@@ -72,9 +72,8 @@ protected:
                 GTEST_FAIL() << "CLOTH_REQUIRE_GPU=1 but " << program << " is not installed";
             GTEST_SKIP() << program << " is not installed";
         }
-        dir_ = test::freshTempDir("viewer_input", ::testing::UnitTest::GetInstance()
-                                                      ->current_test_info()
-                                                      ->name());
+        dir_ = test::freshTempDir("viewer_input",
+                                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
     }
     void TearDown() override {
         if (!HasFailure() && !dir_.empty()) fs::remove_all(dir_);
@@ -98,8 +97,7 @@ protected:
     State run(long steps) {
         const fs::path csv = dir_ / ("run_" + std::to_string(steps) + ".csv");
         const test::ProcessResult r = test::runProcess(
-            {kExe, "run", kScene, "--steps", std::to_string(steps), "--out-csv", csv.string()},
-            60);
+            {kExe, "run", kScene, "--steps", std::to_string(steps), "--out-csv", csv.string()}, 60);
         EXPECT_EQ(r.exitCode, 0) << test::describe(r);
         return readCsv(csv);
     }
@@ -177,7 +175,8 @@ TEST_F(ViewerInput, LeftDragOnEmptySpaceOrbitsTheView) {
         for (int x = 400; x < after.width; ++x, ++total) {
             const std::size_t k = (std::size_t(y) * after.width + x) * 3;
             int d = 0;
-            for (int c = 0; c < 3; ++c) d += std::abs(int(before.rgb[k + c]) - int(after.rgb[k + c]));
+            for (int c = 0; c < 3; ++c)
+                d += std::abs(int(before.rgb[k + c]) - int(after.rgb[k + c]));
             changed += d > 30;
         }
     std::printf("orbit: %.1f%% of the view changed\n", 100.0 * double(changed) / double(total));
