@@ -6,7 +6,7 @@ FUZZ_SECONDS ?= 60
 # CI (CI=true) turns warnings into errors.
 WERROR      := $(if $(CI),ON,OFF)
 
-.PHONY: all deps configure build run test unit fuzz shaders sanitize asan tsan format clean
+.PHONY: all deps configure build run test unit fuzz shaders sanitize asan tsan asan-gpu format clean
 
 all: build
 
@@ -102,8 +102,23 @@ tsan: deps
 	cd build-tsan && env -u CLOTH_REQUIRE_GPU TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
 	    ctest -L '^($(TSAN_LABELS))$$' -R '$(TSAN_TESTS)' --output-on-failure -j$(JOBS)
 
+# The GPU backend's host code (buffers, uploads, read-backs, the shader loader, the renderer)
+# under AddressSanitizer + UBSan, on whatever OpenGL EGL offers (llvmpipe here; Mesa's own code is
+# not instrumented, but its copies into our memory are checked). Not in CI: on 2 cores the build
+# took about 15 minutes; its gpu, render and viewer tests 357 s alone, 553 s beside other jobs
+# (2026-12-01, all passed). Leaks are not reported: the driver's and the window system's own allocations live
+# until exit (the viewer ends with 240 bytes in 3 of theirs, from modules without symbols).
+asan-gpu: deps
+	@cmake -S . -B build-asan-gpu -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCLOTH_BULLET=OFF \
+	    -DCLOTH_PYTHON=OFF -DCLOTH_WERROR=$(WERROR) -DCMAKE_CXX_COMPILER=$(SANITIZE_CXX) \
+	    $(ASAN_OPT) -DCLOTH_SANITIZE=ON >/dev/null
+	@cmake --build build-asan-gpu -j$(JOBS) --target cloth_tests clothsim
+	cd build-asan-gpu && ASAN_OPTIONS=detect_leaks=0:detect_stack_use_after_return=1 \
+	    UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
+	    ctest -L '^(gpu|render|viewer)$$' --output-on-failure -j$(JOBS)
+
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.h')
 
 clean:
-	rm -rf $(BUILD_DIR) build-fuzz build-asan build-tsan out
+	rm -rf $(BUILD_DIR) build-fuzz build-asan build-tsan build-asan-gpu out
