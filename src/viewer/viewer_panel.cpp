@@ -113,6 +113,19 @@ bool timeSection(ViewerParams& p, std::vector<std::string>& drawn) {
     } else {
         ImGui::Text("stability bound: dt < %.3g s", bound);
     }
+    // A frame's worth of steps the method wants: one for the large-step methods, those inside the
+    // bound for the others (after a switch of integrator the scene's dt is the old method's).
+    if (const std::optional<FrameStep> fit = frameStep(in, bound)) {
+        char label[96];
+        std::snprintf(label, sizeof label, "%s: %d x %.3g s",
+                      fit->substeps == 1 ? "one step a frame" : "steps inside the bound",
+                      fit->substeps, fit->dt);
+        if (ImGui::Button(label)) {
+            in.dt = fit->dt;
+            in.substeps = fit->substeps;
+            changed = true;
+        }
+    }
     return changed;
 }
 

@@ -305,4 +305,17 @@ void ViewerSession::sampleDiagnostics() {
     sampledSolves_ = now;
 }
 
+std::optional<FrameStep> frameStep(const IntegratorSpec& in, double bound) {
+    const int substeps = std::max(1, in.substeps);
+    const double frame = substeps * in.dt;
+    if (in.method == Method::Vbd || std::isinf(bound)) {
+        if (substeps == 1) return std::nullopt;
+        return FrameStep{frame, 1};
+    }
+    if (!(bound > 0) || in.dt <= 0.9 * bound) return std::nullopt;
+    const double steps = std::ceil(frame / (0.9 * bound));
+    if (!(steps <= 100000)) return std::nullopt;  // past integrator.substeps' range
+    return FrameStep{frame / steps, int(steps)};
+}
+
 }  // namespace cloth::app

@@ -129,6 +129,17 @@ private:
 // motion's top speed (maxMotionSpeed) included.
 glm::dvec3 clampDragVelocity(const glm::dvec3& v, const Collider& c, double dt);
 
+// The step that fits the displayed frame (substeps × dt, kept) to the method, for the panel's
+// button: one step a frame for the methods without a bound (implicit Euler, vbd; `bound` ∞ or
+// vbd's), and for a method with a bound the fewest equal steps at most 0.9 of it where dt is
+// past that. Nothing where the step fits already, or the bound is not positive (explicit Euler
+// without damping).
+struct FrameStep {
+    double dt;
+    int substeps;
+};
+std::optional<FrameStep> frameStep(const IntegratorSpec& in, double bound);
+
 // True when the two scenes' clothes differ in grid (resolution, size, origin or axes).
 bool gridDiffers(const Scene& a, const Scene& b);
 

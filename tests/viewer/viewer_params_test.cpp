@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "model/stability.h"
 #include "scene/params.h"
 #include "scene/scene_loader.h"
 #include "viewer/viewer_session.h"
@@ -98,6 +99,37 @@ TEST(ViewerParamSliders, EachRowIsEditableThroughTheSession) {
             EXPECT_EQ(*p.get(session.params().scene), v);
         }
     }
+}
+
+// The panel's frame-step button keeps the displayed frame (substeps × dt) and fits the step to the
+// method: after switching the drape (symplectic Euler, 42 steps of 0.4 ms) to vbd or implicit
+// Euler, one step a frame; after switching a 1/60 s vbd drape to symplectic Euler, the fewest
+// equal steps at most 0.9 of the bound; nothing where the step fits already.
+TEST(ViewerFrameStep, KeepsTheFrameAndFitsTheStepToTheMethod) {
+    Scene drape = loadScene(CLOTH_SOURCE_DIR "/scenes/drape.json");
+    const double frame = drape.integrator.substeps * drape.integrator.dt;
+    EXPECT_FALSE(app::frameStep(drape.integrator, stableDt(drape)));  // inside its bound already
+    for (Method m : {Method::Vbd, Method::ImplicitEuler}) {
+        drape.integrator.method = m;
+        const auto fit = app::frameStep(drape.integrator, stableDt(drape));
+        ASSERT_TRUE(fit) << methodName(m);
+        EXPECT_EQ(fit->substeps, 1);
+        EXPECT_DOUBLE_EQ(fit->dt, frame);
+        IntegratorSpec once = drape.integrator;
+        once.dt = fit->dt, once.substeps = 1;
+        EXPECT_FALSE(app::frameStep(once, stableDt(drape))) << methodName(m);
+    }
+    drape.integrator.method = Method::SymplecticEuler;
+    drape.integrator.dt = 1.0 / 60, drape.integrator.substeps = 1;
+    const double bound = stableDt(drape);
+    const auto fit = app::frameStep(drape.integrator, bound);
+    ASSERT_TRUE(fit);
+    EXPECT_LE(fit->dt, 0.9 * bound);
+    EXPECT_GT(fit->dt * fit->substeps, 0.9 * bound * (fit->substeps - 1));  // the fewest
+    EXPECT_NEAR(fit->dt * fit->substeps, 1.0 / 60, 1e-15);
+    drape.integrator.method = Method::ExplicitEuler;  // without damping: no stable step to offer
+    drape.material->airDamping = 0;
+    EXPECT_FALSE(app::frameStep(drape.integrator, stableDt(drape)));
 }
 
 }  // namespace
