@@ -309,7 +309,7 @@ std::optional<FrameStep> frameStep(const IntegratorSpec& in, double bound) {
     const int substeps = std::max(1, in.substeps);
     const double frame = substeps * in.dt;
     if (in.method == Method::Vbd || std::isinf(bound)) {
-        if (substeps == 1) return std::nullopt;
+        if (substeps == 1 || frame > 10) return std::nullopt;  // integrator.dt's range
         return FrameStep{frame, 1};
     }
     if (!(bound > 0) || in.dt <= 0.9 * bound) return std::nullopt;

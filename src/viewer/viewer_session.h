@@ -130,10 +130,10 @@ private:
 glm::dvec3 clampDragVelocity(const glm::dvec3& v, const Collider& c, double dt);
 
 // The step that fits the displayed frame (substeps × dt, kept) to the method, for the panel's
-// button: one step a frame for the methods without a bound (implicit Euler, vbd; `bound` ∞ or
-// vbd's), and for a method with a bound the fewest equal steps at most 0.9 of it where dt is
-// past that. Nothing where the step fits already, or the bound is not positive (explicit Euler
-// without damping).
+// button: one step a frame for vbd and for a method whose `bound` (stableDt) is infinite
+// (implicit Euler), and for the others the fewest equal steps at most 0.9 of the bound where dt is
+// past that. Nothing where the step fits already, where the bound is not positive (explicit Euler
+// without damping), or where the frame or its steps leave integrator.dt's or .substeps' range.
 struct FrameStep {
     double dt;
     int substeps;
