@@ -1,5 +1,7 @@
 // clothsim view [SCENE]: the interactive viewer (docs/viewer.md).
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 
 #include "app/backend_flags.h"
 #include "app/cli.h"
@@ -30,6 +32,8 @@ options:
   --set KEY.PATH=JSON       change a parameter after loading, as the panel does (repeatable)
   --size WxH                window size (default 1280x800)
   --no-vsync                draw as fast as possible
+  --samples N               multisampling, 0 (none) to 16; default 4 on a GPU, none on a
+                            software rasteriser such as llvmpipe, where it halves the frame rate
   --frames N                draw N frames, then exit (with --screenshot: for tests)
   --screenshot FILE         after the last frame (of --frames N, or when the window closes:
                             Ctrl+Q), write the window as PNG
@@ -61,7 +65,14 @@ int viewCommand(Args& args) {
             o.vsync = false;
         else if (f == "--frames")
             o.frames = args.positiveInt32(f);
-        else if (f == "--screenshot")
+        else if (f == "--samples") {
+            const std::string v = args.value(f);
+            char* end = nullptr;
+            const long n = std::strtol(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || n < 0 || n > 16)
+                throw InputError("command line", f, "expected 0 to 16, got '" + v + "'");
+            o.samples = int(n);
+        } else if (f == "--screenshot")
             o.screenshot = args.value(f);
         else if (f == "--out-csv")
             o.outCsv = args.value(f);

@@ -276,8 +276,13 @@ void GlContext::queryInfo() {
     GLint bits = 0;
     glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
     g.timerQueries = bits > 0;
+    g.software = softwareRenderer(g.renderer);
+}
+
+bool softwareRenderer(const std::string& renderer) {
     for (const char* sw : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
-        g.software = g.software || g.renderer.find(sw) != std::string::npos;
+        if (renderer.find(sw) != std::string::npos) return true;
+    return false;
 }
 
 void GlContext::makeCurrent() const {

@@ -34,6 +34,9 @@ struct GpuInfo {
     std::string describe() const;  // multi-line, for `clothsim info`
 };
 
+// Whether GL_RENDERER names a CPU rasteriser (llvmpipe, softpipe, swrast, SwiftShader).
+bool softwareRenderer(const std::string& renderer);
+
 class GlContext {
 public:
     // The process-wide context, made current on the calling thread. Throws GpuUnavailable.

@@ -16,6 +16,9 @@ struct ViewerOptions {
     bool doubleAsked = false;       // --precision double: --backend auto picks the CPU
     int width = 1280, height = 800;
     bool vsync = true;
+    // Multisampling: --samples N, or -1: 4 on a GPU, none on a software rasteriser
+    // (viewer_main.cpp).
+    int samples = -1;
     int frames = 0;  // > 0: run this many frames, then exit (tests, screenshots)
     // Written after the last frame: the one `frames` counts to, or the one in which the window
     // was closed (Ctrl+Q, the window manager).
