@@ -286,19 +286,6 @@ TEST(BenchRealtime, QuickRunWritesTheFrontierEveryTrialAndThePlot) {
     EXPECT_FALSE(contains(r.err, "failed")) << r.err;
 }
 
-// The per-vertex form's files sit beside the material's (realtime_cotton_per_vertex.*), so that a
-// run of each form in one folder keeps both.
-TEST(BenchRealtime, ThePerVertexFormWritesFilesOfItsOwn) {
-    const fs::path d = test::freshTempDir("bench_realtime", "per_vertex");
-    const auto r = runProcess(
-        {kExe, "bench", "realtime", "--form", "per-vertex", "--backend", "cpu", "--methods",
-         "symplectic_euler", "--sizes", "8", "--time", "0.05", "--no-error", "--out", d},
-        120);
-    ASSERT_EQ(r.exitCode, 0) << test::describe(r);
-    EXPECT_TRUE(fs::exists(d / "realtime_cotton_per_vertex.csv")) << r.out;
-    EXPECT_FALSE(fs::exists(d / "realtime_cotton.csv")) << r.out;
-}
-
 // wall_per_sim_s of each (target, n) trial in a trials CSV.
 std::map<std::pair<std::string, int>, double> trialRates(const fs::path& csv) {
     std::map<std::pair<std::string, int>, double> rates;
