@@ -8,7 +8,8 @@
 #   2. the real-time frontier of vbd on the drape with the strain check: 10 sweeps (the largest N
 #      whose sheet holds at 60 frames a second), then 1024² with 8 sweeps and 2 passes of the
 #      levels (whether it holds at 60 frames a second), and what a step at 2048² costs;
-#   3. bench/gpu_step_check.sh at 1024² (what the device's step check costs);
+#   3. the shipped real-time scene at 128²–1024² (its step's cost, whether it holds), and
+#      bench/gpu_step_check.sh at 1024² (what the device's step check costs);
 #   4. implicit Euler on the drape at 128² and 512², block-Jacobi and the multigrid V-cycle; 128²
 #      multigrid with its line solves as one chain a line and in 32 chunks, to convergence and
 #      capped at 1 iteration (what the per-step build costs, so that the difference gives the
@@ -83,6 +84,17 @@ timeout "$(limit 40)" "$exe" run "$here/scenes/drape.json" --backend gpu --steps
     --set "cloth.resolution=[2048,2048]" \
     --set 'integrator={"method":"vbd","dt":0.00208333,"iterations":8,"translation_level_passes":2}' \
     2>&1 | tee "$res/vbd_steps_2048_$label.txt"
+pack
+
+# The shipped real-time scene (vbd, 20 sweeps, ρ = 0.9, 2 passes, friction) at larger sheets:
+# what its step costs here, and whether the sheet holds (run checks max_strain every 0.1 s).
+stamp "realtime scene"
+for n in 128 256 512 1024; do
+    line=$(timeout "$(limit 15)" "$exe" run "$here/scenes/realtime.json" --backend gpu --steps 60 \
+        --set "cloth.resolution=[$n,$n]" 2>&1 | grep -E 'ms/step|unstable|error' | tr '\n' ' ' ||
+        echo "cut off at its limit")
+    echo "$n: $line" | tee -a "$res/realtime_scene_$label.txt"
+done
 pack
 
 stamp "step check 1024"

@@ -55,10 +55,16 @@ Scene everythingScene() {
     return parseScene(kEverythingScene, "everything (test)");
 }
 
+// The shipped scenes but those stepped by vbd (the real-time sheet): its 20 sweeps a step stop
+// short of the backward Euler step the reference solves by Newton's method, so it departs from
+// the reference by vbd's own error (tests/cpu/vbd_test.cpp, docs/stability.md "vbd"), and that
+// Newton solve on a 128² sheet would take minutes a step.
 std::vector<std::string> shippedSceneNames() {
     std::vector<std::string> names;
     for (const auto& e : std::filesystem::directory_iterator(CLOTH_SOURCE_DIR "/scenes")) {
-        if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+        if (e.path().extension() == ".json" &&
+            loadScene(e.path().string()).integrator.method != Method::Vbd)
+            names.push_back(e.path().stem().string());
     }
     std::sort(names.begin(), names.end());
     return names;

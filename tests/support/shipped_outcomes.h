@@ -1,8 +1,8 @@
 // The outcomes of the shipped collider scenes (docs/colliders.md §10) that the CPU and GPU tests
 // measure alike (tests/scene/shipped_scenes_test.cpp, tests/gpu/gpu_shipped_scenes_test.cpp), each
 // on its own backend's solver: how close any vertex is to a collider, where the tablecloth's
-// centre and lowest vertex end, how far the windsock is blown along the wind, and where the
-// cape's hem hangs in the turning figure's frame.
+// centre and lowest vertex end, how far the windsock is blown along the wind, where the cape's
+// hem hangs in the turning figure's frame, and how the real-time sheet lands on its sphere.
 #pragma once
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include "model/collider_motion.h"
 #include "model/collider_pose.h"
 #include "model/scene.h"
+#include "solver/diagnostics.h"
 #include "solver/solver.h"
 
 namespace cloth::test {
@@ -119,6 +120,38 @@ inline glm::dvec3 capeHemInFiguresFrame(const Scene& scene, const SimState& s, d
     const Motion turn = scene.colliders[0].motion->motion();
     const glm::dvec3 hem = s.positions[size_t(g.index(g.nu / 2, g.nv - 1))];
     return glm::transpose(poseAt(turn, t).rotation) * hem;
+}
+
+// The real-time sheet (scenes/realtime.json) stepped frame by frame to `to` [s]: the most
+// strained spring of any family at the end of any frame (the run's own check, max_strain, reads
+// the same), and at the end the worst clearance, the highest vertex's height above the sphere's
+// top (colliders[1], its shell at R + h) and the lowest vertex's height [m]; `bad` gets the
+// reason if a step went unstable.
+struct RealtimeOutcome {
+    double worstStrain = 0, clear = 0, aboveTop = 0, lowest = 1e300;
+};
+inline RealtimeOutcome realtimeOutcome(const Scene& scene, Solver& solver, double to,
+                                       std::string& bad) {
+    RealtimeOutcome o;
+    const long frame = std::max(1, scene.integrator.substeps);
+    while (solver.time() < to - 1e-9) {
+        const StepResult r = solver.step(frame);
+        if (r.unstable) {
+            bad = r.reason;
+            break;
+        }
+        o.worstStrain = std::max(o.worstStrain, largestStrain(scene, solver.read()).strain);
+    }
+    const SimState s = solver.read();
+    const Sphere& ball = *scene.colliders[1].as<Sphere>();
+    double highest = -1e300;
+    for (const glm::dvec3& p : s.positions) {
+        highest = std::max(highest, p.y);
+        o.lowest = std::min(o.lowest, p.y);
+    }
+    o.aboveTop = highest - (ball.center.y + ball.radius + scene.colliders[1].thickness);
+    o.clear = worstClearance(scene, solver);
+    return o;
 }
 
 }  // namespace cloth::test
