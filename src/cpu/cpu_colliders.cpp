@@ -189,22 +189,34 @@ bool CpuColliders<T>::mayTouchRow(ConstRow3<T> x, int n) const {
 }
 
 template <typename T>
-bool CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const {
+bool CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels,
+                               std::int32_t* touched) const {
     bool mayTouch = false;
-    for (const CpuCollider<T>& c : posed_) {
+    for (std::size_t k = 0; k < posed_.size(); ++k) {
+        const CpuCollider<T>& c = posed_[k];
         if (!rowMayTouch(c, ConstRow3<T>(x), n, kernels)) continue;
         mayTouch = true;
-        if (std::holds_alternative<PlaneT<T>>(c.shape)) {
-            kernels.planeContact(contactRow(c, x, v), n);
-            continue;
-        }
-        if (std::holds_alternative<SphereT<T>>(c.shape)) {
-            kernels.sphereContact(contactRow(c, x, v), n);
+        const auto mark = std::int32_t(k + 1);
+        if (std::holds_alternative<PlaneT<T>>(c.shape) ||
+            std::holds_alternative<SphereT<T>>(c.shape)) {
+            ContactRow<T> row = contactRow(c, x, v);
+            row.touched = touched;
+            row.mark = mark;
+            (std::holds_alternative<PlaneT<T>>(c.shape) ? kernels.planeContact
+                                                        : kernels.sphereContact)(row, n);
             continue;
         }
         std::visit(
             [&](const auto& s) {
-                for (int i = 0; i < n; ++i) {
+                for (int i = 0; i < n && touched; ++i) {
+                    Vec3<T> p(x.x[i], x.y[i], x.z[i]);
+                    if (!collidePosition(s, c.params, p)) continue;
+                    x.x[i] = p.x;
+                    x.y[i] = p.y;
+                    x.z[i] = p.z;
+                    touched[i] = mark;
+                }
+                for (int i = 0; i < n && !touched; ++i) {
                     Vec3<T> p(x.x[i], x.y[i], x.z[i]), w(v.x[i], v.y[i], v.z[i]);
                     applyOne(c, s, p, w);
                     x.x[i] = p.x;

@@ -76,14 +76,24 @@ public:
         return last;
     }
     Surface surfaceAt(Vec3<T> p) const { return project(p); }
+    // surfaceAt(p) where applyRow's `touched` gave p's mark: the same surface, without running the
+    // colliders again where the one that touched last stands still.
+    Surface surfaceOf(std::int32_t mark, const Vec3<T>& p) const {
+        if (mark == 0) return {};
+        const CpuCollider<T>& c = posed_[mark - 1];
+        return c.moving ? surfaceAt(p) : Surface{Vec3<T>(0), c.params.friction};
+    }
     Vec3<T> surfaceVelocity(const Vec3<T>& p) const { return surfaceAt(p).velocity; }
     // Whether any collider may touch one of the n positions of x (a conservative cull: false
     // only where none touches).
     bool mayTouchRow(ConstRow3<T> x, int n) const;
     // The same on the n vertices of a row of positions x and velocities v; planes and spheres
     // through the row kernels (the same bits, vectorised). False where no collider could touch
-    // the row (x and v unchanged).
-    bool applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels) const;
+    // the row (x and v unchanged). With `touched` (n entries, set to 0 by the caller), project()'s
+    // positions alone, v left as it is, and touched[i] the mark of the collider that touched
+    // vertex i last (its index + 1, surfaceOf).
+    bool applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>& kernels,
+                  std::int32_t* touched = nullptr) const;
 
 private:
     struct Rest {

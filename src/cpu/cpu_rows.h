@@ -92,6 +92,8 @@ inline constexpr bool kComputedInGather[12] = {false, false, true,  false, true,
 // A plane or sphere collider on a row of positions x and velocities v (cpu/cpu_colliders.h),
 // with the response of model/collider_contact.h lane by lane: thickness h, friction c_f, and
 // when `moving`, the collider's velocity v_c = linear + angular × (p − origin) at each vertex.
+// With `touched`, the positions alone (v is left as it is): touched[i] = `mark` where the vertex
+// touched (φ < h), as collidePosition says, and unchanged elsewhere.
 template <typename T>
 struct ContactRow {
     Row3<T> x, v;
@@ -101,6 +103,8 @@ struct ContactRow {
     T thickness, friction;
     bool moving;
     T lx, ly, lz, ax, ay, az, ox, oy, oz;  // linear [m/s], angular [rad/s], origin [m]
+    std::int32_t* touched = nullptr;
+    std::int32_t mark = 0;
 };
 
 // A plane's or a sphere's row cull (cpu/cpu_colliders.cpp rowMayTouch): whether any of a row's

@@ -318,11 +318,12 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
                                  int n, const T* const* hessian, bool pushes) {
     constexpr int kRun = 64;
     alignas(64) T p[3][kRun], v[3][kRun];
+    std::int32_t touched[kRun] = {};  // which collider touched each vertex last (surfaceOf)
     const T* position[3] = {phases_.x.x.data() + at, phases_.x.y.data() + at,
                             phases_.x.z.data() + at};
     for (int c = 0; c < 3; ++c)
         for (int m = 0; m < n; ++m) p[c][m] = position[c][m], v[c][m] = T(0);
-    if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_)) {
+    if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_, touched)) {
         // Nothing pushed: no contact and no push where there was one (vbdTouch, vbdPushed).
         for (int m = 0; m < n; ++m) {
             if (!moved[m]) continue;
@@ -346,13 +347,13 @@ void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std:
     for (int m = 0; m < n; ++m) {
         if (!moved[m] || !work[m]) continue;
         const Vec3<T> pushed(p[0][m], p[1][m], p[2][m]), old = phases_.x.get(at + m);
-        // The run's projection ran on whole rows; the surface is asked of the pushed ones only.
+        // The run's projection ran on whole rows and marked which collider touched each last.
         if (contacts && (pushed != old || vbdContacts_.weight[at + m] != T(0)))
-            vbdTouch(
-                at + m, old, pushed,
-                pushed != old ? colliders_.surfaceAt(old) : typename CpuColliders<T>::Surface{},
-                {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m], hessian[4][m],
-                 hessian[5][m]});
+            vbdTouch(at + m, old, pushed,
+                     pushed != old ? colliders_.surfaceOf(touched[m], old)
+                                   : typename CpuColliders<T>::Surface{},
+                     {0, 0, 0, hessian[0][m], hessian[1][m], hessian[2][m], hessian[3][m],
+                      hessian[4][m], hessian[5][m]});
         if (pushes && pushNormal_.size() > 0) vbdPushed(at + m, old, pushed);
         if (pushed == old) continue;
         const std::int64_t k = first + std::int64_t(kVbdColours) * m;

@@ -192,57 +192,66 @@ bool sphereMayTouch(ConstRow3<T> x, const CullRow<T>& c, int n) {
     return hits != 0;
 }
 
+// The shape's φ and normal at (x, y, z), in the same operations and order as collider_shapes.h
+// (glm's dot is (x + y) + z, ...), whether the vertex touches (φ < h) and where the push puts it:
+// the plane's p + (h − φ) n, the sphere's c + (R + h) n (collider_contact.h pushOut).
+template <typename T>
+struct ContactShape {
+    T cx, cy, cz, mx, my, mz, radius, h;
+};
+template <typename T, bool kSphere>
+CLOTH_LANE bool contactPush(const ContactShape<T>& c, T x, T y, T z, T& nx, T& ny, T& nz, T& qx,
+                            T& qy, T& qz) {
+    T phi;
+    if constexpr (kSphere) {
+        const T rx = x - c.cx, ry = y - c.cy, rz = z - c.cz;
+        const T len = std::sqrt((rx * rx + ry * ry) + rz * rz);
+        phi = len - c.radius;
+        const bool away = len > T(0);
+        nx = away ? rx / len : T(0);
+        ny = away ? ry / len : T(1);
+        nz = away ? rz / len : T(0);
+        const T shell = c.radius + c.h;
+        qx = c.cx + shell * nx;
+        qy = c.cy + shell * ny;
+        qz = c.cz + shell * nz;
+    } else {
+        nx = c.mx;
+        ny = c.my;
+        nz = c.mz;
+        phi = ((x - c.cx) * nx + (y - c.cy) * ny) + (z - c.cz) * nz;
+        const T push = c.h - phi;
+        qx = x + push * nx;
+        qy = y + push * ny;
+        qz = z + push * nz;
+    }
+    return phi < c.h;
+}
+
 // model/collider_contact.h's collide() for a plane (kSphere false) or a sphere, every lane
-// computed and the result selected: the shape's φ and normal in the same operations and order as
-// collider_shapes.h (glm's dot is (x + y) + z, its cross a.y·b.z − b.y·a.z, ...), then the
-// response's own lane function: the same bits.
+// computed and the result selected: contactPush, then the response's own lane function: the same
+// bits.
 template <typename T, bool kSphere, bool kFriction, bool kMoving>
 void contactLoop(T* __restrict px, T* __restrict py, T* __restrict pz, T* __restrict vx,
                  T* __restrict vy, T* __restrict vz, const ContactRow<T>& r, int n) {
     // Every parameter in a local: loads through r inside the loop would stop the vectoriser.
-    const T cx = r.cx, cy = r.cy, cz = r.cz, h = r.thickness, cf = r.friction, radius = r.radius;
-    const T mx = r.nx, my = r.ny, mz = r.nz;
+    const ContactShape<T> shape{r.cx, r.cy, r.cz, r.nx, r.ny, r.nz, r.radius, r.thickness};
+    const T cf = r.friction;
     const T lx = r.lx, ly = r.ly, lz = r.lz, ax = r.ax, ay = r.ay, az = r.az;
     const T ox0 = r.ox, oy0 = r.oy, oz0 = r.oz;
-    const T shell = radius + h;
     // The six arrays are distinct (restrict); say so to GCC, which otherwise versions the loop
     // for aliasing and gives up past ten checks.
     CLOTH_IVDEP
     for (int i = 0; i < n; ++i) {
         const T x = px[i], y = py[i], z = pz[i];
-        T phi, nx, ny, nz;
-        if constexpr (kSphere) {
-            const T rx = x - cx, ry = y - cy, rz = z - cz;
-            const T len = std::sqrt((rx * rx + ry * ry) + rz * rz);
-            phi = len - radius;
-            const bool away = len > T(0);
-            nx = away ? rx / len : T(0);
-            ny = away ? ry / len : T(1);
-            nz = away ? rz / len : T(0);
-        } else {
-            nx = mx;
-            ny = my;
-            nz = mz;
-            phi = ((x - cx) * nx + (y - cy) * ny) + (z - cz) * nz;
-        }
+        T nx, ny, nz, qx, qy, qz;
+        const bool touch = contactPush<T, kSphere>(shape, x, y, z, nx, ny, nz, qx, qy, qz);
         T ux = T(0), uy = T(0), uz = T(0);  // v_c at the vertex, before its projection
         if constexpr (kMoving) {
             const T dx = x - ox0, dy = y - oy0, dz = z - oz0;
             ux = lx + (ay * dz - dy * az);
             uy = ly + (az * dx - dz * ax);
             uz = lz + (ax * dy - dx * ay);
-        }
-        const bool touch = phi < h;
-        T qx, qy, qz;
-        if constexpr (kSphere) {
-            qx = cx + shell * nx;
-            qy = cy + shell * ny;
-            qz = cz + shell * nz;
-        } else {
-            const T push = h - phi;
-            qx = x + push * nx;
-            qy = y + push * ny;
-            qz = z + push * nz;
         }
         const T v0x = vx[i], v0y = vy[i], v0z = vz[i];
         T ox = v0x, oy = v0y, oz = v0z;
@@ -255,8 +264,27 @@ void contactLoop(T* __restrict px, T* __restrict py, T* __restrict pz, T* __rest
         vz[i] = touch ? oz : v0z;
     }
 }
+// collidePosition() alone (ContactRow::touched): the positions as contactLoop moves them, and
+// which vertices touched.
+template <typename T, bool kSphere>
+void contactPositionsLoop(T* __restrict px, T* __restrict py, T* __restrict pz,
+                          std::int32_t* __restrict touched, const ContactRow<T>& r, int n) {
+    const ContactShape<T> shape{r.cx, r.cy, r.cz, r.nx, r.ny, r.nz, r.radius, r.thickness};
+    const std::int32_t mark = r.mark;
+    CLOTH_IVDEP
+    for (int i = 0; i < n; ++i) {
+        const T x = px[i], y = py[i], z = pz[i];
+        T nx, ny, nz, qx, qy, qz;
+        const bool touch = contactPush<T, kSphere>(shape, x, y, z, nx, ny, nz, qx, qy, qz);
+        px[i] = touch ? qx : x;
+        py[i] = touch ? qy : y;
+        pz[i] = touch ? qz : z;
+        touched[i] = touch ? mark : touched[i];
+    }
+}
 template <typename T, bool kSphere>
 void contact(const ContactRow<T>& r, int n) {
+    if (r.touched) return contactPositionsLoop<T, kSphere>(r.x.x, r.x.y, r.x.z, r.touched, r, n);
     const bool friction = r.friction > T(0);
     auto run = [&](auto kFriction, auto kMoving) {
         contactLoop<T, kSphere, decltype(kFriction)::value, decltype(kMoving)::value>(
