@@ -89,7 +89,7 @@ pack
 # The shipped real-time scene (vbd, 20 sweeps, ρ = 0.9, 2 passes, friction) at larger sheets:
 # what its step costs here, and whether the sheet holds (run checks max_strain every 0.1 s).
 stamp "realtime scene"
-for n in 128 256 512 1024; do
+for n in 128 256 512 1024 2048; do
     line=$(timeout "$(limit 15)" "$exe" run "$here/scenes/realtime.json" --backend gpu --steps 60 \
         --set "cloth.resolution=[$n,$n]" 2>&1 | grep -E 'ms/step|unstable|error' | tr '\n' ' ' ||
         echo "cut off at its limit")
