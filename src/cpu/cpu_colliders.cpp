@@ -208,23 +208,21 @@ bool CpuColliders<T>::applyRow(Row3<T> x, Row3<T> v, int n, const RowKernels<T>&
         }
         std::visit(
             [&](const auto& s) {
-                for (int i = 0; i < n && touched; ++i) {
+                for (int i = 0; i < n; ++i) {
                     Vec3<T> p(x.x[i], x.y[i], x.z[i]);
-                    if (!collidePosition(s, c.params, p)) continue;
+                    if (touched) {
+                        if (!collidePosition(s, c.params, p)) continue;
+                        touched[i] = mark;
+                    } else {
+                        Vec3<T> w(v.x[i], v.y[i], v.z[i]);
+                        applyOne(c, s, p, w);
+                        v.x[i] = w.x;
+                        v.y[i] = w.y;
+                        v.z[i] = w.z;
+                    }
                     x.x[i] = p.x;
                     x.y[i] = p.y;
                     x.z[i] = p.z;
-                    touched[i] = mark;
-                }
-                for (int i = 0; i < n && !touched; ++i) {
-                    Vec3<T> p(x.x[i], x.y[i], x.z[i]), w(v.x[i], v.y[i], v.z[i]);
-                    applyOne(c, s, p, w);
-                    x.x[i] = p.x;
-                    x.y[i] = p.y;
-                    x.z[i] = p.z;
-                    v.x[i] = w.x;
-                    v.y[i] = w.y;
-                    v.z[i] = w.z;
                 }
             },
             c.shape);

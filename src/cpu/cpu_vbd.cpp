@@ -317,12 +317,12 @@ template <typename T>
 void CpuSolver<T>::vbdCollideRun(std::int64_t first, std::int64_t at, const std::uint8_t* moved,
                                  int n, const T* const* hessian, bool pushes) {
     constexpr int kRun = 64;
-    alignas(64) T p[3][kRun], v[3][kRun];
-    std::int32_t touched[kRun] = {};  // which collider touched each vertex last (surfaceOf)
+    alignas(64) T p[3][kRun], v[3][kRun];  // v: not read or written with `touched`
+    std::int32_t touched[kRun] = {};       // which collider touched each vertex last (surfaceOf)
     const T* position[3] = {phases_.x.x.data() + at, phases_.x.y.data() + at,
                             phases_.x.z.data() + at};
     for (int c = 0; c < 3; ++c)
-        for (int m = 0; m < n; ++m) p[c][m] = position[c][m], v[c][m] = T(0);
+        for (int m = 0; m < n; ++m) p[c][m] = position[c][m];
     if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_, touched)) {
         // Nothing pushed: no contact and no push where there was one (vbdTouch, vbdPushed).
         for (int m = 0; m < n; ++m) {

@@ -211,15 +211,12 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* 
         return;
     }
     constexpr int kRun = 64;
-    alignas(64) T p[3][kRun], v[3][kRun];
-    std::int32_t touched[kRun] = {};  // asks applyRow for the positions alone (unread)
+    alignas(64) T p[3][kRun], v[3][kRun];  // v: not read or written with `touched`
+    std::int32_t touched[kRun] = {};       // asks applyRow for the positions alone (unread)
     for (int c = i0; c < i1; c += kRun) {
         const int n = std::min(kRun, i1 - c);
         const ConstRow3<T> x = std::as_const(x_).row(row + c);
-        for (int m = 0; m < n; ++m) {
-            p[0][m] = x.x[m], p[1][m] = x.y[m], p[2][m] = x.z[m];
-            v[0][m] = v[1][m] = v[2][m] = T(0);
-        }
+        for (int m = 0; m < n; ++m) p[0][m] = x.x[m], p[1][m] = x.y[m], p[2][m] = x.z[m];
         if (!colliders_.applyRow({p[0], p[1], p[2]}, {v[0], v[1], v[2]}, n, *kernels_, touched))
             continue;
         for (int m = 0; m < n; ++m) {
