@@ -179,6 +179,7 @@ private:
     void vbdTranslationRow(int j, double* out) const;
     void vbdTranslate(const Band& band, const Team& team);
     void vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* own = nullptr);
+    void vbdPhasesFromGrid(int j);  // row j's positions in phases from x_
     double vbdTranslationTerms(int i, int j, std::int64_t k, VbdLane<double>& a) const;
     // Whether free vertex k's own terms (contact slot at) are linear in its displacement: no
     // friction contact, not grabbed. Their weight m/h² + m c/h, the gradient's rate of change.

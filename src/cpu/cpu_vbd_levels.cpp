@@ -96,7 +96,8 @@ void CpuSolver<T>::vbdBlockRow(int j, int i0, int i1, int j0, int j1, bool pinsN
 // its four colours of blocks (no two blocks of a colour side by side), the threads share the
 // colour's rows evenly (not by band: at the first level a colour's rows are half the sheet's),
 // sum each row's part of each block, then take each block's Newton step from all of that block's
-// rows, in order, and apply it to their own rows (vbdTranslate's, per block).
+// rows, in order, and apply it to their own rows (vbdTranslate's, per block). With phases the
+// levels move x_ and the copy's displacements; the copy's positions take x_ once after them.
 template <typename T>
 void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
     const int nu = grid_.nu, nv = grid_.nv, finest = vbdLevelParts(translationLevels_, nu, nv);
@@ -158,6 +159,9 @@ void CpuSolver<T>::vbdTranslateLevels(const Band& band, const Team& team) {
             });
             team.sync();
         }
+    if (!phases_.active()) return;
+    for (int j = band.rowBegin; j < band.rowEnd; ++j) vbdPhasesFromGrid(j);
+    team.sync();  // the sweeps read the neighbours' rows of the copy
 }
 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated

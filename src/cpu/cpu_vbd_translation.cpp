@@ -151,6 +151,8 @@ void CpuSolver<T>::vbdTranslate(const Band& band, const Team& team) {
 // colliders' projection (by runs through their row code with row kernels, where their cull lets
 // one touch the run: the same bits as projecting every vertex). own: row j's own sums of the
 // levels (vbdLevelOwnRow), kept up to date with the moves; null for the translation's step.
+// The levels leave the copy's positions in phases to vbdPhasesFromGrid after their pass: at
+// 1024² they are 12 MB, streamed once a level otherwise.
 namespace {
 
 // a_k += t for the n entries from k0 whose pinned[k] is 0, as a choice in every lane (vectorised).
@@ -173,6 +175,7 @@ template <typename T>
 void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* own) {
     const std::int64_t row = std::int64_t(j) * grid_.nu;
     const bool phased = phases_.active();
+    const bool phasesLater = phased && own;  // the levels' (see above)
     shiftFree(x_, pinned_.data(), row + i0, i1 - i0, t);
     if (!phased) shiftFree(displacement_, pinned_.data(), row + i0, i1 - i0, t);
     // In phases each residue of i mod 5 is a contiguous run: the copy x there is x_'s, bit for
@@ -182,7 +185,7 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* 
         if (first >= i1) continue;
         const std::int64_t at = phases_.at(first, j);
         const int n = (i1 - 1 - first) / kVbdColours + 1;
-        shiftFree(phases_.x, phases_.pinned.data(), at, n, t);
+        if (!phasesLater) shiftFree(phases_.x, phases_.pinned.data(), at, n, t);
         shiftFree(phases_.d, phases_.pinned.data(), at, n, t);
     }
     // The linear vertices' gradient Σ m/h² (d − ŷ) + m c/h d moves by their Σ (m/h² + m c/h)
@@ -225,9 +228,26 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* 
             if (pinned_[k] || moved == old) continue;
             const std::int64_t at = phases_.at(c + m, j);
             x_.set(k, moved);
-            phases_.x.set(at, moved);
+            if (!phasesLater) phases_.x.set(at, moved);
             phases_.d.set(at, phases_.d.get(at) + (moved - old));
             pushed(c + m, k, moved - old);
+        }
+    }
+}
+
+// Row j's positions in phases from x_: each phase's run takes every fifth of the row.
+template <typename T>
+void CpuSolver<T>::vbdPhasesFromGrid(int j) {
+    const std::int64_t row = std::int64_t(j) * grid_.nu;
+    for (int r = 0; r < kVbdColours && r < grid_.nu; ++r) {
+        const ConstRow3<T> from = std::as_const(x_).row(row + r);
+        const Row3<T> to = phases_.x.row(phases_.at(r, j));
+        const T* __restrict gx = from.x, * __restrict gy = from.y, * __restrict gz = from.z;
+        T* __restrict px = to.x, * __restrict py = to.y, * __restrict pz = to.z;
+        const int n = (grid_.nu - 1 - r) / kVbdColours + 1;
+        for (int m = 0; m < n; ++m) {
+            const std::int64_t q = std::int64_t(kVbdColours) * m;
+            px[m] = gx[q], py[m] = gy[q], pz[m] = gz[q];
         }
     }
 }
@@ -235,6 +255,7 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* 
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here.
 #define CLOTH_INSTANTIATE(T)                                                                    \
+    template void CpuSolver<T>::vbdPhasesFromGrid(int);                                         \
     template void CpuSolver<T>::vbdTakeParameters(const Scene&);                                \
     template void CpuSolver<T>::vbdTranslationRow(int, double*) const;                          \
     template void CpuSolver<T>::vbdTranslate(const Band&, const Team&);                         \
