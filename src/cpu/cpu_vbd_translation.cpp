@@ -179,7 +179,7 @@ void CpuSolver<T>::vbdShiftRow(int j, int i0, int i1, const Vec3<T>& t, double* 
     shiftFree(x_, pinned_.data(), row + i0, i1 - i0, t);
     if (!phased) shiftFree(displacement_, pinned_.data(), row + i0, i1 - i0, t);
     // In phases each residue of i mod 5 is a contiguous run: the copy x there is x_'s, bit for
-    // bit, so it moves by the same sum.
+    // bit, so it moves by the same sum (the levels' copy takes x_ after their pass instead).
     for (int r = 0; r < kVbdColours && phased; ++r) {
         const int first = i0 + ((r - i0) % kVbdColours + kVbdColours) % kVbdColours;
         if (first >= i1) continue;
