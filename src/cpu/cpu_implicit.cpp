@@ -81,6 +81,7 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     const bool preconditioned = preconditioner_ != Preconditioner::None;
     const bool jacobi = preconditioner_ == Preconditioner::Jacobi;
     const bool multigrid = preconditioner_ == Preconditioner::Multigrid;
+    const bool aggregation = preconditioner_ == Preconditioner::Aggregation;
     const bool contacts = !contacts_.empty();
     auto filtered = [&](std::int64_t k, const Vec3<T>& w) {
         return contacts ? filterContact(contacts_[std::size_t(k)], w) : w;
@@ -156,7 +157,11 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         }
     }
     // The multigrid hierarchy's stencils at this state (every thread; it ends with a sync).
-    if (multigrid) multigrid_.linearise(a, cycleThreads(band, team));
+    if (multigrid || aggregation) multigrid_.linearise(a, cycleThreads(band, team));
+    if (aggregation) {  // its setup on the first thread, from the fine stencil just assembled
+        if (&band == &bands_[0]) setupAggregation();
+        team.sync();
+    }
     const double goal = std::max(tolerance_ * tolerance_ * bb, floor);
     // z = M⁻¹ r: the block-Jacobi step is local, so it fuses with the sums r·r and r·z; the
     // V-cycle needs the whole r (after the sum r·r, which tells whether it is needed at all).
@@ -166,11 +171,14 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
         return std::array<double, 2>{dot(r_[k], r_[k]), dot(r_[k], z[k])};
     };
     auto residual = [&]() -> std::array<double, 2> {
-        if (!multigrid) return reduceN<2>(band, team, residualSums);
+        if (!multigrid && !aggregation) return reduceN<2>(band, team, residualSums);
         const double squared =
             reduce(band, team, [&](std::int64_t k) { return dot(r_[k], r_[k]); });
         if (squared <= goal) return {squared, 0};
-        multigrid_.apply(r_, z_, cycleThreads(band, team));  // ends with a sync
+        if (aggregation)
+            applyAggregation(band, team);  // ends with a sync
+        else
+            multigrid_.apply(r_, z_, cycleThreads(band, team));  // ends with a sync
         if (contacts)
             for (std::int64_t k = band.begin; k < band.end; ++k) z_[k] = filtered(k, z_[k]);
         return {squared, reduce(band, team, [&](std::int64_t k) { return dot(r_[k], z_[k]); })};
@@ -229,11 +237,46 @@ bool CpuSolver<T>::stepImplicit(Band& band, const Team& team, long stepNumber) {
     return true;
 }
 
+// The aggregation multigrid's hierarchy at this step: its fine grid is the geometric multigrid's
+// fine stencil (linearised just before, in double), its candidates' rigid motions those of the
+// vertices' positions. One thread builds it (the others wait): its setup is not shared yet.
+template <typename T>
+void CpuSolver<T>::setupAggregation() {
+    BlockGrid fine;
+    multigrid_.fineGrid(fine);
+    aggregationX_.resize(3 * std::size_t(grid_.count()));
+    for (std::int64_t k = 0; k < grid_.count(); ++k)
+        for (int d = 0; d < 3; ++d)
+            aggregationX_[3 * std::size_t(k) + std::size_t(d)] = double(x_.get(k)[d]);
+    aggregation_.setup(std::move(fine), aggregationX_);
+    aggregationR_.resize(aggregationX_.size());
+    aggregationZ_.resize(aggregationX_.size());
+}
+
+// z = V r by the aggregation's V-cycle, in double, on the first thread; every thread calls it
+// and it ends with a sync.
+template <typename T>
+void CpuSolver<T>::applyAggregation(const Band& band, const Team& team) {
+    team.sync();  // every band's r is complete
+    if (&band == &bands_[0]) {
+        for (std::int64_t k = 0; k < grid_.count(); ++k)
+            for (int d = 0; d < 3; ++d)
+                aggregationR_[3 * std::size_t(k) + std::size_t(d)] = r_[k][d];
+        aggregation_.apply(aggregationR_.data(), aggregationZ_.data());
+        for (std::int64_t k = 0; k < grid_.count(); ++k)
+            for (int d = 0; d < 3; ++d)
+                z_[k][d] = T(aggregationZ_[3 * std::size_t(k) + std::size_t(d)]);
+    }
+    team.sync();
+}
+
 // cpu_solver.h declares the class instantiations extern: this file's members are instantiated
 // here, the rest in cpu_solver.cpp.
 #define CLOTH_INSTANTIATE(T)                                            \
     template bool CpuSolver<T>::stepImplicit(Band&, const Team&, long); \
-    template ImplicitSystem<T, Soa3<T>> CpuSolver<T>::system() const;
+    template ImplicitSystem<T, Soa3<T>> CpuSolver<T>::system() const;   \
+    template void CpuSolver<T>::setupAggregation();                     \
+    template void CpuSolver<T>::applyAggregation(const Band&, const Team&);
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)
 #undef CLOTH_INSTANTIATE

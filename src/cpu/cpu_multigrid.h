@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "cpu/block_grid.h"
 #include "cpu/cpu_soa.h"
 #include "cpu/spin_barrier.h"
 #include "model/grid.h"
@@ -55,8 +56,10 @@ public:
     using Block = glm::mat<3, 3, S, glm::defaultp>;
 
     // The hierarchy under an nu × nv grid: coarse grids down to at most kCoarsest vertices, for
-    // a team of `threads` (any team gets the same result; this one gets the best balance).
-    void configure(int nu, int nv, int threads = 1);
+    // a team of `threads` (any team gets the same result; this one gets the best balance). With
+    // fineOnly, the fine grid's stencil alone, for the aggregation multigrid (fineGrid); apply
+    // is then not to be called.
+    void configure(int nu, int nv, int threads = 1, bool fineOnly = false);
     int levels() const { return int(levels_.size()); }  // the fine grid included
     bool configured() const { return configured_; }
 
@@ -72,6 +75,9 @@ public:
     // a field of grid l (l ≥ 1) on every vertex of grid l − 1.
     const std::vector<Vec3<S>>& positions(int l) const { return levels_[std::size_t(l)].x; }
     std::vector<Vec3<S>> interpolate(int l, const std::vector<Vec3<S>>& coarse) const;
+    // The fine grid's stencil (as of the last linearise) as a block grid of 3 unknowns a vertex,
+    // pinned vertices' unknowns fixed: the fine grid of the aggregation multigrid.
+    void fineGrid(BlockGrid& out) const;
     // For tests: grid l's stencil applied to a field of grid l (the rows of pinned vertices too).
     std::vector<Vec3<S>> stencilTimes(int l, const std::vector<Vec3<S>>& w) const;
 
@@ -283,7 +289,7 @@ private:
     // [begin, end) of a grid's vertices for this thread (whole rows).
     static std::pair<std::int64_t, std::int64_t> slice(int nu, int nv, const CycleThreads& threads);
 
-    bool configured_ = false;
+    bool configured_ = false, fineOnly_ = false;
     std::vector<Level> levels_;
     // The fine system's data in double (float's rounding of h²K's blocks at 1e6 N/m, 128², is
     // larger than the mass: a float stencil was indefinite).

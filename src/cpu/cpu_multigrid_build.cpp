@@ -33,10 +33,13 @@ typename CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int n) {
 }
 
 template <typename T>
-void CpuMultigrid<T>::configure(int nu, int nv, int threads) {
+void CpuMultigrid<T>::configure(int nu, int nv, int threads, bool fineOnly) {
     levels_.clear();
     configured_ = true;
-    for (const MultigridLevel& size : multigridLevels(nu, nv)) {
+    fineOnly_ = fineOnly;
+    std::vector<MultigridLevel> sizes = multigridLevels(nu, nv);
+    if (fineOnly) sizes.resize(1);
+    for (const MultigridLevel& size : sizes) {
         Level level;
         level.nu = size.nu;
         level.nv = size.nv;
@@ -80,7 +83,8 @@ void CpuMultigrid<T>::configure(int nu, int nv, int threads) {
         level.z.assign(n, Vec3<S>(0));
     }
     product_.assign(levels_.size() > 1 ? 16 * std::size_t(levels_[0].count()) : 0, Block(0));
-    const std::size_t dofs = 3 * std::size_t(levels_.back().count());
+    // (The fine stencil alone has no coarsest grid: its dense factor would be (3n)² values.)
+    const std::size_t dofs = fineOnly ? 0 : 3 * std::size_t(levels_.back().count());
     cholesky_.assign(dofs * dofs, 0.0);
     solve_.assign(dofs, 0.0);
 }
@@ -258,6 +262,7 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
         }
     }
     threads.sync();
+    if (fineOnly_) return;
     smoother(0, threads);
     for (int l = 1; l < levels(); ++l) {
         const bool serial = threads.count > 1 && levels_[std::size_t(l)].count() < kSerialBelow;
@@ -277,6 +282,22 @@ void CpuMultigrid<T>::linearise(const FineSystem& fine, const CycleThreads& thre
     }
     if (threads.index == 0) factorCoarsest();
     threads.sync();
+}
+
+template <typename T>
+void CpuMultigrid<T>::fineGrid(BlockGrid& out) const {
+    const Level& fine = levels_[0];
+    out.resize(fine.nu, fine.nv, 3);
+    for (std::int64_t k = 0; k < fine.count(); ++k) {
+        for (int slot = 0; slot < kStencil; ++slot) {
+            if (!fine.reaches(slot)) continue;
+            const Block b = fine.block(k, slot);
+            double* to = out.block(k, slot);
+            for (int row = 0; row < 3; ++row)
+                for (int col = 0; col < 3; ++col) to[3 * col + row] = b[col][row];
+        }
+        if (fine.pinned[std::size_t(k)]) std::fill_n(&out.fixed[3 * std::size_t(k)], 3, 1);
+    }
 }
 
 // The coarsest stencil as a dense matrix (pinned rows and columns the identity's), factored
@@ -317,13 +338,14 @@ void CpuMultigrid<T>::factorCoarsest() {
 // cpu_multigrid.cpp.
 #define CLOTH_INSTANTIATE(T)                                                                    \
     template CpuMultigrid<T>::Axis CpuMultigrid<T>::coarsen(int);                               \
-    template void CpuMultigrid<T>::configure(int, int, int);                                    \
+    template void CpuMultigrid<T>::configure(int, int, int, bool);                              \
     template std::pair<std::int64_t, std::int64_t> CpuMultigrid<T>::slice(int, int,             \
                                                                           const CycleThreads&); \
     template void CpuMultigrid<T>::assembleFine(const FineSystemS&, const CycleThreads&);       \
     template void CpuMultigrid<T>::smoother(int, const CycleThreads&);                          \
     template void CpuMultigrid<T>::linearise(const FineSystem&, const CycleThreads&);           \
-    template void CpuMultigrid<T>::factorCoarsest();
+    template void CpuMultigrid<T>::factorCoarsest();                                            \
+    template void CpuMultigrid<T>::fineGrid(BlockGrid&) const;
 CLOTH_INSTANTIATE(float)
 CLOTH_INSTANTIATE(double)
 #undef CLOTH_INSTANTIATE

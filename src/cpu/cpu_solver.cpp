@@ -95,6 +95,8 @@ CpuSolver<T>::CpuSolver(const Scene& scene, int threads, CpuIsa isa)
     // The multigrid's lines are paired for the team that relaxes them, known only here.
     if (method_ == Method::ImplicitEuler && preconditioner_ == Preconditioner::Multigrid)
         multigrid_.configure(nu, nv, t);
+    if (method_ == Method::ImplicitEuler && preconditioner_ == Preconditioner::Aggregation)
+        multigrid_.configure(nu, nv, t, true);  // its fine stencil: the aggregation's fine grid
     pool_ = std::make_unique<WorkerPool>(t);
 }
 
@@ -131,9 +133,11 @@ void CpuSolver<T>::takeParameters(const Scene& scene) {
             blockInverse_.assign(n, Sym3<T>{});
         }
         // (A constructor's team is not known yet: it configures the multigrid once it is.)
-        if (preconditioner_ == Preconditioner::Multigrid && !multigrid_.configured() &&
-            !bands_.empty())
-            multigrid_.configure(grid_.nu, grid_.nv, int(bands_.size()));
+        if ((preconditioner_ == Preconditioner::Multigrid ||
+             preconditioner_ == Preconditioner::Aggregation) &&
+            !multigrid_.configured() && !bands_.empty())
+            multigrid_.configure(grid_.nu, grid_.nv, int(bands_.size()),
+                                 preconditioner_ == Preconditioner::Aggregation);
     }
     tolerance_ = scene.integrator.tolerance;
     maxIterations_ = scene.integrator.maxIterations;

@@ -13,6 +13,7 @@
 #include <variant>
 #include <vector>
 
+#include "cpu/cpu_aggregation.h"
 #include "cpu/cpu_colliders.h"
 #include "cpu/cpu_multigrid.h"
 #include "cpu/cpu_rows.h"
@@ -260,6 +261,11 @@ private:
     // The contacts in the solve (model/solve_contact.h), per vertex; empty without colliders.
     std::vector<SolveContact<T>> contacts_;
     CpuMultigrid<T> multigrid_;  // the "multigrid" preconditioner's hierarchy
+    // The "aggregation" preconditioner's hierarchy and its vectors in double: r, z, positions.
+    Aggregation aggregation_;
+    std::vector<double> aggregationR_, aggregationZ_, aggregationX_;
+    void setupAggregation();
+    void applyAggregation(const Band& band, const Team& team);
     CycleThreads cycleThreads(const Band& band, const Team& team) const {
         return {int(&band - bands_.data()), int(bands_.size()), team.barrier};
     }

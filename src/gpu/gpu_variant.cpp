@@ -143,6 +143,11 @@ void checkWideBuffersFit(const Scene& scene, WorkGroup wg, const GpuInfo& info) 
 }
 
 void checkSceneFits(const Scene& scene, WorkGroup wg, const GpuInfo& info) {
+    if (scene.integrator.method == Method::ImplicitEuler &&
+        scene.integrator.preconditioner == Preconditioner::Aggregation)
+        throw InputError(scene.source, "integrator.preconditioner",
+                         "\"aggregation\" runs on the CPU backend only (its per-step setup has no "
+                         "GPU kernels): use \"multigrid\" on the GPU or --backend cpu");
     checkGridFits(scene, wg, info);
     checkWideBuffersFit(scene, wg, info);
     if (scene.integrator.method == Method::ImplicitEuler &&

@@ -62,6 +62,8 @@ const char* preconditionerName(Preconditioner p) {
             return "jacobi";
         case Preconditioner::Multigrid:
             return "multigrid";
+        case Preconditioner::Aggregation:
+            return "aggregation";
     }
     return "?";
 }

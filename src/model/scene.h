@@ -30,12 +30,15 @@ std::string methodList();  // "explicit_euler, symplectic_euler, ..."
 int forceEvaluationsPerStep(Method m);
 
 // implicit_euler's preconditioner of the conjugate gradient (docs/integrators.md,
-// "Preconditioners"): none, the inverted 3×3 diagonal blocks of the system, or one multigrid
-// V-cycle on the grid's hierarchy (CPU only).
-enum class Preconditioner { None, Jacobi, Multigrid };
+// "Preconditioners"): none, the inverted 3×3 diagonal blocks of the system, one geometric
+// multigrid V-cycle on the grid's hierarchy, or one V-cycle of adaptive smoothed aggregation,
+// whose coarse spaces are built from the system at every step (the CPU backend only).
+enum class Preconditioner { None, Jacobi, Multigrid, Aggregation };
 inline constexpr Preconditioner kPreconditioners[] = {Preconditioner::None, Preconditioner::Jacobi,
-                                                      Preconditioner::Multigrid};
-const char* preconditionerName(Preconditioner p);  // "none", "jacobi", "multigrid"
+                                                      Preconditioner::Multigrid,
+                                                      Preconditioner::Aggregation};
+// "none", "jacobi", "multigrid", "aggregation"
+const char* preconditionerName(Preconditioner p);
 std::optional<Preconditioner> preconditionerFromName(const std::string& name);
 
 struct ClothSpec {

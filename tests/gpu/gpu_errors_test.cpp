@@ -150,6 +150,17 @@ TEST_F(GpuErrors, MultigridTooLargeForTheDeviceIsAnInputError) {
     EXPECT_NE(m.find("bytes per SSBO"), std::string::npos) << m;
 }
 
+// The aggregation preconditioner has no GPU kernels: the GPU refuses it naming the key and the
+// way out, before anything is built.
+TEST_F(GpuErrors, AggregationPreconditionerIsRefusedNamingTheCpuBackend) {
+    Scene s = smallScene(16, 16);
+    s.integrator.method = Method::ImplicitEuler;
+    s.integrator.preconditioner = Preconditioner::Aggregation;
+    const std::string m = messageOf<InputError>([&] { makeGpuSolver(s); });
+    EXPECT_NE(m.find("integrator.preconditioner"), std::string::npos) << m;
+    EXPECT_NE(m.find("--backend cpu"), std::string::npos) << m;
+}
+
 // A stiff spring with a large Δt (far outside Δt < μ/λ_max) blows up within a few steps.
 Scene unstableScene() {
     Scene s = loadShippedScene("spring");

@@ -203,6 +203,7 @@ TEST_F(GpuImplicitSolve, AChainAtRestEndsItsSolvesWithoutMisses) {
     Scene scene = loadScene(CLOTH_SOURCE_DIR "/scenes/chain.json",
                             {"integrator.method=\"implicit_euler\"", "integrator.dt=0.2"});
     for (Preconditioner p : kPreconditioners) {
+        if (p == Preconditioner::Aggregation) continue;  // CPU only: GpuErrors checks the refusal
         scene.integrator.preconditioner = p;
         std::unique_ptr<Solver> solver = makeGpuSolver(scene);
         const StepResult r = solver->step(300);  // 60 s: at rest from about 40 s on
