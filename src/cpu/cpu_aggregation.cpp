@@ -4,6 +4,7 @@
 #include "cpu/cpu_aggregation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 namespace cloth {
@@ -50,6 +51,45 @@ void Aggregation::rigidCandidates(Level& fine, const std::vector<double>& x) con
             if (g.fixed[e]) fine.b[c * dofs + e] = 0;
 }
 
+// The adaptive candidates' start: the last setup's relaxed candidates, orthonormalised, so that
+// the relaxation accumulates from step to step as the sheet changes (a subspace iteration of the
+// smoother on its slowest modes); a random vector (a fixed seed) for a candidate the others
+// nearly span (within 1e-3 of its length) and at the first setup.
+void Aggregation::startCandidates(Level& top) {
+    const std::size_t n = top.a.dofs(), first = std::size_t(kRigid) * n;
+    std::mt19937_64 random(0x5eed);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    const bool carry = settings_.carryCandidates && carried_.size() == top.b.size() - first;
+    std::vector<double> fresh(n), v(n);
+    auto orthogonalise = [&](int c) {  // v against candidates [kRigid, c), twice; returns |v|²
+        for (int pass = 0; pass < 2; ++pass)
+            for (int o = kRigid; o < c; ++o) {
+                const double* w = &top.b[std::size_t(o) * n];
+                double d = 0;
+                for (std::size_t i = 0; i < n; ++i) d += w[i] * v[i];
+                for (std::size_t i = 0; i < n; ++i) v[i] -= d * w[i];
+            }
+        double norm = 0;
+        for (std::size_t i = 0; i < n; ++i) norm += v[i] * v[i];
+        return norm;
+    };
+    for (int c = kRigid; c < top.columns; ++c) {
+        for (std::size_t i = 0; i < n; ++i) fresh[i] = top.a.fixed[i] ? 0 : uniform(random);
+        const double* last = carry ? &carried_[std::size_t(c - kRigid) * n] : fresh.data();
+        v.assign(last, last + n);
+        double before = 0;
+        for (std::size_t i = 0; i < n; ++i) before += v[i] * v[i];
+        double norm = orthogonalise(c);
+        if (!(norm > 1e-6 * before)) {  // nearly in the others' span: a fresh one
+            v = fresh;
+            norm = orthogonalise(c);
+        }
+        double* e = &top.b[std::size_t(c) * n];
+        const double scale = norm > 0 ? 1 / std::sqrt(norm) : 0;  // 0: every unknown fixed
+        for (std::size_t i = 0; i < n; ++i) e[i] = v[i] * scale;
+    }
+}
+
 // Candidates [first, columns) relaxed on A e = 0 by `sweeps` symmetric line sweeps: what is
 // left is error the sweeps reduce slowly.
 void Aggregation::relaxCandidates(Level& level, int first, int sweeps) const {
@@ -77,12 +117,10 @@ void Aggregation::setup(BlockGrid fine, const std::vector<double>& x) {
     top.columns = kRigid + settings_.candidates;
     top.b.assign(std::size_t(top.columns) * top.a.dofs(), 0.0);
     rigidCandidates(top, x);
-    // The adaptive candidates: random vectors (a fixed seed), relaxed.
-    std::mt19937_64 random(0x5eed);
-    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-    for (std::size_t e = std::size_t(kRigid) * top.a.dofs(); e < top.b.size(); ++e)
-        top.b[e] = top.a.fixed[e % top.a.dofs()] ? 0 : uniform(random);
+    startCandidates(top);
     relaxCandidates(top, kRigid, settings_.candidateSweeps);
+    carried_.assign(top.b.begin() + std::ptrdiff_t(std::size_t(kRigid) * top.a.dofs()),
+                    top.b.end());
     for (int l = 0;; ++l) {
         Level& g = levels_[std::size_t(l)];
         const bool shrinks =

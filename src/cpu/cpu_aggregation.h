@@ -37,6 +37,7 @@ public:
         bool smooth = true;              // P smoothed once (false: the tentative P, for tests)
         int candidateSweeps = 1;         // symmetric line sweeps that relax each adaptive candidate
         int coarseCandidateSweeps = 1;   // and again on every coarse grid that is coarsened
+        bool carryCandidates = true;     // start from the last setup's candidates
     };
     static constexpr int kRigid = 6;
     static constexpr int kAggregate = 3;  // vertices an aggregate spans along each axis
@@ -79,6 +80,7 @@ private:
         std::vector<double> r, z, t;
     };
     void rigidCandidates(Level& fine, const std::vector<double>& x) const;
+    void startCandidates(Level& top);
     void relaxCandidates(Level& level, int first, int sweeps) const;
     // The next grid from level l: P tentative and smoothed, the coarse candidates, Galerkin.
     void coarsen(int l);
@@ -91,6 +93,7 @@ private:
 
     Settings settings_;
     std::vector<Level> levels_;
+    std::vector<double> carried_;  // the fine grid's adaptive candidates of the last setup
 };
 
 }  // namespace cloth
