@@ -203,13 +203,17 @@ void DenseSolve::factor(const BlockGrid& g) {
                         l_[(std::size_t(k) * B + r) * n_ + q * B + c] = blk[c * B + r];
             }
     }
-    for (std::size_t j = 0; j < n_; ++j) {  // Cholesky–Banachiewicz, lower triangle in place
-        const double diagonal = l_[j * n_ + j];
-        for (std::size_t i = j; i < n_; ++i) {
-            double s = l_[i * n_ + j];
-            for (std::size_t m = 0; m < j; ++m) s -= l_[i * n_ + m] * l_[j * n_ + m];
-            l_[i * n_ + j] =
-                i == j ? std::sqrt(std::max(s, 1e-12 * diagonal + 1e-300)) : s / l_[j * n_ + j];
+    denseCholesky(l_.data(), n_, 1e-12);
+}
+
+void denseCholesky(double* a, std::size_t n, double floor) {
+    for (std::size_t j = 0; j < n; ++j) {  // Cholesky–Banachiewicz, column by column
+        const double diagonal = a[j * n + j];
+        for (std::size_t i = j; i < n; ++i) {
+            double s = a[i * n + j];
+            for (std::size_t m = 0; m < j; ++m) s -= a[i * n + m] * a[j * n + m];
+            a[i * n + j] =
+                i == j ? std::sqrt(std::max(s, floor * diagonal + 1e-300)) : s / a[j * n + j];
         }
     }
 }

@@ -58,6 +58,10 @@ private:
     mutable std::vector<double> y_;   // a line's right-hand side, then its solution
 };
 
+// a = L Lᵀ in place: a row-major n × n, L in its lower triangle; a pivot is held at `floor`
+// times its diagonal or more (only rounding takes a positive definite matrix's pivot below).
+void denseCholesky(double* a, std::size_t n, double floor);
+
 // The coarsest grid's dense Cholesky factor.
 class DenseSolve {
 public:

@@ -33,6 +33,21 @@ void invert(std::vector<double> a, double* inverse, std::size_t n) {
     }
 }
 
+// fn(A_km, m, oi, oj) for each neighbour m of vertex k in the stencil of the fine level's grid,
+// (oi, oj) m's aggregate less k's (−1…1 each: aggregates span two vertices or more).
+template <typename FineLevel, typename Fn>
+void forEachNeighbour(const FineLevel& fine, std::int64_t k, const Fn& fn) {
+    const BlockGrid& g = fine.a;
+    const int i = int(k % g.nu), j = int(k / g.nu);
+    const int I = fine.u.of[std::size_t(i)], J = fine.v.of[std::size_t(j)];
+    for (int dj = -2; dj <= 2; ++dj)
+        for (int di = -2; di <= 2; ++di) {
+            if (!g.contains(i + di, j + dj)) continue;
+            fn(g.block(k, BlockGrid::slot(di, dj)), std::size_t(k + std::int64_t(dj) * g.nu + di),
+               fine.u.of[std::size_t(i + di)] - I, fine.v.of[std::size_t(j + dj)] - J);
+        }
+}
+
 }  // namespace
 
 // Per aggregate, the candidates' rows on its unknowns (fixed ones left out) orthonormalised by
@@ -131,19 +146,12 @@ void Aggregation::smoothProlongation(Level& fine, int coarseB) const {
     const double omega = 4.0 / (3.0 * rho);
     std::vector<double> smoothed(fine.p.size(), 0.0), ap(kReach * B * C);
     for (std::int64_t k = 0; k < g.count(); ++k) {
-        const int i = int(k % g.nu), j = int(k / g.nu);
-        const int I = fine.u.of[std::size_t(i)], J = fine.v.of[std::size_t(j)];
-        std::fill(ap.begin(), ap.end(), 0.0);
-        for (int dj = -2; dj <= 2; ++dj)
-            for (int di = -2; di <= 2; ++di) {
-                if (!g.contains(i + di, j + dj)) continue;
-                const std::size_t m = std::size_t(k + std::int64_t(dj) * g.nu + di);
-                const int s = (fine.u.of[std::size_t(i + di)] - I + 1) +
-                              3 * (fine.v.of[std::size_t(j + dj)] - J + 1);
-                blocks::multiplyAdd<0, 0>(g.block(k, BlockGrid::slot(di, dj)),
-                                          &fine.p[(m * kReach + 4) * B * C],
-                                          &ap[std::size_t(s) * B * C], int(B), int(C));
-            }
+        std::fill(ap.begin(), ap.end(), 0.0);  // A P_t, by aggregate offset
+        forEachNeighbour(fine, k, [&](const double* a, std::size_t m, int oi, int oj) {
+            blocks::multiplyAdd<0, 0>(a, &fine.p[(m * kReach + 4) * B * C],
+                                      &ap[std::size_t(oi + 1 + 3 * (oj + 1)) * B * C], int(B),
+                                      int(C));
+        });
         double* out = &smoothed[std::size_t(k) * kReach * B * C];
         std::copy_n(&fine.p[std::size_t(k) * kReach * B * C], kReach * B * C, out);
         for (int s = 0; s < kReach; ++s)
@@ -177,21 +185,14 @@ void Aggregation::galerkinSized(const Level& fine, Level& coarse) const {
     for (std::int64_t k = 0; k < g.count(); ++k) {
         const int i = int(k % g.nu), j = int(k / g.nu);
         const int I = fine.u.of[std::size_t(i)], J = fine.v.of[std::size_t(j)];
-        std::fill(ap.begin(), ap.end(), 0.0);
-        for (int dj = -2; dj <= 2; ++dj)
-            for (int di = -2; di <= 2; ++di) {
-                if (!g.contains(i + di, j + dj)) continue;
-                const std::size_t m = std::size_t(k + std::int64_t(dj) * g.nu + di);
-                const int oi = fine.u.of[std::size_t(i + di)] - I,
-                          oj = fine.v.of[std::size_t(j + dj)] - J;
-                for (int s = 0; s < kReach; ++s) {
-                    const int ti = oi + s % 3 - 1, tj = oj + s / 3 - 1;  // −2…2 from k's aggregate
-                    blocks::multiplyAdd<kB, kC>(g.block(k, BlockGrid::slot(di, dj)),
-                                                &fine.p[(m * kReach + std::size_t(s)) * BC],
-                                                &ap[std::size_t(BlockGrid::slot(ti, tj)) * BC], b,
-                                                nc);
-                }
+        std::fill(ap.begin(), ap.end(), 0.0);  // A P, by aggregate offset −2…2
+        forEachNeighbour(fine, k, [&](const double* a, std::size_t m, int oi, int oj) {
+            for (int s = 0; s < kReach; ++s) {
+                const int ti = oi + s % 3 - 1, tj = oj + s / 3 - 1;
+                blocks::multiplyAdd<kB, kC>(a, &fine.p[(m * kReach + std::size_t(s)) * BC],
+                                            &ap[std::size_t(BlockGrid::slot(ti, tj)) * BC], b, nc);
             }
+        });
         for (int s = 0; s < kReach; ++s) {
             const int pi = s % 3 - 1, pj = s / 3 - 1;
             if (!c.contains(I + pi, J + pj)) continue;

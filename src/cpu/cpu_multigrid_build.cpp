@@ -322,15 +322,7 @@ void CpuMultigrid<T>::factorCoarsest() {
                           std::size_t(col)] = b[col][row];
             }
     }
-    for (std::size_t j = 0; j < dofs; ++j) {  // Cholesky–Banachiewicz, lower triangle in place
-        const double diagonal = a[j * dofs + j];
-        for (std::size_t i = j; i < dofs; ++i) {
-            double s = a[i * dofs + j];
-            for (std::size_t m = 0; m < j; ++m) s -= a[i * dofs + m] * a[j * dofs + m];
-            a[i * dofs + j] =
-                i == j ? std::sqrt(std::max(s, 1e-6 * diagonal + 1e-300)) : s / a[j * dofs + j];
-        }
-    }
+    denseCholesky(a.data(), dofs, 1e-6);
 }
 
 // cpu_multigrid.h declares the class instantiations extern: this file's members are instantiated

@@ -22,13 +22,20 @@ struct Hierarchy {
     Fixture f;
     Aggregation aggregation;
     explicit Hierarchy(int cells, Aggregation::Settings settings = {}) : f(cells, 1e6) {
+        aggregation.setSettings(settings);
+        aggregation.setup(fineGrid(), positions());
+    }
+    // The fixture's system as of its last linearise, and its positions, 3 a vertex.
+    BlockGrid fineGrid() const {
         BlockGrid fine;
         f.multigrid.fineGrid(fine);
+        return fine;
+    }
+    std::vector<double> positions() const {
         std::vector<double> x;
         for (std::int64_t k = 0; k < f.grid.count(); ++k)
             for (int d = 0; d < 3; ++d) x.push_back(f.x.get(k)[d]);
-        aggregation.setSettings(settings);
-        aggregation.setup(std::move(fine), x);
+        return x;
     }
     std::vector<double> random(int l, unsigned seed) const {
         const BlockGrid& g = aggregation.grid(l);
@@ -169,11 +176,8 @@ TEST(Aggregation, DeeperGridsKeepTheCyclesStrength) {
         for (int i = 0; i < h.f.grid.nu; ++i)
             h.f.x.set(h.f.grid.index(i, j), h.f.grid.restPosition(i, j));
     h.f.multigrid.linearise(h.f.system, CycleThreads{});
-    BlockGrid fine;
-    h.f.multigrid.fineGrid(fine);
-    std::vector<double> x;
-    for (std::int64_t k = 0; k < h.f.grid.count(); ++k)
-        for (int d = 0; d < 3; ++d) x.push_back(h.f.x.get(k)[d]);
+    const BlockGrid fine = h.fineGrid();
+    const std::vector<double> x = h.positions();
     const std::vector<double> b = h.random(0, 4);
     int counts[2] = {0, 0};
     for (int levels : {3, 4}) {
@@ -196,11 +200,8 @@ TEST(Aggregation, DeeperGridsKeepTheCyclesStrength) {
 // three times at one state, the cycle needs fewer iterations than after the first setup.
 TEST(Aggregation, CarriedCandidatesImproveFromSetupToSetup) {
     Hierarchy h(96);
-    BlockGrid fine;
-    h.f.multigrid.fineGrid(fine);
-    std::vector<double> x;
-    for (std::int64_t k = 0; k < h.f.grid.count(); ++k)
-        for (int d = 0; d < 3; ++d) x.push_back(h.f.x.get(k)[d]);
+    const BlockGrid fine = h.fineGrid();
+    const std::vector<double> x = h.positions();
     const std::vector<double> b = h.random(0, 4);
     Aggregation v;
     int counts[3];
